@@ -1,0 +1,284 @@
+/**
+ * @file
+ * The parameter structs of tmfdem: one struct per subsection of the prm file,
+ * each with `declare_parameters` and `parse_parameters` (deal.II step-8/18,
+ * ASPECT and Lethe style). Every entry carries a pattern, its units and a
+ * documentation string; `tmfdem --print-parameters` prints them all.
+ *
+ * All quantities are SI; temperatures are in degrees Celsius.
+ */
+#ifndef tmfdem_base_parameters_h
+#define tmfdem_base_parameters_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/types.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace tmfdem
+{
+  using namespace dealii;
+
+  /** Subsection `Mesh`: where the triangulation comes from. */
+  struct MeshParameters
+  {
+    /** How the mesh is made. */
+    enum class Source
+    {
+      rectangle,
+      annulus,
+      disc,
+      file
+    };
+    /** Cell shape of generated meshes (files bring their own). */
+    enum class ElementType
+    {
+      triangles,
+      quadrilaterals
+    };
+
+    Source      source       = Source::rectangle;
+    ElementType element_type = ElementType::triangles;
+    /** Target edge length of generated cells [m]. */
+    double element_size = 0.05;
+    /** Rectangle corners [m]. */
+    Point<2> lower_left, upper_right;
+    /** Centre of annulus and disc [m]. */
+    Point<2> center;
+    /** Annulus inner radius [m]. */
+    double inner_radius = 0.03;
+    /** Annulus and disc outer radius [m]. */
+    double outer_radius = 0.15;
+    /** gmsh `.msh` file, resolved against the prm file's folder. */
+    std::string file_name;
+    /** Uniform refinements applied after generation or import. */
+    unsigned int global_refinements = 0;
+    /** Material id of generated meshes. */
+    types::material_id material_id = 0;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm, const std::string &input_folder);
+  };
+
+  /** Properties of one material, subsection `Materials/Material <id>`. */
+  struct MaterialProperties
+  {
+    double density               = 2500.;  ///< [kg/m^3]
+    double youngs_modulus        = 50e9;   ///< [Pa]
+    double poisson_ratio         = 0.25;   ///< [-]
+    double thermal_conductivity  = 3.;     ///< [W/(m K)]
+    double specific_heat         = 800.;   ///< [J/(kg K)]
+    double thermal_expansion     = 1e-5;   ///< [1/K]
+    double reference_temperature = 0.;     ///< stress-free temperature [C]
+    double tensile_strength      = 10e6;   ///< [Pa]
+    double cohesion              = 20e6;   ///< [Pa]
+    double friction_angle        = 30.;    ///< internal friction angle [deg]
+    double fracture_energy_I     = 100.;   ///< Mode I fracture energy [J/m^2]
+    double fracture_energy_II    = 500.;   ///< Mode II fracture energy [J/m^2]
+    std::string heat_source      = "0";    ///< volumetric source f(x,y,t) [W/m^3]
+
+    /** Thermal diffusivity k / (rho c) [m^2/s]. */
+    double
+    diffusivity() const
+    {
+      return thermal_conductivity / (density * specific_heat);
+    }
+  };
+
+  /**
+   * Subsection `Materials`: one subsection `Material <id>` per material id
+   * 0 ... max_materials-1. A cell with material id m takes `Material m`.
+   */
+  struct MaterialParameters
+  {
+    static constexpr unsigned int max_materials = 8;
+    std::array<MaterialProperties, max_materials> materials;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+    /** Properties of material @p id; InputError if @p id is not allowed. */
+    const MaterialProperties &
+    operator[](const types::material_id id) const;
+  };
+
+  /** One thermal boundary condition on a set of boundary ids. */
+  struct ThermalBoundaryCondition
+  {
+    enum class Type
+    {
+      dirichlet,
+      neumann,
+      robin
+    };
+    /** `Thermal boundary conditions/Condition <n>`, for messages. */
+    std::string                     name;
+    std::vector<types::boundary_id> boundary_ids;
+    Type                            type = Type::dirichlet;
+    std::string temperature               = "0"; ///< Dirichlet T(x,y,t) [C]
+    std::string heat_flux                 = "0"; ///< inward q(x,y,t) [W/m^2]
+    std::string heat_transfer_coefficient = "0"; ///< h(x,y,t) [W/(m^2 K)]
+    std::string ambient_temperature       = "0"; ///< T_inf(x,y,t) [C]
+  };
+
+  /**
+   * Subsection `Thermal boundary conditions`: up to max_conditions
+   * subsections `Condition <n>`; boundary ids not named anywhere are
+   * insulated (zero flux).
+   */
+  struct ThermalBoundaryParameters
+  {
+    static constexpr unsigned int         max_conditions = 8;
+    std::vector<ThermalBoundaryCondition> conditions;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+  /** Subsection `Initial conditions`. */
+  struct InitialConditionParameters
+  {
+    std::string temperature = "0"; ///< T(x,y,0) [C]
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+  /** Subsection `Time stepping`. */
+  struct TimeSteppingParameters
+  {
+    enum class Mode
+    {
+      transient,
+      steady
+    };
+    Mode        mode = Mode::transient;
+    std::string method;            ///< name from theta_scheme_registry()
+    double      theta      = 1.;   ///< implicitness of the chosen method
+    double      start_time = 0.;   ///< [s]
+    double      end_time   = 1.;   ///< [s]
+    double      time_step  = 0.1;  ///< [s]
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+  /** Subsection `Adaptive refinement` (Kelly estimator). */
+  struct AdaptivityParameters
+  {
+    bool         enable              = false;
+    /** "fixed fraction" (of the estimated error) or "fixed number" (of
+     *  cells) marking. */
+    std::string  strategy            = "fixed fraction";
+    unsigned int interval            = 5;    ///< steps between adaptations
+    double       refine_fraction     = 0.3;  ///< of cells or of the error
+    double       coarsen_fraction    = 0.03; ///< of cells or of the error
+    unsigned int max_level           = 4;    ///< above the initial mesh
+    unsigned int initial_refinements = 2;    ///< adaptive, on the initial field
+    unsigned int steady_cycles       = 6;    ///< solve-estimate-refine cycles
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+  /** Subsection `Heat solver`: discretisation and linear algebra. */
+  struct HeatSolverParameters
+  {
+    unsigned int degree             = 1;     ///< polynomial degree
+    double       relative_tolerance = 1e-10; ///< CG stop criterion
+    unsigned int max_iterations     = 2000;
+    std::string  preconditioner     = "AMG";
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+  /** Subsection `Output`. */
+  struct OutputParameters
+  {
+    std::string         directory;          ///< folder for all outputs
+    std::vector<double> times;              ///< output times [s]
+    double              interval = 0.;      ///< output every ... [s], 0: off
+    bool                write_vtu = true;   ///< solution.pvd and vtu files
+    double              progress_interval = 2.; ///< stderr progress [s wall]
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm, const std::string &prm_stem);
+  };
+
+  /** Subsection `Monitors`: named probe points and sampled lines. */
+  struct MonitorParameters
+  {
+    struct Probe
+    {
+      std::string name;
+      Point<2>    location;
+    };
+    struct Line
+    {
+      std::string  name;
+      Point<2>     start, end;
+      unsigned int n_points = 2;
+    };
+    std::vector<Probe> probes;
+    std::vector<Line>  lines;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+  /** All parameters of a run. */
+  struct Parameters
+  {
+    std::string                model;    ///< name from the model registry
+    std::string                prm_file; ///< file the parameters came from
+    MeshParameters             mesh;
+    MaterialParameters         materials;
+    ThermalBoundaryParameters  thermal_boundary;
+    InitialConditionParameters initial;
+    TimeSteppingParameters     time;
+    AdaptivityParameters       adaptivity;
+    HeatSolverParameters       heat_solver;
+    OutputParameters           output;
+    MonitorParameters          monitors;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+  /**
+   * The one-step theta methods offered by `Time stepping/Method`, by name:
+   * backward Euler (theta = 1) and Crank-Nicolson (theta = 1/2).
+   */
+  const std::vector<std::pair<std::string, double>> &
+  theta_scheme_registry();
+
+} // namespace tmfdem
+
+#endif

@@ -1,0 +1,47 @@
+/**
+ * @file
+ * Meshes: generated rectangles, annuli and discs (unstructured triangles
+ * through gmsh, or structured quadrilaterals through deal.II's GridGenerator),
+ * and gmsh .msh import with physical groups mapped to ids.
+ */
+#ifndef tmfdem_mesh_mesh_generator_h
+#define tmfdem_mesh_mesh_generator_h
+
+#include <tmfdem/base/parameters.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <mpi.h>
+
+#include <string>
+
+namespace tmfdem
+{
+  /**
+   * Fills the serial @p triangulation as @p parameters describe (before
+   * Mesh/Global refinements). Generated triangle meshes are written by the
+   * `gmsh` program into @p work_folder (`mesh.geo`, `mesh.msh`, kept for the
+   * user); rank 0 runs gmsh and every rank reads the result. Manifolds are
+   * attached to curved boundaries. Throws InputError for missing or
+   * unreadable files and RunError if gmsh fails.
+   */
+  void
+  create_coarse_mesh(const MeshParameters &parameters,
+                     const std::string    &work_folder,
+                     Triangulation<2>     &triangulation,
+                     MPI_Comm              communicator);
+
+  /**
+   * Reads a gmsh .msh file (ASCII format 2 or 4): physical curves become
+   * boundary ids, physical surfaces material ids. Throws InputError naming
+   * @p file_name if it is missing, unreadable or malformed.
+   */
+  void
+  read_gmsh_file(const std::string &file_name, Triangulation<2> &triangulation);
+
+  /** Exact area of the generated domain [m^2]; 0 for imported meshes. */
+  double
+  domain_area(const MeshParameters &parameters);
+} // namespace tmfdem
+
+#endif

@@ -1,0 +1,201 @@
+#include <tmfdem/base/command_line.h>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/simulation.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace tmfdem
+{
+  namespace
+  {
+    std::string
+    exception_text(const ExceptionBase &exception)
+    {
+      std::ostringstream text;
+      exception.print_info(text);
+      std::string message = Utilities::trim(text.str());
+      // deal.II words a few of its messages as addressed to a programmer
+      const std::string prefix = "The violated condition was:";
+      if (message.rfind(prefix, 0) == 0)
+        message = message.substr(message.find('\n') + 1);
+      return message;
+    }
+
+    /** Applies "A/B/Entry=value" to @p prm. */
+    void
+    apply_override(ParameterHandler &prm, const std::string &assignment)
+    {
+      const auto equals = assignment.find('=');
+      if (equals == std::string::npos)
+        throw InputError("--set '" + assignment +
+                         "': expected \"Subsection/Entry=value\".");
+      const std::string path  = Utilities::trim(assignment.substr(0, equals));
+      const std::string value = Utilities::trim(assignment.substr(equals + 1));
+      std::vector<std::string> parts;
+      std::istringstream       in(path);
+      for (std::string part; std::getline(in, part, '/');)
+        parts.push_back(Utilities::trim(part));
+      if (parts.empty() || parts.back().empty())
+        throw InputError("--set '" + assignment + "': no entry name.");
+
+      // check the path against the declared parameters before touching prm
+      std::ostringstream declared;
+      prm.print_parameters(declared, ParameterHandler::ShortPRM);
+      for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+        prm.enter_subsection(parts[i]);
+      try
+        {
+          prm.get(parts.back());
+        }
+      catch (const ExceptionBase &)
+        {
+          for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+            prm.leave_subsection();
+          throw InputError("--set '" + assignment + "': there is no entry '" +
+                           path +
+                           "'. tmfdem --print-parameters lists all entries.");
+        }
+      try
+        {
+          prm.set(parts.back(), value);
+        }
+      catch (const ExceptionBase &exception)
+        {
+          for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+            prm.leave_subsection();
+          throw InputError("--set '" + assignment + "': " +
+                           exception_text(exception));
+        }
+      for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+        prm.leave_subsection();
+    }
+  } // namespace
+
+  std::string
+  usage_text()
+  {
+    return "tmfdem: thermo-mechanical simulation of rock that cracks "
+           "(continuum deal.II solvers and combined finite-discrete "
+           "elements)\n\n"
+           "usage:\n"
+           "  tmfdem case.prm [--set \"Subsection/Entry=value\" ...]   run a "
+           "case\n"
+           "  tmfdem --validate case.prm [--set ...]   check the input and the "
+           "mesh, solve nothing\n"
+           "  tmfdem --print-parameters                print the complete, "
+           "documented default prm\n"
+           "  tmfdem --help                            this text\n\n"
+           "Outputs go to Output/Directory (default output/<prm stem>): "
+           "solution.pvd, probes.csv, lines.csv, summary.json.\n"
+           "Run in parallel with mpirun -np N tmfdem case.prm.\n"
+           "Exit status: 0 success, 1 bad input, 2 failure during the run.\n\n"
+           "Models (prm entry Model):\n" +
+           registered_simulation_descriptions();
+  }
+
+  CommandLine
+  parse_command_line(const int argc, const char *const *argv)
+  {
+    CommandLine command_line;
+    for (int i = 1; i < argc; ++i)
+      {
+        const std::string argument = argv[i];
+        if (argument == "--help" || argument == "-h")
+          command_line.action = CommandLine::Action::help;
+        else if (argument == "--print-parameters")
+          command_line.action = CommandLine::Action::print_parameters;
+        else if (argument == "--validate")
+          command_line.action = CommandLine::Action::validate;
+        else if (argument == "--set")
+          {
+            if (i + 1 >= argc)
+              throw InputError("--set needs an argument "
+                               "\"Subsection/Entry=value\".");
+            command_line.overrides.emplace_back(argv[++i]);
+          }
+        else if (argument.rfind("--set=", 0) == 0)
+          command_line.overrides.push_back(argument.substr(6));
+        else if (!argument.empty() && argument[0] == '-')
+          throw InputError("unknown option '" + argument +
+                           "'; see tmfdem --help.");
+        else if (command_line.prm_file.empty())
+          command_line.prm_file = argument;
+        else
+          throw InputError("more than one parameter file given ('" +
+                           command_line.prm_file + "' and '" + argument +
+                           "').");
+      }
+    if ((command_line.action == CommandLine::Action::run ||
+         command_line.action == CommandLine::Action::validate) &&
+        command_line.prm_file.empty())
+      {
+        if (argc == 1)
+          command_line.action = CommandLine::Action::help;
+        else
+          throw InputError("no parameter file given; see tmfdem --help.");
+      }
+    return command_line;
+  }
+
+  Parameters
+  read_parameters(const std::string              &prm_file,
+                  const std::vector<std::string> &overrides)
+  {
+    {
+      std::ifstream probe(prm_file);
+      if (!probe)
+        throw InputError("cannot open the parameter file '" + prm_file +
+                         "' (missing or unreadable).");
+    }
+    ParameterHandler prm;
+    Parameters::declare_parameters(prm);
+    try
+      {
+        prm.parse_input(prm_file, "", false, false);
+      }
+    catch (const ExceptionBase &exception)
+      {
+        throw InputError("in parameter file '" + prm_file +
+                         "': " + exception_text(exception));
+      }
+    for (const auto &assignment : overrides)
+      apply_override(prm, assignment);
+    Parameters parameters;
+    parameters.prm_file = prm_file;
+    try
+      {
+        parameters.parse_parameters(prm);
+      }
+    catch (const InputError &error)
+      {
+        throw InputError("in parameter file '" + prm_file + "': " + error.what());
+      }
+    catch (const ExceptionBase &exception)
+      {
+        throw InputError("in parameter file '" + prm_file +
+                         "': " + exception_text(exception));
+      }
+    return parameters;
+  }
+
+  std::string
+  default_parameter_file()
+  {
+    ParameterHandler prm;
+    Parameters::declare_parameters(prm);
+    std::ostringstream text;
+    text << "# tmfdem: complete default parameter file "
+            "(tmfdem --print-parameters)\n"
+            "# Units are SI; temperatures in degrees C. Functions of x, y, t "
+            "use muparser syntax.\n";
+    prm.print_parameters(text,
+                         ParameterHandler::OutputStyle(ParameterHandler::PRM |
+                                                       ParameterHandler::KeepDeclarationOrder));
+    return text.str();
+  }
+} // namespace tmfdem

@@ -1,0 +1,692 @@
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/parameters.h>
+#include <tmfdem/base/simulation.h>
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+namespace tmfdem
+{
+  namespace
+  {
+    /** "a, b" -> Point; the pattern has already checked the format. */
+    Point<2>
+    parse_point(const std::string &text)
+    {
+      const std::vector<double> values =
+        Utilities::string_to_double(Utilities::split_string_list(text, ','));
+      return Point<2>(values[0], values[1]);
+    }
+
+    std::string
+    selection_of(const std::vector<std::string> &names)
+    {
+      std::string result;
+      for (const auto &name : names)
+        result += (result.empty() ? "" : "|") + name;
+      return result;
+    }
+
+    const auto point_pattern = Patterns::List(Patterns::Double(), 2, 2, ",");
+  } // namespace
+
+  const std::vector<std::pair<std::string, double>> &
+  theta_scheme_registry()
+  {
+    static const std::vector<std::pair<std::string, double>> methods = {
+      {"backward Euler", 1.0}, {"Crank-Nicolson", 0.5}};
+    return methods;
+  }
+
+  // ------------------------------------------------------------------ Mesh
+  void
+  MeshParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mesh");
+    prm.declare_entry(
+      "Source",
+      "rectangle",
+      Patterns::Selection("rectangle|annulus|disc|file"),
+      "Where the mesh comes from: a generated rectangle (boundary ids 0 left, "
+      "1 right, 2 bottom, 3 top), annulus (0 inner, 1 outer), disc (0 rim), "
+      "or a gmsh .msh file (physical curves -> boundary ids, physical "
+      "surfaces -> material ids).");
+    prm.declare_entry(
+      "Element type",
+      "triangles",
+      Patterns::Selection("triangles|quadrilaterals"),
+      "Cell shape of generated meshes: unstructured triangles (gmsh, the "
+      "discrete layer's mesh) or structured quadrilaterals (continuum runs "
+      "with adaptive refinement).");
+    prm.declare_entry("Element size",
+                      "0.05",
+                      Patterns::Double(0.),
+                      "Target edge length of generated cells [m].");
+    prm.declare_entry("Lower left corner",
+                      "0, 0",
+                      point_pattern,
+                      "Rectangle: lower left corner x, y [m].");
+    prm.declare_entry("Upper right corner",
+                      "1, 0.25",
+                      point_pattern,
+                      "Rectangle: upper right corner x, y [m].");
+    prm.declare_entry("Center",
+                      "0, 0",
+                      point_pattern,
+                      "Annulus and disc: centre x, y [m].");
+    prm.declare_entry("Inner radius",
+                      "0.03",
+                      Patterns::Double(0.),
+                      "Annulus: inner radius a [m].");
+    prm.declare_entry("Outer radius",
+                      "0.15",
+                      Patterns::Double(0.),
+                      "Annulus and disc: outer radius b [m].");
+    prm.declare_entry("File name",
+                      "",
+                      Patterns::Anything(),
+                      "Source = file: gmsh .msh file (format 2 or 4, ASCII), "
+                      "relative to the folder of the prm file.");
+    prm.declare_entry("Global refinements",
+                      "0",
+                      Patterns::Integer(0, 12),
+                      "Uniform refinements after generation or import [-].");
+    prm.declare_entry("Material id",
+                      "0",
+                      Patterns::Integer(0, MaterialParameters::max_materials - 1),
+                      "Material id of the cells of a generated mesh [-].");
+    prm.leave_subsection();
+  }
+
+  void
+  MeshParameters::parse_parameters(ParameterHandler  &prm,
+                                   const std::string &input_folder)
+  {
+    prm.enter_subsection("Mesh");
+    const std::string source_name = prm.get("Source");
+    source = source_name == "rectangle" ? Source::rectangle :
+             source_name == "annulus"   ? Source::annulus :
+             source_name == "disc"      ? Source::disc :
+                                          Source::file;
+    element_type = prm.get("Element type") == "triangles" ?
+                     ElementType::triangles :
+                     ElementType::quadrilaterals;
+    element_size       = prm.get_double("Element size");
+    lower_left         = parse_point(prm.get("Lower left corner"));
+    upper_right        = parse_point(prm.get("Upper right corner"));
+    center             = parse_point(prm.get("Center"));
+    inner_radius       = prm.get_double("Inner radius");
+    outer_radius       = prm.get_double("Outer radius");
+    global_refinements = prm.get_integer("Global refinements");
+    material_id        = prm.get_integer("Material id");
+    file_name          = prm.get("File name");
+    prm.leave_subsection();
+
+    if (source != Source::file && !(element_size > 0.))
+      throw InputError("Mesh/Element size = " + std::to_string(element_size) +
+                       ": must be > 0 [m].");
+    if (source == Source::rectangle &&
+        !(upper_right[0] > lower_left[0] && upper_right[1] > lower_left[1]))
+      throw InputError("Mesh/Upper right corner must lie above and to the "
+                       "right of Mesh/Lower left corner.");
+    if (source == Source::annulus && !(outer_radius > inner_radius &&
+                                       inner_radius > 0.))
+      throw InputError("Mesh: an annulus needs 0 < Inner radius < Outer "
+                       "radius; got Inner radius = " +
+                       std::to_string(inner_radius) + ", Outer radius = " +
+                       std::to_string(outer_radius) + ".");
+    if (source == Source::disc && !(outer_radius > 0.))
+      throw InputError("Mesh/Outer radius must be > 0 for a disc.");
+    if (source == Source::file)
+      {
+        if (file_name.empty())
+          throw InputError("Mesh/Source = file needs Mesh/File name.");
+        if (std::filesystem::path(file_name).is_relative())
+          file_name = (std::filesystem::path(input_folder) / file_name).string();
+      }
+  }
+
+  // ------------------------------------------------------------- Materials
+  void
+  MaterialParameters::declare_parameters(ParameterHandler &prm)
+  {
+    const MaterialProperties defaults;
+    prm.enter_subsection("Materials");
+    for (unsigned int id = 0; id < max_materials; ++id)
+      {
+        prm.enter_subsection("Material " + std::to_string(id));
+        prm.declare_entry("Density",
+                          Utilities::to_string(defaults.density),
+                          Patterns::Double(0.),
+                          "Mass density rho [kg/m^3], > 0.");
+        prm.declare_entry("Young's modulus",
+                          Utilities::to_string(defaults.youngs_modulus),
+                          Patterns::Double(0.),
+                          "Young's modulus E [Pa], > 0.");
+        prm.declare_entry("Poisson's ratio",
+                          Utilities::to_string(defaults.poisson_ratio),
+                          Patterns::Double(-1., 0.5),
+                          "Poisson's ratio nu [-], -1 < nu < 0.5.");
+        prm.declare_entry("Thermal conductivity",
+                          Utilities::to_string(defaults.thermal_conductivity),
+                          Patterns::Double(0.),
+                          "Thermal conductivity k [W/(m K)], > 0.");
+        prm.declare_entry("Specific heat capacity",
+                          Utilities::to_string(defaults.specific_heat),
+                          Patterns::Double(0.),
+                          "Specific heat capacity c_p [J/(kg K)], > 0.");
+        prm.declare_entry("Thermal expansion coefficient",
+                          Utilities::to_string(defaults.thermal_expansion),
+                          Patterns::Double(0.),
+                          "Linear thermal expansion coefficient alpha [1/K].");
+        prm.declare_entry("Reference temperature",
+                          Utilities::to_string(defaults.reference_temperature),
+                          Patterns::Double(-273.15),
+                          "Stress-free temperature T_ref [C].");
+        prm.declare_entry("Tensile strength",
+                          Utilities::to_string(defaults.tensile_strength),
+                          Patterns::Double(0.),
+                          "Tensile strength f_t of the joints [Pa].");
+        prm.declare_entry("Cohesion",
+                          Utilities::to_string(defaults.cohesion),
+                          Patterns::Double(0.),
+                          "Cohesion c of the joints' Mohr-Coulomb shear "
+                          "strength [Pa].");
+        prm.declare_entry("Internal friction angle",
+                          Utilities::to_string(defaults.friction_angle),
+                          Patterns::Double(0., 89.),
+                          "Internal friction angle phi [deg].");
+        prm.declare_entry("Mode I fracture energy",
+                          Utilities::to_string(defaults.fracture_energy_I),
+                          Patterns::Double(0.),
+                          "Mode I fracture energy G_I [J/m^2].");
+        prm.declare_entry("Mode II fracture energy",
+                          Utilities::to_string(defaults.fracture_energy_II),
+                          Patterns::Double(0.),
+                          "Mode II fracture energy G_II [J/m^2].");
+        prm.declare_entry("Volumetric heat source",
+                          defaults.heat_source,
+                          Patterns::Anything(),
+                          "Heat generated per unit volume, a function of x, y "
+                          "[m] and t [s] [W/m^3].");
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+  void
+  MaterialParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Materials");
+    for (unsigned int id = 0; id < max_materials; ++id)
+      {
+        const std::string name = "Materials/Material " + std::to_string(id);
+        prm.enter_subsection("Material " + std::to_string(id));
+        MaterialProperties &m     = materials[id];
+        m.density                 = prm.get_double("Density");
+        m.youngs_modulus          = prm.get_double("Young's modulus");
+        m.poisson_ratio           = prm.get_double("Poisson's ratio");
+        m.thermal_conductivity    = prm.get_double("Thermal conductivity");
+        m.specific_heat           = prm.get_double("Specific heat capacity");
+        m.thermal_expansion       = prm.get_double("Thermal expansion coefficient");
+        m.reference_temperature   = prm.get_double("Reference temperature");
+        m.tensile_strength        = prm.get_double("Tensile strength");
+        m.cohesion                = prm.get_double("Cohesion");
+        m.friction_angle          = prm.get_double("Internal friction angle");
+        m.fracture_energy_I       = prm.get_double("Mode I fracture energy");
+        m.fracture_energy_II      = prm.get_double("Mode II fracture energy");
+        m.heat_source             = prm.get("Volumetric heat source");
+        prm.leave_subsection();
+
+        if (!(m.poisson_ratio < 0.5) || !(m.poisson_ratio > -1.))
+          throw InputError(name + "/Poisson's ratio = " +
+                           Utilities::to_string(m.poisson_ratio) +
+                           ": allowed is -1 < nu < 0.5 (0.5 is "
+                           "incompressible, which a displacement "
+                           "formulation cannot represent).");
+        const std::pair<const char *, double> positive[] = {
+          {"Density", m.density},
+          {"Young's modulus", m.youngs_modulus},
+          {"Thermal conductivity", m.thermal_conductivity},
+          {"Specific heat capacity", m.specific_heat}};
+        for (const auto &[entry, value] : positive)
+          if (!(value > 0.))
+            throw InputError(name + "/" + entry + " = " +
+                             Utilities::to_string(value) +
+                             ": must be > 0.");
+      }
+    prm.leave_subsection();
+  }
+
+  const MaterialProperties &
+  MaterialParameters::operator[](const types::material_id id) const
+  {
+    if (id >= max_materials)
+      throw InputError("Material id " + std::to_string(id) +
+                       " has no subsection: allowed ids are 0 ... " +
+                       std::to_string(max_materials - 1) +
+                       " (Materials/Material <id>).");
+    return materials[id];
+  }
+
+  // ------------------------------------------- Thermal boundary conditions
+  void
+  ThermalBoundaryParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Thermal boundary conditions");
+    for (unsigned int n = 1; n <= max_conditions; ++n)
+      {
+        prm.enter_subsection("Condition " + std::to_string(n));
+        prm.declare_entry("Boundary ids",
+                          "",
+                          Patterns::List(Patterns::Integer(0), 0, 1000, ","),
+                          "Boundary ids this condition applies to (empty: "
+                          "unused). Boundary ids named by no condition are "
+                          "insulated.");
+        prm.declare_entry("Type",
+                          "dirichlet",
+                          Patterns::Selection("dirichlet|neumann|robin"),
+                          "dirichlet: T = Temperature; neumann: inward heat "
+                          "flux q = Heat flux; robin (convective): inward "
+                          "flux h (T_inf - T).");
+        prm.declare_entry("Temperature",
+                          "0",
+                          Patterns::Anything(),
+                          "Dirichlet temperature, function of x, y [m], t [s] "
+                          "[C].");
+        prm.declare_entry("Heat flux",
+                          "0",
+                          Patterns::Anything(),
+                          "Neumann heat flux into the body, function of x, y, "
+                          "t [W/m^2].");
+        prm.declare_entry("Heat transfer coefficient",
+                          "0",
+                          Patterns::Anything(),
+                          "Robin heat transfer coefficient h, function of x, "
+                          "y, t [W/(m^2 K)].");
+        prm.declare_entry("Ambient temperature",
+                          "0",
+                          Patterns::Anything(),
+                          "Robin ambient (fluid) temperature T_inf, function "
+                          "of x, y, t [C].");
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+  void
+  ThermalBoundaryParameters::parse_parameters(ParameterHandler &prm)
+  {
+    conditions.clear();
+    std::set<types::boundary_id> used;
+    prm.enter_subsection("Thermal boundary conditions");
+    for (unsigned int n = 1; n <= max_conditions; ++n)
+      {
+        ThermalBoundaryCondition condition;
+        condition.name =
+          "Thermal boundary conditions/Condition " + std::to_string(n);
+        prm.enter_subsection("Condition " + std::to_string(n));
+        for (const int id : Utilities::string_to_int(
+               Utilities::split_string_list(prm.get("Boundary ids"), ',')))
+          condition.boundary_ids.push_back(id);
+        const std::string type = prm.get("Type");
+        condition.type = type == "dirichlet" ?
+                           ThermalBoundaryCondition::Type::dirichlet :
+                         type == "neumann" ?
+                           ThermalBoundaryCondition::Type::neumann :
+                           ThermalBoundaryCondition::Type::robin;
+        condition.temperature               = prm.get("Temperature");
+        condition.heat_flux                 = prm.get("Heat flux");
+        condition.heat_transfer_coefficient = prm.get("Heat transfer coefficient");
+        condition.ambient_temperature       = prm.get("Ambient temperature");
+        prm.leave_subsection();
+        for (const auto id : condition.boundary_ids)
+          if (!used.insert(id).second)
+            throw InputError(condition.name + "/Boundary ids: boundary id " +
+                             std::to_string(id) +
+                             " already has a thermal condition; each boundary "
+                             "id takes at most one.");
+        if (!condition.boundary_ids.empty())
+          conditions.push_back(condition);
+      }
+    prm.leave_subsection();
+  }
+
+  // --------------------------------------------------- Initial conditions
+  void
+  InitialConditionParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Initial conditions");
+    prm.declare_entry("Temperature",
+                      "0",
+                      Patterns::Anything(),
+                      "Initial temperature, function of x, y [m] (t = start "
+                      "time) [C].");
+    prm.leave_subsection();
+  }
+
+  void
+  InitialConditionParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Initial conditions");
+    temperature = prm.get("Temperature");
+    prm.leave_subsection();
+  }
+
+  // --------------------------------------------------------- Time stepping
+  void
+  TimeSteppingParameters::declare_parameters(ParameterHandler &prm)
+  {
+    std::vector<std::string> methods;
+    for (const auto &method : theta_scheme_registry())
+      methods.push_back(method.first);
+    prm.enter_subsection("Time stepping");
+    prm.declare_entry("Mode",
+                      "transient",
+                      Patterns::Selection("transient|steady"),
+                      "transient: march from Start time to End time; steady: "
+                      "solve the stationary problem directly.");
+    prm.declare_entry("Method",
+                      "backward Euler",
+                      Patterns::Selection(selection_of(methods)),
+                      "One-step theta method: backward Euler (theta = 1, "
+                      "first order, L-stable) or Crank-Nicolson (theta = 1/2, "
+                      "second order).");
+    prm.declare_entry("Start time", "0", Patterns::Double(), "Start time [s].");
+    prm.declare_entry("End time", "1", Patterns::Double(), "End time [s].");
+    prm.declare_entry("Time step",
+                      "0.1",
+                      Patterns::Double(0.),
+                      "Time step [s], > 0; shortened to land on output "
+                      "times.");
+    prm.leave_subsection();
+  }
+
+  void
+  TimeSteppingParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time stepping");
+    mode       = prm.get("Mode") == "steady" ? Mode::steady : Mode::transient;
+    method     = prm.get("Method");
+    start_time = prm.get_double("Start time");
+    end_time   = prm.get_double("End time");
+    time_step  = prm.get_double("Time step");
+    prm.leave_subsection();
+    for (const auto &[name, value] : theta_scheme_registry())
+      if (name == method)
+        theta = value;
+    if (mode == Mode::transient)
+      {
+        if (!(time_step > 0.))
+          throw InputError("Time stepping/Time step = " +
+                           Utilities::to_string(time_step) +
+                           ": must be > 0 [s].");
+        if (!(end_time > start_time))
+          throw InputError("Time stepping/End time = " +
+                           Utilities::to_string(end_time) +
+                           ": must be later than Start time = " +
+                           Utilities::to_string(start_time) + " [s].");
+        if ((end_time - start_time) / time_step > 1e9)
+          throw InputError("Time stepping: (End time - Start time) / Time step "
+                           "exceeds 1e9 steps.");
+      }
+  }
+
+  // --------------------------------------------------- Adaptive refinement
+  void
+  AdaptivityParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Adaptive refinement");
+    prm.declare_entry("Enable",
+                      "false",
+                      Patterns::Bool(),
+                      "Adapt the mesh with the Kelly error estimator. "
+                      "Quadrilateral meshes only (deal.II 9.4.1 cannot "
+                      "coarsen triangles, and Kelly fails on triangle meshes "
+                      "with hanging nodes).");
+    prm.declare_entry("Strategy",
+                      "fixed fraction",
+                      Patterns::Selection("fixed fraction|fixed number"),
+                      "fixed fraction: refine the cells that carry Refine "
+                      "fraction of the estimated error (cells of equal error "
+                      "are treated alike, which symmetric problems need); "
+                      "fixed number: refine Refine fraction of the cells.");
+    prm.declare_entry("Interval",
+                      "5",
+                      Patterns::Integer(1),
+                      "Transient runs: adapt every this many steps [-].");
+    prm.declare_entry("Refine fraction",
+                      "0.3",
+                      Patterns::Double(0., 1.),
+                      "Fraction of the error (fixed fraction) or of the cells "
+                      "(fixed number) marked for refinement [-].");
+    prm.declare_entry("Coarsen fraction",
+                      "0.03",
+                      Patterns::Double(0., 1.),
+                      "Fraction of the error or of the cells (smallest error) "
+                      "marked for coarsening [-].");
+    prm.declare_entry("Maximum level",
+                      "4",
+                      Patterns::Integer(0, 12),
+                      "Refinement levels allowed above the initial mesh [-].");
+    prm.declare_entry("Initial refinements",
+                      "2",
+                      Patterns::Integer(0, 12),
+                      "Transient runs: adaptive refinements of the initial "
+                      "temperature field [-].");
+    prm.declare_entry("Steady cycles",
+                      "6",
+                      Patterns::Integer(1, 30),
+                      "Steady runs: solve-estimate-refine cycles [-].");
+    prm.leave_subsection();
+  }
+
+  void
+  AdaptivityParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Adaptive refinement");
+    enable              = prm.get_bool("Enable");
+    strategy            = prm.get("Strategy");
+    interval            = prm.get_integer("Interval");
+    refine_fraction     = prm.get_double("Refine fraction");
+    coarsen_fraction    = prm.get_double("Coarsen fraction");
+    max_level           = prm.get_integer("Maximum level");
+    initial_refinements = prm.get_integer("Initial refinements");
+    steady_cycles       = prm.get_integer("Steady cycles");
+    prm.leave_subsection();
+    if (refine_fraction + coarsen_fraction > 1.)
+      throw InputError("Adaptive refinement: Refine fraction + Coarsen "
+                       "fraction must not exceed 1.");
+  }
+
+  // ----------------------------------------------------------- Heat solver
+  void
+  HeatSolverParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Heat solver");
+    prm.declare_entry("Polynomial degree",
+                      "1",
+                      Patterns::Integer(1, 3),
+                      "Degree of the Lagrange elements for temperature [-].");
+    prm.declare_entry("Relative tolerance",
+                      "1e-10",
+                      Patterns::Double(1e-16, 1e-2),
+                      "CG stops when the residual falls below this times the "
+                      "right-hand side norm [-].");
+    prm.declare_entry("Maximum iterations",
+                      "5000",
+                      Patterns::Integer(1),
+                      "CG iteration limit; exceeding it stops the run with "
+                      "exit status 2 [-].");
+    prm.declare_entry("Preconditioner",
+                      "AMG",
+                      Patterns::Selection("AMG|Jacobi"),
+                      "Trilinos ML algebraic multigrid, or point Jacobi.");
+    prm.leave_subsection();
+  }
+
+  void
+  HeatSolverParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Heat solver");
+    degree             = prm.get_integer("Polynomial degree");
+    relative_tolerance = prm.get_double("Relative tolerance");
+    max_iterations     = prm.get_integer("Maximum iterations");
+    preconditioner     = prm.get("Preconditioner");
+    prm.leave_subsection();
+  }
+
+  // ---------------------------------------------------------------- Output
+  void
+  OutputParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    prm.declare_entry("Directory",
+                      "",
+                      Patterns::Anything(),
+                      "Folder for all outputs; empty: output/<prm file stem> "
+                      "in the working directory.");
+    prm.declare_entry("Times",
+                      "",
+                      Patterns::List(Patterns::Double(), 0, 10000, ","),
+                      "Output times [s]; the time step is shortened to land "
+                      "on each. The end time is always written.");
+    prm.declare_entry("Interval",
+                      "0",
+                      Patterns::Double(0.),
+                      "Also write every this many seconds of physical time; "
+                      "0: only at Times and at the end [s].");
+    prm.declare_entry("Write vtu",
+                      "true",
+                      Patterns::Bool(),
+                      "Write solution.pvd and the vtu/pvtu files for "
+                      "ParaView.");
+    prm.declare_entry("Progress interval",
+                      "2",
+                      Patterns::Double(0.),
+                      "Seconds of wall time between progress lines on stderr "
+                      "[s].");
+    prm.leave_subsection();
+  }
+
+  void
+  OutputParameters::parse_parameters(ParameterHandler  &prm,
+                                     const std::string &prm_stem)
+  {
+    prm.enter_subsection("Output");
+    directory = prm.get("Directory");
+    if (directory.empty())
+      directory = "output/" + prm_stem;
+    times = Utilities::string_to_double(
+      Utilities::split_string_list(prm.get("Times"), ','));
+    interval          = prm.get_double("Interval");
+    write_vtu         = prm.get_bool("Write vtu");
+    progress_interval = prm.get_double("Progress interval");
+    prm.leave_subsection();
+    for (unsigned int i = 1; i < times.size(); ++i)
+      if (!(times[i] > times[i - 1]))
+        throw InputError("Output/Times must increase strictly.");
+  }
+
+  // -------------------------------------------------------------- Monitors
+  void
+  MonitorParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Monitors");
+    prm.declare_entry(
+      "Probes",
+      "",
+      Patterns::Map(Patterns::Anything(), point_pattern, 0, 10000, ";", ":"),
+      "Named probe points 'name: x, y; name2: x, y' [m]; sampled into "
+      "probes.csv at every output time.");
+    prm.declare_entry(
+      "Lines",
+      "",
+      Patterns::Map(Patterns::Anything(),
+                    Patterns::List(Patterns::Double(), 5, 5, ","),
+                    0,
+                    1000,
+                    ";",
+                    ":"),
+      "Named sampled lines 'name: x0, y0, x1, y1, n' (n >= 2 equally spaced "
+      "points, x, y in m); sampled into lines.csv at every output time.");
+    prm.leave_subsection();
+  }
+
+  void
+  MonitorParameters::parse_parameters(ParameterHandler &prm)
+  {
+    probes.clear();
+    lines.clear();
+    std::set<std::string> names;
+    prm.enter_subsection("Monitors");
+    for (const auto &item :
+         Utilities::split_string_list(prm.get("Probes"), ';'))
+      {
+        const auto key_value = Utilities::split_string_list(item, ':');
+        if (!names.insert(key_value[0]).second)
+          throw InputError("Monitors/Probes: the name '" + key_value[0] +
+                           "' is used twice.");
+        probes.push_back({key_value[0], parse_point(key_value[1])});
+      }
+    for (const auto &item : Utilities::split_string_list(prm.get("Lines"), ';'))
+      {
+        const auto key_value = Utilities::split_string_list(item, ':');
+        const auto values    = Utilities::string_to_double(
+          Utilities::split_string_list(key_value[1], ','));
+        if (!names.insert(key_value[0]).second)
+          throw InputError("Monitors/Lines: the name '" + key_value[0] +
+                           "' is used twice.");
+        if (!(values[4] >= 2. && values[4] <= 1e6) ||
+            values[4] != std::floor(values[4]))
+          throw InputError("Monitors/Lines: line '" + key_value[0] +
+                           "' needs an integer number of points n >= 2 as its "
+                           "fifth value.");
+        lines.push_back({key_value[0],
+                         Point<2>(values[0], values[1]),
+                         Point<2>(values[2], values[3]),
+                         static_cast<unsigned int>(values[4])});
+      }
+    prm.leave_subsection();
+  }
+
+  // ------------------------------------------------------------ Parameters
+  void
+  Parameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Model",
+                      "continuum heat",
+                      Patterns::Selection(
+                        selection_of(registered_simulation_names())),
+                      "What tmfdem solves; see tmfdem --help for the list.");
+    MeshParameters::declare_parameters(prm);
+    MaterialParameters::declare_parameters(prm);
+    ThermalBoundaryParameters::declare_parameters(prm);
+    InitialConditionParameters::declare_parameters(prm);
+    TimeSteppingParameters::declare_parameters(prm);
+    AdaptivityParameters::declare_parameters(prm);
+    HeatSolverParameters::declare_parameters(prm);
+    OutputParameters::declare_parameters(prm);
+    MonitorParameters::declare_parameters(prm);
+  }
+
+  void
+  Parameters::parse_parameters(ParameterHandler &prm)
+  {
+    const std::filesystem::path path(prm_file);
+    model = prm.get("Model");
+    mesh.parse_parameters(prm, path.parent_path().string());
+    materials.parse_parameters(prm);
+    thermal_boundary.parse_parameters(prm);
+    initial.parse_parameters(prm);
+    time.parse_parameters(prm);
+    adaptivity.parse_parameters(prm);
+    heat_solver.parse_parameters(prm);
+    output.parse_parameters(prm, path.stem().string());
+    monitors.parse_parameters(prm);
+  }
+} // namespace tmfdem

@@ -1,0 +1,893 @@
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/function_expression.h>
+#include <tmfdem/continuum/heat_solver.h>
+#include <tmfdem/io/monitors.h>
+#include <tmfdem/io/output_files.h>
+#include <tmfdem/mesh/mesh_checks.h>
+#include <tmfdem/mesh/mesh_generator.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/distributed/grid_refinement.h>
+#include <deal.II/distributed/shared_tria.h>
+#include <deal.II/distributed/solution_transfer.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_fe.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/error_estimator.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <regex>
+#include <sstream>
+
+namespace tmfdem
+{
+  namespace
+  {
+    const bool registered = register_simulation(
+      "continuum heat",
+      "transient or steady heat conduction with deal.II (theta scheme, AMR "
+      "on quadrilaterals, MPI)",
+      [](const Parameters &parameters, MPI_Comm communicator) {
+        return std::make_unique<HeatSolver>(parameters, communicator);
+      });
+
+    /** Does @p expression use the variable t? */
+    bool
+    depends_on_time(const std::string &expression)
+    {
+      static const std::regex time_variable("(^|[^A-Za-z0-9_])t([^A-Za-z0-9_]|$)");
+      return std::regex_search(expression, time_variable);
+    }
+  } // namespace
+
+  HeatSolver::HeatSolver(const Parameters &parameters, MPI_Comm communicator)
+    : parameters(parameters)
+    , communicator(communicator)
+    , theta(parameters.time.theta)
+  {
+    for (unsigned int id = 0; id < MaterialParameters::max_materials; ++id)
+      {
+        const std::string expression = parameters.materials.materials[id].heat_source;
+        heat_sources.push_back(make_expression_function(
+          expression,
+          "Materials/Material " + std::to_string(id) +
+            "/Volumetric heat source"));
+        if (Utilities::trim(expression) != "0")
+          any_heat_source = true;
+      }
+    for (const auto &condition : parameters.thermal_boundary.conditions)
+      {
+        BoundaryFunctions functions;
+        functions.temperature =
+          make_expression_function(condition.temperature,
+                                   condition.name + "/Temperature");
+        functions.heat_flux =
+          make_expression_function(condition.heat_flux,
+                                   condition.name + "/Heat flux");
+        functions.heat_transfer_coefficient = make_expression_function(
+          condition.heat_transfer_coefficient,
+          condition.name + "/Heat transfer coefficient");
+        functions.ambient_temperature =
+          make_expression_function(condition.ambient_temperature,
+                                   condition.name + "/Ambient temperature");
+        functions.time_dependent_coefficient =
+          condition.type == ThermalBoundaryCondition::Type::robin &&
+          depends_on_time(condition.heat_transfer_coefficient);
+        functions.time_dependent_temperature =
+          condition.type == ThermalBoundaryCondition::Type::dirichlet &&
+          depends_on_time(condition.temperature);
+        boundary_functions.push_back(std::move(functions));
+      }
+    initial_temperature =
+      make_expression_function(parameters.initial.temperature,
+                               "Initial conditions/Temperature");
+  }
+
+  HeatSolver::~HeatSolver()
+  {
+    if (dof_handler)
+      dof_handler->clear();
+  }
+
+  bool
+  HeatSolver::uses_quadrilaterals() const
+  {
+    return mesh_report->n_quadrilaterals > 0;
+  }
+
+  const DoFHandler<2> &
+  HeatSolver::get_dof_handler() const
+  {
+    return *dof_handler;
+  }
+
+  const Mapping<2> &
+  HeatSolver::get_mapping() const
+  {
+    return *mapping;
+  }
+
+  const TrilinosWrappers::MPI::Vector &
+  HeatSolver::get_temperature() const
+  {
+    return solution;
+  }
+
+  // ------------------------------------------------------------------ mesh
+  void
+  HeatSolver::make_mesh()
+  {
+    create_output_folder(parameters.output.directory, communicator);
+    Triangulation<2> coarse;
+    create_coarse_mesh(parameters.mesh,
+                       parameters.output.directory,
+                       coarse,
+                       communicator);
+    const std::string source =
+      parameters.mesh.source == MeshParameters::Source::file ?
+        "mesh file '" + parameters.mesh.file_name + "'" :
+        "generated mesh";
+    mesh_report = std::make_unique<MeshReport>(
+      check_mesh(coarse, source, domain_area(parameters.mesh)));
+    if (mesh_report->n_triangles > 0 && mesh_report->n_quadrilaterals > 0)
+      throw InputError(source + " mixes triangles and quadrilaterals; "
+                       "allowed are meshes of one cell shape.");
+
+    if (uses_quadrilaterals())
+      triangulation = std::make_unique<parallel::distributed::Triangulation<2>>(
+        communicator,
+        Triangulation<2>::MeshSmoothing(Triangulation<2>::smoothing_on_refinement |
+                                        Triangulation<2>::smoothing_on_coarsening));
+    else
+      triangulation =
+        std::make_unique<parallel::shared::Triangulation<2>>(communicator);
+    triangulation->copy_triangulation(coarse);
+    triangulation->refine_global(parameters.mesh.global_refinements);
+    coarse_level = parameters.mesh.global_refinements;
+
+    const unsigned int degree = parameters.heat_solver.degree;
+    if (uses_quadrilaterals())
+      {
+        fe      = std::make_unique<FE_Q<2>>(degree);
+        mapping = std::make_unique<MappingQ<2>>(degree);
+      }
+    else
+      {
+        fe      = std::make_unique<FE_SimplexP<2>>(degree);
+        mapping = std::make_unique<MappingFE<2>>(FE_SimplexP<2>(1));
+      }
+    dof_handler = std::make_unique<DoFHandler<2>>(*triangulation);
+    check_boundary_ids_and_materials();
+  }
+
+  void
+  HeatSolver::check_boundary_ids_and_materials() const
+  {
+    std::string mesh_ids;
+    for (const auto id : mesh_report->boundary_ids)
+      mesh_ids += " " + std::to_string(id);
+    for (const auto &condition : parameters.thermal_boundary.conditions)
+      for (const auto id : condition.boundary_ids)
+        if (mesh_report->boundary_ids.count(id) == 0)
+          throw InputError(condition.name + "/Boundary ids: boundary id " +
+                           std::to_string(id) +
+                           " is not on the mesh; the mesh has boundary ids" +
+                           mesh_ids + ".");
+    for (const auto id : mesh_report->material_ids)
+      parameters.materials[id]; // throws for ids without a subsection
+    if (parameters.adaptivity.enable && !uses_quadrilaterals())
+      throw InputError(
+        "Adaptive refinement/Enable = true needs a quadrilateral mesh: "
+        "deal.II 9.4.1 cannot coarsen triangles and its Kelly estimator fails "
+        "on triangle meshes with hanging nodes. Set Mesh/Element type = "
+        "quadrilaterals, or use Mesh/Global refinements on triangles.");
+  }
+
+  // ------------------------------------------------------------ set up
+  void
+  HeatSolver::setup_dofs()
+  {
+    dof_handler->distribute_dofs(*fe);
+    locally_owned_dofs = dof_handler->locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(*dof_handler, locally_relevant_dofs);
+
+    dirichlet_dof_ids.clear();
+    for (const auto &condition : parameters.thermal_boundary.conditions)
+      if (condition.type == ThermalBoundaryCondition::Type::dirichlet)
+        for (const auto id : condition.boundary_ids)
+          {
+            const IndexSet dofs =
+              DoFTools::extract_boundary_dofs(*dof_handler, ComponentMask(), {id});
+            for (const auto dof : dofs)
+              dirichlet_dof_ids.emplace(dof, id);
+          }
+
+    make_constraints(parameters.time.start_time);
+
+    DynamicSparsityPattern sparsity(locally_relevant_dofs);
+    DoFTools::make_sparsity_pattern(*dof_handler, sparsity, constraints, false);
+    SparsityTools::distribute_sparsity_pattern(sparsity,
+                                               locally_owned_dofs,
+                                               communicator,
+                                               locally_relevant_dofs);
+    system_matrix.reinit(locally_owned_dofs,
+                         locally_owned_dofs,
+                         sparsity,
+                         communicator);
+    system_rhs.reinit(locally_owned_dofs, communicator);
+    solution.reinit(locally_owned_dofs, locally_relevant_dofs, communicator);
+    old_solution.reinit(locally_owned_dofs, locally_relevant_dofs, communicator);
+    preconditioner.reset();
+  }
+
+  void
+  HeatSolver::make_constraints(const double time)
+  {
+    constraints.clear();
+    constraints.reinit(locally_relevant_dofs);
+    DoFTools::make_hanging_node_constraints(*dof_handler, constraints);
+    for (unsigned int c = 0; c < parameters.thermal_boundary.conditions.size(); ++c)
+      {
+        const auto &condition = parameters.thermal_boundary.conditions[c];
+        if (condition.type != ThermalBoundaryCondition::Type::dirichlet)
+          continue;
+        auto &temperature = *boundary_functions[c].temperature;
+        temperature.set_time(time);
+        for (const auto id : condition.boundary_ids)
+          VectorTools::interpolate_boundary_values(
+            *mapping, *dof_handler, id, temperature, constraints);
+      }
+    constraints.close();
+  }
+
+  void
+  HeatSolver::compute_cell_matrices()
+  {
+    const unsigned int n = fe->n_dofs_per_cell();
+    const Quadrature<2> quadrature =
+      uses_quadrilaterals() ? Quadrature<2>(QGauss<2>(fe->degree + 1)) :
+                              Quadrature<2>(QGaussSimplex<2>(fe->degree + 1));
+    FEValues<2> fe_values(*mapping,
+                          *fe,
+                          quadrature,
+                          update_values | update_gradients | update_JxW_values);
+    const unsigned int n_cells = triangulation->n_active_cells();
+    cell_capacity.assign(n_cells, FullMatrix<double>());
+    cell_conductivity.assign(n_cells, FullMatrix<double>());
+    last_cell_matrix.assign(n_cells, FullMatrix<double>());
+    last_cell_rhs.assign(n_cells, Vector<double>());
+    for (const auto &cell : dof_handler->active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const auto  &material = parameters.materials[cell->material_id()];
+          const double rho_c    = material.density * material.specific_heat;
+          const double k        = material.thermal_conductivity;
+          fe_values.reinit(cell);
+          FullMatrix<double> capacity(n, n), conductivity(n, n);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                {
+                  capacity(i, j) += rho_c * fe_values.shape_value(i, q) *
+                                    fe_values.shape_value(j, q) *
+                                    fe_values.JxW(q);
+                  conductivity(i, j) += k * fe_values.shape_grad(i, q) *
+                                        fe_values.shape_grad(j, q) *
+                                        fe_values.JxW(q);
+                }
+          cell_capacity[cell->active_cell_index()]     = capacity;
+          cell_conductivity[cell->active_cell_index()] = conductivity;
+        }
+  }
+
+  // ------------------------------------------------------------ assemble
+  void
+  HeatSolver::assemble_system(const double old_time,
+                              const double new_time,
+                              const bool   assemble_matrix,
+                              const bool   steady)
+  {
+    const unsigned int n  = fe->n_dofs_per_cell();
+    const double       dt = new_time - old_time;
+    // weights of the new and old time levels in the theta scheme
+    const double new_weight = steady ? 1. : theta * dt;
+    const double old_weight = steady ? 0. : (1. - theta) * dt;
+
+    const Quadrature<2> quadrature =
+      uses_quadrilaterals() ? Quadrature<2>(QGauss<2>(fe->degree + 1)) :
+                              Quadrature<2>(QGaussSimplex<2>(fe->degree + 1));
+    const QGauss<1> face_quadrature(fe->degree + 1);
+    FEValues<2>     fe_values(*mapping,
+                          *fe,
+                          quadrature,
+                          update_values | update_quadrature_points |
+                            update_JxW_values);
+    FEFaceValues<2> fe_face_values(*mapping,
+                                   *fe,
+                                   face_quadrature,
+                                   update_values | update_quadrature_points |
+                                     update_JxW_values);
+
+    // boundary id -> condition index
+    std::map<types::boundary_id, unsigned int> condition_of;
+    for (unsigned int c = 0; c < parameters.thermal_boundary.conditions.size(); ++c)
+      for (const auto id : parameters.thermal_boundary.conditions[c].boundary_ids)
+        condition_of[id] = c;
+
+    if (assemble_matrix)
+      system_matrix = 0;
+    system_rhs = 0;
+    last_boundary_load.clear();
+    last_robin_faces.clear();
+    last_source_heat = 0.;
+
+    FullMatrix<double>                   local_matrix(n, n);
+    Vector<double>                       local_rhs(n), old_values(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    std::vector<double> old_at_face(face_quadrature.size());
+
+    for (const auto &cell : dof_handler->active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        const unsigned int index = cell->active_cell_index();
+        cell->get_dof_values(old_solution, old_values);
+
+        local_matrix = 0;
+        local_rhs    = 0;
+        if (steady)
+          local_matrix.add(1., cell_conductivity[index]);
+        else
+          {
+            local_matrix.add(1., cell_capacity[index]);
+            local_matrix.add(theta * dt, cell_conductivity[index]);
+            cell_capacity[index].vmult_add(local_rhs, old_values);
+            Vector<double> conducted(n);
+            cell_conductivity[index].vmult(conducted, old_values);
+            local_rhs.add(-(1. - theta) * dt, conducted);
+          }
+
+        if (any_heat_source)
+          {
+            auto &source = *heat_sources[cell->material_id()];
+            fe_values.reinit(cell);
+            for (const unsigned int q : fe_values.quadrature_point_indices())
+              {
+                const Point<2> &x = fe_values.quadrature_point(q);
+                source.set_time(new_time);
+                double heat = new_weight * source.value(x);
+                if (old_weight != 0.)
+                  {
+                    source.set_time(old_time);
+                    heat += old_weight * source.value(x);
+                  }
+                heat *= fe_values.JxW(q);
+                last_source_heat += heat;
+                for (unsigned int i = 0; i < n; ++i)
+                  local_rhs(i) += heat * fe_values.shape_value(i, q);
+              }
+          }
+
+        for (const unsigned int f : cell->face_indices())
+          {
+            if (!cell->at_boundary(f))
+              continue;
+            const auto condition_index = condition_of.find(cell->face(f)->boundary_id());
+            if (condition_index == condition_of.end())
+              continue;
+            const auto &condition =
+              parameters.thermal_boundary.conditions[condition_index->second];
+            if (condition.type == ThermalBoundaryCondition::Type::dirichlet)
+              continue;
+            const types::boundary_id id = cell->face(f)->boundary_id();
+            auto &functions = boundary_functions[condition_index->second];
+            fe_face_values.reinit(cell, f);
+            double load = 0.;
+            if (condition.type == ThermalBoundaryCondition::Type::neumann)
+              {
+                for (const unsigned int q : fe_face_values.quadrature_point_indices())
+                  {
+                    const Point<2> &x = fe_face_values.quadrature_point(q);
+                    functions.heat_flux->set_time(new_time);
+                    double flux = new_weight * functions.heat_flux->value(x);
+                    if (old_weight != 0.)
+                      {
+                        functions.heat_flux->set_time(old_time);
+                        flux += old_weight * functions.heat_flux->value(x);
+                      }
+                    flux *= fe_face_values.JxW(q);
+                    load += flux;
+                    for (unsigned int i = 0; i < n; ++i)
+                      local_rhs(i) += flux * fe_face_values.shape_value(i, q);
+                  }
+              }
+            else // robin: inward flux h (T_inf - T)
+              {
+                fe_face_values.get_function_values(old_solution, old_at_face);
+                FullMatrix<double> robin(n, n);
+                for (const unsigned int q : fe_face_values.quadrature_point_indices())
+                  {
+                    const Point<2> &x = fe_face_values.quadrature_point(q);
+                    functions.heat_transfer_coefficient->set_time(new_time);
+                    functions.ambient_temperature->set_time(new_time);
+                    const double h_new =
+                      functions.heat_transfer_coefficient->value(x);
+                    double known = new_weight * h_new *
+                                   functions.ambient_temperature->value(x);
+                    if (old_weight != 0.)
+                      {
+                        functions.heat_transfer_coefficient->set_time(old_time);
+                        functions.ambient_temperature->set_time(old_time);
+                        known += old_weight *
+                                 functions.heat_transfer_coefficient->value(x) *
+                                 (functions.ambient_temperature->value(x) -
+                                  old_at_face[q]);
+                      }
+                    known *= fe_face_values.JxW(q);
+                    load += known;
+                    for (unsigned int i = 0; i < n; ++i)
+                      {
+                        local_rhs(i) += known * fe_face_values.shape_value(i, q);
+                        for (unsigned int j = 0; j < n; ++j)
+                          robin(i, j) += new_weight * h_new *
+                                         fe_face_values.shape_value(i, q) *
+                                         fe_face_values.shape_value(j, q) *
+                                         fe_face_values.JxW(q);
+                      }
+                  }
+                local_matrix.add(1., robin);
+                last_robin_faces.push_back({index, id, robin});
+              }
+            last_boundary_load[id] += load;
+          }
+
+        last_cell_matrix[index] = local_matrix;
+        last_cell_rhs[index]    = local_rhs;
+        cell->get_dof_indices(dof_indices);
+        if (assemble_matrix)
+          constraints.distribute_local_to_global(
+            local_matrix, local_rhs, dof_indices, system_matrix, system_rhs);
+        else
+          constraints.distribute_local_to_global(local_rhs,
+                                                 dof_indices,
+                                                 system_rhs,
+                                                 local_matrix);
+      }
+    if (assemble_matrix)
+      system_matrix.compress(VectorOperation::add);
+    system_rhs.compress(VectorOperation::add);
+  }
+
+  unsigned int
+  HeatSolver::solve(const bool rebuild_preconditioner)
+  {
+    if (rebuild_preconditioner || !preconditioner)
+      {
+        if (parameters.heat_solver.preconditioner == "AMG")
+          {
+            auto amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+            TrilinosWrappers::PreconditionAMG::AdditionalData data;
+            data.elliptic              = true;
+            data.higher_order_elements = fe->degree > 1;
+            data.smoother_sweeps       = 2;
+            data.aggregation_threshold = 0.02;
+            amg->initialize(system_matrix, data);
+            preconditioner = std::move(amg);
+          }
+        else
+          {
+            auto jacobi = std::make_unique<TrilinosWrappers::PreconditionJacobi>();
+            jacobi->initialize(system_matrix);
+            preconditioner = std::move(jacobi);
+          }
+      }
+    TrilinosWrappers::MPI::Vector distributed(locally_owned_dofs, communicator);
+    distributed = solution;
+    constraints.set_zero(distributed);
+    const double rhs_norm = system_rhs.l2_norm();
+    SolverControl control(parameters.heat_solver.max_iterations,
+                          std::max(parameters.heat_solver.relative_tolerance *
+                                     rhs_norm,
+                                   1e-300));
+    SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+    try
+      {
+        cg.solve(system_matrix, distributed, system_rhs, *preconditioner);
+      }
+    catch (const SolverControl::NoConvergence &failure)
+      {
+        std::ostringstream message;
+        message << "heat solver: CG did not converge in " << failure.last_step
+                << " iterations (residual " << failure.last_residual
+                << ", target " << control.tolerance()
+                << "). Raise Heat solver/Maximum iterations, loosen Heat "
+                   "solver/Relative tolerance, or check the material "
+                   "properties and time step.";
+        throw RunError(message.str());
+      }
+    constraints.distribute(distributed);
+    solution = distributed;
+    total_linear_iterations += control.last_step();
+    return control.last_step();
+  }
+
+  void
+  HeatSolver::accumulate_heat_balance(HeatBalance &balance) const
+  {
+    const unsigned int n = fe->n_dofs_per_cell();
+    std::map<types::boundary_id, double> heat_in;
+    for (const auto id : mesh_report->boundary_ids)
+      heat_in[id] = 0.;
+    double                               stored = 0.;
+    Vector<double>                       new_values(n), old_values(n),
+      residual(n), change(n), stored_local(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    std::multimap<unsigned int, const RobinFaceRecord *> robin_faces_of_cell;
+    for (const auto &face : last_robin_faces)
+      robin_faces_of_cell.emplace(face.cell_index, &face);
+    for (const auto &cell : dof_handler->active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        const unsigned int index = cell->active_cell_index();
+        cell->get_dof_values(solution, new_values);
+        cell->get_dof_values(old_solution, old_values);
+        cell->get_dof_indices(dof_indices);
+        // the implicit part of the Robin flux, -theta dt h T^{n+1}
+        const auto robin_range = robin_faces_of_cell.equal_range(index);
+        for (auto face = robin_range.first; face != robin_range.second; ++face)
+          {
+            face->second->matrix.vmult(residual, new_values);
+            heat_in[face->second->boundary_id] -= residual.mean_value() * n;
+          }
+        // reaction of the discrete equations: the heat the Dirichlet
+        // boundary supplies to each of its nodes during this step
+        last_cell_matrix[index].vmult(residual, new_values);
+        residual -= last_cell_rhs[index];
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const auto dirichlet = dirichlet_dof_ids.find(dof_indices[i]);
+            if (dirichlet != dirichlet_dof_ids.end())
+              heat_in[dirichlet->second] += residual(i);
+          }
+        if (parameters.time.mode == TimeSteppingParameters::Mode::transient)
+          {
+            change = new_values;
+            change -= old_values;
+            cell_capacity[index].vmult(stored_local, change);
+            stored += stored_local.mean_value() * n;
+          }
+      }
+    for (const auto &[id, load] : last_boundary_load)
+      heat_in[id] += load;
+    for (auto &[id, heat] : heat_in)
+      balance.boundary_heat_in[id] += Utilities::MPI::sum(heat, communicator);
+    balance.source_heat += Utilities::MPI::sum(last_source_heat, communicator);
+    balance.stored_heat += Utilities::MPI::sum(stored, communicator);
+  }
+
+  // ------------------------------------------------------------ initial
+  void
+  HeatSolver::set_initial_condition()
+  {
+    initial_temperature->set_time(parameters.time.start_time);
+    TrilinosWrappers::MPI::Vector distributed(locally_owned_dofs, communicator);
+    VectorTools::interpolate(*mapping, *dof_handler, *initial_temperature, distributed);
+    make_constraints(parameters.time.start_time);
+    constraints.distribute(distributed);
+    solution     = distributed;
+    old_solution = distributed;
+  }
+
+  void
+  HeatSolver::adapt_mesh(const bool transfer_solution)
+  {
+    auto &distributed_triangulation =
+      dynamic_cast<parallel::distributed::Triangulation<2> &>(*triangulation);
+    Vector<float> estimated_error(triangulation->n_active_cells());
+    KellyErrorEstimator<2>::estimate(*mapping,
+                                     *dof_handler,
+                                     QGauss<1>(fe->degree + 1),
+                                     {},
+                                     solution,
+                                     estimated_error);
+    if (parameters.adaptivity.strategy == "fixed fraction")
+      parallel::distributed::GridRefinement::refine_and_coarsen_fixed_fraction(
+        distributed_triangulation,
+        estimated_error,
+        parameters.adaptivity.refine_fraction,
+        parameters.adaptivity.coarsen_fraction);
+    else
+      parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
+        distributed_triangulation,
+        estimated_error,
+        parameters.adaptivity.refine_fraction,
+        parameters.adaptivity.coarsen_fraction);
+    const unsigned int max_level = coarse_level + parameters.adaptivity.max_level;
+    for (const auto &cell : triangulation->active_cell_iterators())
+      {
+        if (cell->level() >= static_cast<int>(max_level))
+          cell->clear_refine_flag();
+        if (cell->level() <= static_cast<int>(coarse_level))
+          cell->clear_coarsen_flag();
+      }
+    parallel::distributed::SolutionTransfer<2, TrilinosWrappers::MPI::Vector>
+      transfer(*dof_handler);
+    triangulation->prepare_coarsening_and_refinement();
+    if (transfer_solution)
+      transfer.prepare_for_coarsening_and_refinement(solution);
+    triangulation->execute_coarsening_and_refinement();
+    setup_dofs();
+    compute_cell_matrices();
+    if (transfer_solution)
+      {
+        TrilinosWrappers::MPI::Vector distributed(locally_owned_dofs, communicator);
+        transfer.interpolate(distributed);
+        constraints.distribute(distributed);
+        solution     = distributed;
+        old_solution = distributed;
+      }
+  }
+
+  // ------------------------------------------------------------ output
+  void
+  HeatSolver::write_output(const double time)
+  {
+    monitors->write(time, *mapping, *dof_handler, solution);
+    if (!parameters.output.write_vtu)
+      return;
+    DataOut<2> data_out;
+    data_out.attach_dof_handler(*dof_handler);
+    data_out.add_data_vector(solution, "T");
+    Vector<float> material(triangulation->n_active_cells()),
+      subdomain(triangulation->n_active_cells());
+    for (const auto &cell : triangulation->active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          material(cell->active_cell_index())  = cell->material_id();
+          subdomain(cell->active_cell_index()) = cell->subdomain_id();
+        }
+    data_out.add_data_vector(material, "material_id");
+    data_out.add_data_vector(subdomain, "subdomain");
+    data_out.build_patches(*mapping, uses_quadrilaterals() ? fe->degree : 1);
+    solution_series->write(data_out, time);
+  }
+
+  void
+  HeatSolver::write_summary(const unsigned long              steps,
+                            const double                     end_time,
+                            const double                     wall_time,
+                            const HeatBalance               &balance,
+                            const std::vector<std::string>  &cycles) const
+  {
+    const bool steady = parameters.time.mode == TimeSteppingParameters::Mode::steady;
+    JsonObject heat;
+    JsonObject per_boundary;
+    double     total_in = balance.source_heat;
+    for (const auto &[id, value] : balance.boundary_heat_in)
+      {
+        per_boundary.add(std::to_string(id), value);
+        total_in += value;
+      }
+    double scale = std::abs(balance.stored_heat) + std::abs(balance.source_heat);
+    for (const auto &[id, value] : balance.boundary_heat_in)
+      scale += std::abs(value);
+    const double imbalance = balance.stored_heat - total_in;
+    heat.add("units", std::string(steady ? "W/m (rates, per unit thickness)" :
+                                           "J/m (per unit thickness)"))
+      .add("boundary_heat_in", per_boundary)
+      .add("source_heat", balance.source_heat)
+      .add("stored_heat", balance.stored_heat)
+      .add("total_heat_in", total_in)
+      .add("imbalance", imbalance)
+      .add("relative_imbalance", scale > 0 ? std::abs(imbalance) / scale : 0.);
+
+    std::vector<JsonObject> cycle_objects;
+    for (const auto &cycle : cycles)
+      {
+        JsonObject object;
+        std::istringstream in(cycle);
+        long long cells, dofs, iterations;
+        in >> cells >> dofs >> iterations;
+        object.add("cells", cells).add("dofs", dofs).add("cg_iterations", iterations);
+        cycle_objects.push_back(object);
+      }
+
+    JsonObject summary;
+    summary.add("model", parameters.model)
+      .add("prm_file", parameters.prm_file)
+      .add("mpi_processes", Utilities::MPI::n_mpi_processes(communicator))
+      .add("mode", std::string(steady ? "steady" : "transient"))
+      .add("time_method", steady ? std::string("none") : parameters.time.method)
+      .add("cells", static_cast<long long>(triangulation->n_global_active_cells()))
+      .add("dofs", static_cast<long long>(dof_handler->n_dofs()))
+      .add("steps", static_cast<long long>(steps))
+      .add("end_time", end_time)
+      .add("wall_time", wall_time)
+      .add("element_steps_per_second",
+           wall_time > 0 ? triangulation->n_global_active_cells() *
+                             static_cast<double>(std::max(steps, 1ul)) / wall_time :
+                           0.)
+      .add("linear_iterations", static_cast<long long>(total_linear_iterations))
+      .add("broken_joints", 0u)
+      .add("cracks", 0u)
+      .add("heat", heat);
+    if (!cycle_objects.empty())
+      summary.add("adaptive_cycles", cycle_objects);
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      write_file_atomically(parameters.output.directory + "/summary.json",
+                            summary.str() + "\n");
+  }
+
+  // ------------------------------------------------------------ drivers
+  void
+  HeatSolver::check_input()
+  {
+    make_mesh();
+    setup_dofs();
+    monitors = std::make_unique<Monitors>(parameters.monitors,
+                                          parameters.output.directory,
+                                          std::vector<std::string>{"T"},
+                                          communicator);
+    monitors->check_points(*mapping, *dof_handler);
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      std::cout << mesh_report->to_string() << "  dofs: " << dof_handler->n_dofs()
+                << " (after " << parameters.mesh.global_refinements
+                << " global refinements: " << triangulation->n_global_active_cells()
+                << " cells)\n";
+  }
+
+  void
+  HeatSolver::run()
+  {
+    check_input();
+    solution_series = std::make_unique<SolutionSeries>(parameters.output.directory,
+                                                       "solution",
+                                                       communicator);
+    if (parameters.time.mode == TimeSteppingParameters::Mode::steady)
+      run_steady();
+    else
+      run_transient();
+  }
+
+  void
+  HeatSolver::run_steady()
+  {
+    ProgressReporter progress(parameters.output.progress_interval, 0., 1., false);
+    const unsigned int n_cycles =
+      parameters.adaptivity.enable ? parameters.adaptivity.steady_cycles : 1;
+    std::vector<std::string> cycles;
+    HeatBalance balance;
+    const double time = parameters.time.start_time;
+    for (unsigned int cycle = 0; cycle < n_cycles; ++cycle)
+      {
+        if (cycle > 0)
+          adapt_mesh(false);
+        else
+          compute_cell_matrices();
+        make_constraints(time);
+        old_solution = 0;
+        solution     = 0;
+        assemble_system(time, time, true, true);
+        const unsigned int iterations = solve(true);
+        std::ostringstream record;
+        record << triangulation->n_global_active_cells() << " "
+               << dof_handler->n_dofs() << " " << iterations;
+        cycles.push_back(record.str());
+        if (Utilities::MPI::this_mpi_process(communicator) == 0)
+          std::cout << "cycle " << cycle << ": "
+                    << triangulation->n_global_active_cells() << " cells, "
+                    << dof_handler->n_dofs() << " dofs, " << iterations
+                    << " CG iterations" << std::endl;
+      }
+    accumulate_heat_balance(balance);
+    write_output(time);
+    write_summary(0, time, progress.elapsed(), balance, cycles);
+  }
+
+  void
+  HeatSolver::run_transient()
+  {
+    const auto  &time_parameters = parameters.time;
+    const double start = time_parameters.start_time, end = time_parameters.end_time;
+    const double time_tolerance = 1e-10 * std::max(1., std::abs(end));
+
+    set_initial_condition();
+    if (parameters.adaptivity.enable)
+      for (unsigned int k = 0; k < parameters.adaptivity.initial_refinements; ++k)
+        {
+          adapt_mesh(false);
+          set_initial_condition();
+        }
+    compute_cell_matrices();
+
+    // output times: those listed, multiples of the interval, and the end
+    std::vector<double> output_times;
+    for (const double t : parameters.output.times)
+      if (t > start + time_tolerance && t < end - time_tolerance)
+        output_times.push_back(t);
+    if (parameters.output.interval > 0)
+      for (double t = start + parameters.output.interval; t < end - time_tolerance;
+           t += parameters.output.interval)
+        output_times.push_back(t);
+    output_times.push_back(end);
+    std::sort(output_times.begin(), output_times.end());
+    output_times.erase(std::unique(output_times.begin(),
+                                   output_times.end(),
+                                   [&](const double a, const double b) {
+                                     return std::abs(a - b) < time_tolerance;
+                                   }),
+                       output_times.end());
+
+    bool time_dependent_dirichlet = false, time_dependent_robin = false;
+    for (const auto &functions : boundary_functions)
+      {
+        time_dependent_dirichlet |= functions.time_dependent_temperature;
+        time_dependent_robin |= functions.time_dependent_coefficient;
+      }
+
+    ProgressReporter progress(parameters.output.progress_interval,
+                              start,
+                              end,
+                              Utilities::MPI::this_mpi_process(communicator) == 0);
+    HeatBalance   balance;
+    double        time = start, last_dt = -1.;
+    unsigned long step = 0;
+    bool          matrix_is_current = false;
+    write_output(time);
+    for (const double output_time : output_times)
+      while (time < output_time - time_tolerance)
+        {
+          double dt = time_parameters.time_step;
+          // land on the output time; never leave a sliver of a step
+          if (time + dt > output_time - 1e-3 * dt)
+            dt = output_time - time;
+          const double new_time = time + dt;
+          const bool   rebuild  = !matrix_is_current || time_dependent_robin ||
+                               std::abs(dt - last_dt) > 1e-12 * dt;
+          if (time_dependent_dirichlet)
+            make_constraints(new_time);
+          old_solution = solution;
+          assemble_system(time, new_time, rebuild, false);
+          solve(rebuild);
+          accumulate_heat_balance(balance);
+          matrix_is_current = true;
+          time              = std::abs(new_time - output_time) < time_tolerance ?
+                                output_time :
+                                new_time;
+          last_dt = dt;
+          ++step;
+          if (parameters.adaptivity.enable &&
+              step % parameters.adaptivity.interval == 0)
+            {
+              adapt_mesh(true);
+              make_constraints(time);
+              matrix_is_current = false;
+            }
+          if (std::abs(time - output_time) < time_tolerance)
+            write_output(output_time);
+          progress.update(step, time);
+        }
+    write_summary(step, time, progress.elapsed(), balance, {});
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      std::cout << "done: " << step << " steps to t = " << time << " s, "
+                << triangulation->n_global_active_cells() << " cells, "
+                << dof_handler->n_dofs() << " dofs, "
+                << total_linear_iterations << " CG iterations, "
+                << progress.elapsed() << " s wall" << std::endl;
+  }
+} // namespace tmfdem

@@ -1,0 +1,76 @@
+/**
+ * The tmfdem program: parse the command line, read the prm file, run the
+ * selected model. Exit status 0 on success, 1 on bad input, 2 on a failure
+ * during the run.
+ */
+#include <tmfdem/base/command_line.h>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/simulation.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+
+#include <iostream>
+
+int
+main(int argc, char *argv[])
+{
+  using namespace tmfdem;
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool root =
+    dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  dealii::deal_II_exceptions::disable_abort_on_exception();
+  try
+    {
+      const CommandLine command_line = parse_command_line(argc, argv);
+      switch (command_line.action)
+        {
+          case CommandLine::Action::help:
+            if (root)
+              std::cout << usage_text();
+            return 0;
+          case CommandLine::Action::print_parameters:
+            if (root)
+              std::cout << default_parameter_file();
+            return 0;
+          default:
+            break;
+        }
+      const Parameters parameters =
+        read_parameters(command_line.prm_file, command_line.overrides);
+      auto simulation = create_simulation(parameters, MPI_COMM_WORLD);
+      if (command_line.action == CommandLine::Action::validate)
+        {
+          simulation->check_input();
+          if (root)
+            std::cout << command_line.prm_file << ": valid" << std::endl;
+          return 0;
+        }
+      simulation->run();
+    }
+  catch (const InputError &error)
+    {
+      if (root)
+        std::cerr << "tmfdem: error in the input: " << error.what() << std::endl;
+      return 1;
+    }
+  catch (const RunError &error)
+    {
+      if (root)
+        std::cerr << "tmfdem: the run failed: " << error.what() << std::endl;
+      return 2;
+    }
+  catch (const dealii::ExceptionBase &exception)
+    {
+      std::cerr << "tmfdem: the run failed with an internal error:\n";
+      exception.print_info(std::cerr);
+      std::cerr << std::endl;
+      return 2;
+    }
+  catch (const std::exception &exception)
+    {
+      std::cerr << "tmfdem: the run failed: " << exception.what() << std::endl;
+      return 2;
+    }
+  return 0;
+}

@@ -1,0 +1,180 @@
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/mesh/mesh_checks.h>
+
+#include <deal.II/base/utilities.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <sstream>
+
+namespace tmfdem
+{
+  namespace
+  {
+    double
+    cross(const Tensor<1, 2> &a, const Tensor<1, 2> &b)
+    {
+      return a[0] * b[1] - a[1] * b[0];
+    }
+
+    std::string
+    describe_cell(const Triangulation<2>::cell_iterator &cell)
+    {
+      std::ostringstream text;
+      text << "cell " << cell->index() << " (vertices";
+      for (const unsigned int v : cell->vertex_indices())
+        text << " " << cell->vertex_index(v) << " (" << cell->vertex(v)
+             << ")";
+      text << ")";
+      return text.str();
+    }
+  } // namespace
+
+  std::string
+  MeshReport::to_string() const
+  {
+    std::ostringstream text;
+    text << "mesh: " << n_cells << " cells (" << n_triangles << " triangles, "
+         << n_quadrilaterals << " quadrilaterals), " << n_vertices
+         << " vertices, " << n_connected_pieces << " connected piece(s)\n"
+         << "  area " << area << " m^2, edge length min " << min_edge
+         << " mean " << mean_edge << " max " << max_edge << " m\n"
+         << "  boundary ids:";
+    for (const auto id : boundary_ids)
+      text << " " << id;
+    text << "\n  material ids:";
+    for (const auto id : material_ids)
+      text << " " << static_cast<unsigned int>(id);
+    text << "\n";
+    return text.str();
+  }
+
+  MeshReport
+  check_mesh(const Triangulation<2> &triangulation,
+             const std::string      &source,
+             const double            expected_area)
+  {
+    MeshReport report;
+    report.n_cells    = triangulation.n_active_cells();
+    report.n_vertices = triangulation.n_used_vertices();
+    report.min_edge   = std::numeric_limits<double>::max();
+    double       edge_sum = 0;
+    unsigned int n_edges  = 0;
+
+    std::map<std::vector<unsigned int>, unsigned int> cells_by_vertices;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        report.material_ids.insert(cell->material_id());
+        double longest = 0;
+        for (const auto face : cell->face_iterators())
+          {
+            const double length = (face->vertex(1) - face->vertex(0)).norm();
+            longest             = std::max(longest, length);
+            report.min_edge     = std::min(report.min_edge, length);
+            report.max_edge     = std::max(report.max_edge, length);
+            edge_sum += length;
+            ++n_edges;
+            if (face->at_boundary())
+              report.boundary_ids.insert(face->boundary_id());
+          }
+
+        // signed area at each corner: with deal.II's vertex numbering all
+        // corner Jacobians of a valid cell are positive
+        double min_jacobian = std::numeric_limits<double>::max();
+        double area         = 0;
+        if (cell->reference_cell() == ReferenceCells::Triangle)
+          {
+            ++report.n_triangles;
+            area = 0.5 * cross(cell->vertex(1) - cell->vertex(0),
+                               cell->vertex(2) - cell->vertex(0));
+            min_jacobian = 2. * area;
+          }
+        else
+          {
+            ++report.n_quadrilaterals;
+            // lexicographic quad: 0 (0,0), 1 (1,0), 2 (0,1), 3 (1,1)
+            const unsigned int neighbours[4][2] = {{1, 2}, {3, 0}, {0, 3}, {2, 1}};
+            for (unsigned int v = 0; v < 4; ++v)
+              min_jacobian = std::min(
+                min_jacobian,
+                cross(cell->vertex(neighbours[v][0]) - cell->vertex(v),
+                      cell->vertex(neighbours[v][1]) - cell->vertex(v)));
+            area = 0.5 * (cross(cell->vertex(1) - cell->vertex(0),
+                                cell->vertex(3) - cell->vertex(0)) +
+                          cross(cell->vertex(3) - cell->vertex(0),
+                                cell->vertex(2) - cell->vertex(0)));
+          }
+        if (std::abs(min_jacobian) <= 1e-10 * longest * longest)
+          throw InputError(source + ": degenerate " + describe_cell(cell) +
+                           ": its area is zero or nearly so. Allowed are "
+                           "cells with a positive area.");
+        if (min_jacobian < 0)
+          throw InputError(source + ": inverted " + describe_cell(cell) +
+                           ": negative Jacobian (vertices in clockwise "
+                           "order, or a non-convex quadrilateral).");
+        report.area += area;
+
+        std::vector<unsigned int> key;
+        for (const unsigned int v : cell->vertex_indices())
+          key.push_back(cell->vertex_index(v));
+        std::sort(key.begin(), key.end());
+        const auto inserted = cells_by_vertices.emplace(key, cell->index());
+        if (!inserted.second)
+          throw InputError(source + ": " + describe_cell(cell) +
+                           " duplicates cell " +
+                           std::to_string(inserted.first->second) +
+                           " (same vertices). Allowed are meshes whose cells "
+                           "overlap nowhere.");
+      }
+    report.mean_edge = n_edges > 0 ? edge_sum / n_edges : 0.;
+
+    // connected pieces through shared faces
+    std::vector<unsigned int> piece(triangulation.n_active_cells(),
+                                    numbers::invalid_unsigned_int);
+    for (const auto &seed : triangulation.active_cell_iterators())
+      if (piece[seed->active_cell_index()] == numbers::invalid_unsigned_int)
+        {
+          std::vector<Triangulation<2>::active_cell_iterator> stack = {seed};
+          piece[seed->active_cell_index()] = report.n_connected_pieces;
+          while (!stack.empty())
+            {
+              const auto cell = stack.back();
+              stack.pop_back();
+              for (const unsigned int f : cell->face_indices())
+                if (!cell->at_boundary(f) && cell->neighbor(f)->is_active())
+                  {
+                    const auto neighbor = cell->neighbor(f);
+                    if (piece[neighbor->active_cell_index()] ==
+                        numbers::invalid_unsigned_int)
+                      {
+                        piece[neighbor->active_cell_index()] =
+                          report.n_connected_pieces;
+                        stack.push_back(neighbor);
+                      }
+                  }
+            }
+          ++report.n_connected_pieces;
+        }
+
+    if (expected_area > 0)
+      {
+        // a polygon of edge h inscribed in a circle misses about pi h^2 / 6
+        // of its area, whatever the radius; more than that (and 2 %) is a
+        // hole or an overlap
+        const double miss      = std::abs(report.area - expected_area);
+        const double tolerance = 0.02 * expected_area +
+                                 2. * report.max_edge * report.max_edge;
+        if (miss > tolerance)
+          throw InputError(source + ": the cells cover " +
+                           Utilities::to_string(report.area) +
+                           " m^2 of a domain of " +
+                           Utilities::to_string(expected_area) +
+                           " m^2: part of the domain is not meshed (or cells "
+                           "overlap).");
+      }
+    return report;
+  }
+} // namespace tmfdem

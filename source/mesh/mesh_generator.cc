@@ -1,0 +1,337 @@
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/mesh/mesh_generator.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/manifold_lib.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace tmfdem
+{
+  namespace
+  {
+    /** Manifold id of curved boundary faces of generated meshes. */
+    constexpr types::manifold_id circle_manifold_id = 1;
+
+    std::string
+    gmsh_point(const unsigned int tag, const double x, const double y)
+    {
+      std::ostringstream text;
+      text.precision(17);
+      text << "Point(" << tag << ") = {" << x << ", " << y << ", 0, h};\n";
+      return text.str();
+    }
+
+    /**
+     * Four quarter arcs of a circle of radius @p radius about point
+     * @p center_tag; points @p first_point ... +3, curves @p first_curve ...
+     */
+    std::string
+    gmsh_circle(const Point<2>    &center,
+                const double       radius,
+                const unsigned int center_tag,
+                const unsigned int first_point,
+                const unsigned int first_curve)
+    {
+      std::string text;
+      const double dx[4] = {1, 0, -1, 0}, dy[4] = {0, 1, 0, -1};
+      for (unsigned int i = 0; i < 4; ++i)
+        text += gmsh_point(first_point + i,
+                           center[0] + radius * dx[i],
+                           center[1] + radius * dy[i]);
+      for (unsigned int i = 0; i < 4; ++i)
+        text += "Circle(" + std::to_string(first_curve + i) + ") = {" +
+                std::to_string(first_point + i) + ", " +
+                std::to_string(center_tag) + ", " +
+                std::to_string(first_point + (i + 1) % 4) + "};\n";
+      return text;
+    }
+
+    /** The .geo script of a generated triangle mesh. */
+    std::string
+    gmsh_script(const MeshParameters &p)
+    {
+      std::ostringstream geo;
+      geo.precision(17);
+      geo << "// written by tmfdem from the Mesh subsection of the prm file\n"
+          << "h = " << p.element_size << ";\n";
+      using Source = MeshParameters::Source;
+      if (p.source == Source::rectangle)
+        {
+          // boundary ids as GridGenerator's colorize: 0 left (no physical
+          // group: deal.II gives unlisted boundary faces id 0), 1 right,
+          // 2 bottom, 3 top
+          geo << gmsh_point(1, p.lower_left[0], p.lower_left[1])
+              << gmsh_point(2, p.upper_right[0], p.lower_left[1])
+              << gmsh_point(3, p.upper_right[0], p.upper_right[1])
+              << gmsh_point(4, p.lower_left[0], p.upper_right[1])
+              << "Line(1) = {1, 2};\nLine(2) = {2, 3};\n"
+              << "Line(3) = {3, 4};\nLine(4) = {4, 1};\n"
+              << "Curve Loop(1) = {1, 2, 3, 4};\nPlane Surface(1) = {1};\n"
+              << "Physical Curve(1) = {2};\nPhysical Curve(2) = {1};\n"
+              << "Physical Curve(3) = {3};\n";
+        }
+      else if (p.source == Source::annulus)
+        {
+          // inner boundary id 0 (no physical group), outer 1
+          geo << gmsh_point(1, p.center[0], p.center[1])
+              << gmsh_circle(p.center, p.inner_radius, 1, 2, 1)
+              << gmsh_circle(p.center, p.outer_radius, 1, 6, 5)
+              << "Curve Loop(1) = {5, 6, 7, 8};\n"
+              << "Curve Loop(2) = {1, 2, 3, 4};\n"
+              << "Plane Surface(1) = {1, 2};\n"
+              << "Physical Curve(1) = {5, 6, 7, 8};\n";
+        }
+      else
+        {
+          geo << gmsh_point(1, p.center[0], p.center[1])
+              << gmsh_circle(p.center, p.outer_radius, 1, 2, 1)
+              << "Curve Loop(1) = {1, 2, 3, 4};\n"
+              << "Plane Surface(1) = {1};\n";
+        }
+      geo << "Physical Surface(1) = {1};\n"
+          << "Mesh.Algorithm = 6;\n"
+          << "Mesh.MeshSizeMin = h;\nMesh.MeshSizeMax = h;\n"
+          << "Mesh.MeshSizeFromPoints = 0;\n"
+          << "Mesh.MeshSizeExtendFromBoundary = 0;\n"
+          << "Mesh.RandomSeed = 1;\n";
+      return geo.str();
+    }
+
+    void
+    run_gmsh(const MeshParameters &parameters,
+             const std::string    &work_folder,
+             const std::string    &msh_file,
+             MPI_Comm              communicator)
+    {
+      std::string error;
+      if (Utilities::MPI::this_mpi_process(communicator) == 0)
+        {
+          const auto geo_file = work_folder + "/mesh.geo";
+          {
+            std::ofstream geo(geo_file);
+            geo << gmsh_script(parameters);
+            if (!geo)
+              error = "cannot write " + geo_file;
+          }
+          if (error.empty())
+            {
+              std::filesystem::remove(msh_file);
+              const std::string command =
+                "gmsh \"" + geo_file + "\" -2 -format msh22 -nt 1 -v 2 -o \"" +
+                msh_file + "\" > \"" + work_folder + "/gmsh.log\" 2>&1";
+              const int status = std::system(command.c_str());
+              if (status != 0 || !std::filesystem::exists(msh_file))
+                error = "gmsh failed to mesh " + geo_file + " (exit status " +
+                        std::to_string(status) + "; see " + work_folder +
+                        "/gmsh.log). Is gmsh installed (apt-get install "
+                        "gmsh)?";
+            }
+        }
+      error = Utilities::MPI::broadcast(communicator, error, 0);
+      if (!error.empty())
+        throw RunError(error);
+    }
+
+    void
+    attach_circle_manifold(Triangulation<2> &triangulation,
+                           const Point<2>   &center)
+    {
+      for (const auto &cell : triangulation.active_cell_iterators())
+        for (const auto face : cell->face_iterators())
+          if (face->at_boundary())
+            face->set_manifold_id(circle_manifold_id);
+      triangulation.set_manifold(circle_manifold_id,
+                                 SphericalManifold<2>(center));
+    }
+  } // namespace
+
+  void
+  read_gmsh_file(const std::string &file_name, Triangulation<2> &triangulation)
+  {
+    std::ifstream in(file_name);
+    if (!in)
+      throw InputError("Mesh/File name: cannot open '" + file_name +
+                       "' (missing or unreadable).");
+    std::string first_word;
+    in >> first_word;
+    if (first_word != "$MeshFormat")
+      throw InputError("Mesh file '" + file_name +
+                       "' is not an ASCII gmsh .msh file: it must start with "
+                       "$MeshFormat (gmsh -format msh22 or msh4, ASCII).");
+    in.seekg(0);
+    GridIn<2> grid_in;
+    grid_in.attach_triangulation(triangulation);
+    try
+      {
+        grid_in.read_msh(in);
+      }
+    catch (const ExceptionBase &exception)
+      {
+        std::ostringstream info;
+        exception.print_info(info);
+        throw InputError("Mesh file '" + file_name +
+                         "' cannot be read: " + info.str());
+      }
+    catch (const std::exception &exception)
+      {
+        throw InputError("Mesh file '" + file_name +
+                         "' cannot be read: " + exception.what());
+      }
+    if (triangulation.n_active_cells() == 0)
+      throw InputError("Mesh file '" + file_name +
+                       "' holds no 2D cells (are the surfaces in a physical "
+                       "group?).");
+  }
+
+  void
+  create_coarse_mesh(const MeshParameters &parameters,
+                     const std::string    &work_folder,
+                     Triangulation<2>     &triangulation,
+                     MPI_Comm              communicator)
+  {
+    using Source = MeshParameters::Source;
+    const bool   triangles = parameters.element_type ==
+                           MeshParameters::ElementType::triangles;
+    const double h = parameters.element_size;
+
+    if (parameters.source == Source::file)
+      {
+        read_gmsh_file(parameters.file_name, triangulation);
+        return;
+      }
+
+    if (triangles)
+      {
+        const std::string msh_file = work_folder + "/mesh.msh";
+        run_gmsh(parameters, work_folder, msh_file, communicator);
+        read_gmsh_file(msh_file, triangulation);
+        for (const auto &cell : triangulation.active_cell_iterators())
+          cell->set_material_id(parameters.material_id);
+        if (parameters.source != Source::rectangle)
+          attach_circle_manifold(triangulation, parameters.center);
+        return;
+      }
+
+    // structured quadrilaterals, flat (level 0) so that p4est can copy them
+    if (parameters.source == Source::rectangle)
+      {
+        const Tensor<1, 2> extent = parameters.upper_right - parameters.lower_left;
+        const std::vector<unsigned int> repetitions = {
+          std::max(1u, static_cast<unsigned int>(std::ceil(extent[0] / h - 1e-9))),
+          std::max(1u, static_cast<unsigned int>(std::ceil(extent[1] / h - 1e-9)))};
+        GridGenerator::subdivided_hyper_rectangle(triangulation,
+                                                  repetitions,
+                                                  parameters.lower_left,
+                                                  parameters.upper_right,
+                                                  true);
+      }
+    else
+      {
+        const double a = parameters.inner_radius, b = parameters.outer_radius;
+        if (parameters.source == Source::annulus)
+          {
+            // one layer of cells of radial width h ... (b-a) each: the
+            // shell is built ring by ring so the mesh stays flat
+            const unsigned int n_rings =
+              std::max(1u, static_cast<unsigned int>(std::ceil((b - a) / h - 1e-9)));
+            const unsigned int n_around = std::max(
+              8u,
+              4 * static_cast<unsigned int>(
+                    std::ceil(2. * numbers::PI * 0.5 * (a + b) / h / 4. - 1e-9)));
+            std::vector<Point<2>>    vertices;
+            std::vector<CellData<2>> cells;
+            for (unsigned int ring = 0; ring <= n_rings; ++ring)
+              {
+                // geometric grading would suit log profiles, but uniform
+                // spacing keeps this a plain structured mesh
+                const double r = a + (b - a) * ring / n_rings;
+                for (unsigned int k = 0; k < n_around; ++k)
+                  {
+                    const double phi = 2. * numbers::PI * k / n_around;
+                    vertices.emplace_back(parameters.center[0] + r * std::cos(phi),
+                                          parameters.center[1] + r * std::sin(phi));
+                  }
+              }
+            for (unsigned int ring = 0; ring < n_rings; ++ring)
+              for (unsigned int k = 0; k < n_around; ++k)
+                {
+                  CellData<2> cell;
+                  const unsigned int k1 = (k + 1) % n_around;
+                  // local x radial, local y counterclockwise
+                  cell.vertices = {ring * n_around + k,
+                                   (ring + 1) * n_around + k,
+                                   ring * n_around + k1,
+                                   (ring + 1) * n_around + k1};
+                  cell.material_id = parameters.material_id;
+                  cells.push_back(cell);
+                }
+            SubCellData boundary;
+            for (unsigned int k = 0; k < n_around; ++k)
+              {
+                CellData<1> inner, outer;
+                inner.vertices = {k, (k + 1) % n_around};
+                inner.boundary_id = 0;
+                outer.vertices = {n_rings * n_around + k,
+                                  n_rings * n_around + (k + 1) % n_around};
+                outer.boundary_id = 1;
+                boundary.boundary_lines.push_back(inner);
+                boundary.boundary_lines.push_back(outer);
+              }
+            triangulation.create_triangulation(vertices, cells, boundary);
+            // every cell follows the circles: new vertices land on them
+            triangulation.set_all_manifold_ids(circle_manifold_id);
+            triangulation.set_manifold(circle_manifold_id,
+                                       SphericalManifold<2>(parameters.center));
+          }
+        else
+          {
+            GridGenerator::hyper_ball_balanced(triangulation,
+                                               parameters.center,
+                                               b);
+            // refine, then flatten, so the coarse mesh has size ~h
+            unsigned int n = 0;
+            while (b / std::pow(2., n + 1) > h * 1.01 && n < 10)
+              ++n;
+            triangulation.refine_global(n);
+            Triangulation<2> flat;
+            GridGenerator::flatten_triangulation(triangulation, flat);
+            triangulation.clear();
+            triangulation.copy_triangulation(flat);
+            for (const auto &cell : triangulation.active_cell_iterators())
+              for (const auto face : cell->face_iterators())
+                if (face->at_boundary())
+                  face->set_manifold_id(circle_manifold_id);
+            triangulation.set_manifold(circle_manifold_id,
+                                       SphericalManifold<2>(parameters.center));
+          }
+        for (const auto &cell : triangulation.active_cell_iterators())
+          cell->set_material_id(parameters.material_id);
+      }
+  }
+
+  double
+  domain_area(const MeshParameters &p)
+  {
+    switch (p.source)
+      {
+        case MeshParameters::Source::rectangle:
+          return (p.upper_right[0] - p.lower_left[0]) *
+                 (p.upper_right[1] - p.lower_left[1]);
+        case MeshParameters::Source::annulus:
+          return numbers::PI *
+                 (p.outer_radius * p.outer_radius - p.inner_radius * p.inner_radius);
+        case MeshParameters::Source::disc:
+          return numbers::PI * p.outer_radius * p.outer_radius;
+        default:
+          return 0.;
+      }
+  }
+} // namespace tmfdem

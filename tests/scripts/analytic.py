@@ -1,0 +1,54 @@
+"""Analytic reference solutions used by the tmfdem verification tests and
+the case plots (python3 + numpy). Tension positive, temperatures in C."""
+import numpy as np
+
+
+def plate_transient(x, t, kappa=0.005, length=1.0, t_left=0.0, t_right=100.0,
+                    t_initial=0.0, n_terms=4000):
+    """Slab 0 < x < length, T(0) = t_left, T(length) = t_right, T(x, 0) =
+    t_initial (Carslaw & Jaeger, Sec. 3.4; the paper's Eq. 47 corrected:
+    the sin(n pi x / l) factor restored and the initial-value series
+    separated)."""
+    x = np.atleast_1d(np.asarray(x, dtype=float))
+    T = t_left + (t_right - t_left) * x / length
+    if t <= 0:
+        return np.where(x < length, t_initial, t_right) if t_initial == 0 else T
+    n = np.arange(1, n_terms + 1)[:, None]
+    decay = np.exp(-kappa * n**2 * np.pi**2 * t / length**2)
+    T = T + (2 / np.pi) * np.sum((t_right * np.cos(n * np.pi) - t_left) / n
+                                 * np.sin(n * np.pi * x / length) * decay, axis=0)
+    m = np.arange(0, n_terms)[:, None]
+    odd = 2 * m + 1
+    T = T + (4 * t_initial / np.pi) * np.sum(
+        np.sin(odd * np.pi * x / length) / odd
+        * np.exp(-kappa * odd**2 * np.pi**2 * t / length**2), axis=0)
+    return T
+
+
+def cylinder_temperature(r, a=0.03, b=0.15, t_a=100.0, t_b=0.0):
+    """Steady temperature in a hollow cylinder a < r < b (paper Eq. 49)."""
+    r = np.asarray(r, dtype=float)
+    return t_a * np.log(b / r) / np.log(b / a) + t_b * np.log(a / r) / np.log(a / b)
+
+
+def read_csv(path):
+    """lines.csv / probes.csv -> dict name -> dict time -> (x, y, {col: values})."""
+    import csv
+    data = {}
+    with open(path) as f:
+        reader = csv.reader(f)
+        header = next(reader)
+        fields = header[4:]
+        for row in reader:
+            t, name, x, y = float(row[0]), row[1], float(row[2]), float(row[3])
+            entry = data.setdefault(name, {}).setdefault(t, ([], [], {c: [] for c in fields}))
+            entry[0].append(x)
+            entry[1].append(y)
+            for c, v in zip(fields, row[4:]):
+                entry[2][c].append(float(v))
+    out = {}
+    for name, by_time in data.items():
+        out[name] = {}
+        for t, (xs, ys, cols) in by_time.items():
+            out[name][t] = (np.array(xs), np.array(ys), {c: np.array(v) for c, v in cols.items()})
+    return out
