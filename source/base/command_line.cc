@@ -23,7 +23,17 @@ namespace tmfdem
       const std::string prefix = "The violated condition was:";
       if (message.rfind(prefix, 0) == 0)
         message = message.substr(message.find('\n') + 1);
-      return message;
+      // one line: collapse deal.II's indented multi-line layout
+      std::string line;
+      for (const char c : message)
+        if (c == '\n' || c == '\t' || c == ' ')
+          {
+            if (!line.empty() && line.back() != ' ')
+              line += ' ';
+          }
+        else
+          line += c;
+      return line;
     }
 
     /** Applies "A/B/Entry=value" to @p prm. */

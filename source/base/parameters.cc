@@ -91,6 +91,12 @@ namespace tmfdem
                       Patterns::Anything(),
                       "Source = file: gmsh .msh file (format 2 or 4, ASCII), "
                       "relative to the folder of the prm file.");
+    prm.declare_entry("Expected area",
+                      "0",
+                      Patterns::Double(0.),
+                      "Source = file: the area of the domain [m^2]; a mesh "
+                      "covering less (an unmeshed region) or more is "
+                      "refused. 0: not checked.");
     prm.declare_entry("Global refinements",
                       "0",
                       Patterns::Integer(0, 12),
@@ -124,6 +130,7 @@ namespace tmfdem
     global_refinements = prm.get_integer("Global refinements");
     material_id        = prm.get_integer("Material id");
     file_name          = prm.get("File name");
+    expected_area      = prm.get_double("Expected area");
     prm.leave_subsection();
 
     if (source != Source::file && !(element_size > 0.))

@@ -142,7 +142,11 @@ namespace tmfdem
         "mesh file '" + parameters.mesh.file_name + "'" :
         "generated mesh";
     mesh_report = std::make_unique<MeshReport>(
-      check_mesh(coarse, source, domain_area(parameters.mesh)));
+      check_mesh(coarse,
+                 source,
+                 domain_area(parameters.mesh),
+                 parameters.mesh.source == MeshParameters::Source::annulus ||
+                   parameters.mesh.source == MeshParameters::Source::disc));
     if (mesh_report->n_triangles > 0 && mesh_report->n_quadrilaterals > 0)
       throw InputError(source + " mixes triangles and quadrilaterals; "
                        "allowed are meshes of one cell shape.");

@@ -55,7 +55,8 @@ namespace tmfdem
   MeshReport
   check_mesh(const Triangulation<2> &triangulation,
              const std::string      &source,
-             const double            expected_area)
+             const double            expected_area,
+             const bool              curved_boundary)
   {
     MeshReport report;
     report.n_cells    = triangulation.n_active_cells();
@@ -131,6 +132,29 @@ namespace tmfdem
       }
     report.mean_edge = n_edges > 0 ? edge_sum / n_edges : 0.;
 
+    // The boundary encloses (outer boundaries counterclockwise, holes
+    // clockwise) exactly the area of the cells unless cells fold over or
+    // overlap: deal.II silently reorders clockwise cells, so a folded
+    // (inverted) cell shows up here.
+    double enclosed_area = 0.;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      for (const auto face : cell->face_iterators())
+        if (face->at_boundary())
+          {
+            Point<2> start = face->vertex(0), end = face->vertex(1);
+            if (cross(end - start, cell->center() - start) < 0)
+              std::swap(start, end);
+            enclosed_area += 0.5 * (start[0] * end[1] - start[1] * end[0]);
+          }
+    if (std::abs(enclosed_area - report.area) > 1e-9 * report.area)
+      throw InputError(source + ": the cells cover " +
+                       Utilities::to_string(report.area) +
+                       " m^2 but the boundary encloses " +
+                       Utilities::to_string(enclosed_area) +
+                       " m^2: some cells are inverted (folded over their "
+                       "neighbours) or overlap. Allowed are meshes whose "
+                       "cells overlap nowhere.");
+
     // connected pieces through shared faces
     std::vector<unsigned int> piece(triangulation.n_active_cells(),
                                     numbers::invalid_unsigned_int);
@@ -163,10 +187,12 @@ namespace tmfdem
       {
         // a polygon of edge h inscribed in a circle misses about pi h^2 / 6
         // of its area, whatever the radius; more than that (and 2 %) is a
-        // hole or an overlap
+        // hole or an overlap. Straight boundaries must match to 0.1 %.
         const double miss      = std::abs(report.area - expected_area);
-        const double tolerance = 0.02 * expected_area +
-                                 2. * report.max_edge * report.max_edge;
+        const double tolerance =
+          curved_boundary ?
+            0.02 * expected_area + 2. * report.max_edge * report.max_edge :
+            1e-3 * expected_area;
         if (miss > tolerance)
           throw InputError(source + ": the cells cover " +
                            Utilities::to_string(report.area) +

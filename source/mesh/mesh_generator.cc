@@ -331,7 +331,7 @@ namespace tmfdem
         case MeshParameters::Source::disc:
           return numbers::PI * p.outer_radius * p.outer_radius;
         default:
-          return 0.;
+          return p.expected_area;
       }
   }
 } // namespace tmfdem

@@ -58,6 +58,8 @@ namespace tmfdem
     double outer_radius = 0.15;
     /** gmsh `.msh` file, resolved against the prm file's folder. */
     std::string file_name;
+    /** Area an imported mesh must cover [m^2]; 0: not checked. */
+    double expected_area = 0.;
     /** Uniform refinements applied after generation or import. */
     unsigned int global_refinements = 0;
     /** Material id of generated meshes. */

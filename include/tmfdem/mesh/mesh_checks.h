@@ -42,12 +42,14 @@ namespace tmfdem
    * degenerate cell (area below 1e-10 of its squared longest edge), two cells
    * on the same vertices, or, when @p expected_area > 0, a mesh whose area
    * misses the domain's by more than the boundary approximation explains
-   * (an unmeshed region).
+   * (an unmeshed region): by 0.1 %, or with @p curved_boundary by what
+   * polygonal approximation of circles explains.
    */
   MeshReport
   check_mesh(const Triangulation<2> &triangulation,
              const std::string      &source,
-             const double            expected_area);
+             const double            expected_area,
+             const bool              curved_boundary);
 } // namespace tmfdem
 
 #endif

@@ -39,7 +39,8 @@ namespace tmfdem
   void
   read_gmsh_file(const std::string &file_name, Triangulation<2> &triangulation);
 
-  /** Exact area of the generated domain [m^2]; 0 for imported meshes. */
+  /** Exact area of a generated domain, or Mesh/Expected area for imported
+   *  meshes (0: unknown) [m^2]. */
   double
   domain_area(const MeshParameters &parameters);
 } // namespace tmfdem

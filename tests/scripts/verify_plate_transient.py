@@ -1,0 +1,20 @@
+#!/usr/bin/python3
+"""Paper 5.1, continuum: max abs error along 'midline' <= 0.5 C at t = 2, 10,
+20, 50 s at element size 0.05 m, against the corrected series; and the heat
+balance closes."""
+import sys
+from common import run, summary, check
+from analytic import plate_transient, read_csv
+
+binary, prm, out = sys.argv[1:4]
+run(binary, prm, out)
+lines = read_csv(f"{out}/lines.csv")["midline"]
+ok = True
+for t in (2.0, 10.0, 20.0, 50.0):
+    x, y, fields = lines[t]
+    error = abs(fields["T"] - plate_transient(x, t)).max()
+    ok &= check(error <= 0.5, f"t = {t:4.0f} s: max |T - T_exact| = {error:.4f} C <= 0.5 C")
+s = summary(out)
+ok &= check(s["heat"]["relative_imbalance"] < 1e-8,
+            f"heat balance: relative imbalance {s['heat']['relative_imbalance']:.2e} < 1e-8")
+sys.exit(0 if ok else 1)
