@@ -14,6 +14,21 @@
 
 namespace tmfdem
 {
+  namespace
+  {
+    /** Is @p p (reference coordinates) in the cell, up to 1e-6? */
+    bool
+    inside_reference_cell(const ReferenceCell &reference, const Point<2> &p)
+    {
+      const double tolerance = 1e-6;
+      if (reference == ReferenceCells::Triangle)
+        return p[0] >= -tolerance && p[1] >= -tolerance &&
+               p[0] + p[1] <= 1. + tolerance;
+      return p[0] >= -tolerance && p[1] >= -tolerance &&
+             p[0] <= 1. + tolerance && p[1] <= 1. + tolerance;
+    }
+  } // namespace
+
   Monitors::Monitors(const MonitorParameters        &parameters,
                      const std::string              &folder,
                      const std::vector<std::string> &field_names,
@@ -46,42 +61,69 @@ namespace tmfdem
   {
     const unsigned int  n_values = n_components + 1; // last: found count
     std::vector<double> local(points.size() * n_values, 0.);
-    // candidates: vertices of locally owned cells, so that the search stays
-    // in this rank's part of the mesh
-    std::vector<bool> marked(dof_handler.get_triangulation().n_vertices(),
-                             false);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const unsigned int v : cell->vertex_indices())
-          marked[cell->vertex_index(v)] = true;
-
     for (unsigned int i = 0; i < points.size(); ++i)
       {
-        try
+        // search this rank's cells (bounding box first, then the exact
+        // inverse map: affine for triangles, the mapping's for quads);
+        // deal.II 9.4's point search tests simplices as if they were squares
+        std::vector<std::pair<DoFHandler<2>::active_cell_iterator, Point<2>>>
+          candidates;
+        const Point<2> &p = points[i].location;
+        for (const auto &cell : dof_handler.active_cell_iterators())
           {
-            const auto cell_and_point =
-              GridTools::find_active_cell_around_point(
-                mapping, dof_handler, points[i].location, marked, 1e-8);
-            const auto &cell = cell_and_point.first;
             if (!cell->is_locally_owned())
               continue;
-            local[i * n_values + n_components] = 1.;
-            if (solution == nullptr)
+            const auto   box    = cell->bounding_box();
+            const double margin = 1e-6 * cell->diameter();
+            if (p[0] < box.lower_bound(0) - margin ||
+                p[0] > box.upper_bound(0) + margin ||
+                p[1] < box.lower_bound(1) - margin ||
+                p[1] > box.upper_bound(1) + margin)
               continue;
-            const Quadrature<2> quadrature(
-              std::vector<Point<2>>{cell_and_point.second});
-            FEValues<2> fe_values(mapping,
-                                  dof_handler.get_fe(),
-                                  quadrature,
-                                  update_values);
-            fe_values.reinit(cell);
-            std::vector<Vector<double>> values(1, Vector<double>(n_components));
-            fe_values.get_function_values(*solution, values);
-            for (unsigned int c = 0; c < n_components; ++c)
-              local[i * n_values + c] = values[0][c];
+            Point<2> unit_point;
+            if (cell->reference_cell() == ReferenceCells::Triangle)
+              {
+                const Tensor<1, 2> a = cell->vertex(1) - cell->vertex(0),
+                                   b = cell->vertex(2) - cell->vertex(0),
+                                   d = p - cell->vertex(0);
+                const double det = a[0] * b[1] - a[1] * b[0];
+                unit_point = Point<2>((d[0] * b[1] - d[1] * b[0]) / det,
+                                      (a[0] * d[1] - a[1] * d[0]) / det);
+              }
+            else
+              try
+                {
+                  unit_point = mapping.transform_real_to_unit_cell(cell, p);
+                }
+              catch (const ExceptionBase &)
+                {
+                  continue;
+                }
+            candidates.emplace_back(cell, unit_point);
+            if (inside_reference_cell(cell->reference_cell(), unit_point))
+              break;
           }
-        catch (const ExceptionBase &) // the point is not in this part
-          {}
+        for (const auto &[cell, unit_point] : candidates)
+          {
+            if (!cell->is_locally_owned() ||
+                !inside_reference_cell(cell->reference_cell(), unit_point))
+              continue;
+            local[i * n_values + n_components] = 1.;
+            if (solution != nullptr)
+              {
+                const Quadrature<2> quadrature(std::vector<Point<2>>{unit_point});
+                FEValues<2> fe_values(mapping,
+                                      dof_handler.get_fe(),
+                                      quadrature,
+                                      update_values);
+                fe_values.reinit(cell);
+                std::vector<Vector<double>> values(1, Vector<double>(n_components));
+                fe_values.get_function_values(*solution, values);
+                for (unsigned int c = 0; c < n_components; ++c)
+                  local[i * n_values + c] = values[0][c];
+              }
+            break;
+          }
       }
     std::vector<double> global(local.size());
     MPI_Allreduce(local.data(),
