@@ -53,36 +53,25 @@ namespace tmfdem
       if (parts.empty() || parts.back().empty())
         throw InputError("--set '" + assignment + "': no entry name.");
 
-      // check the path against the declared parameters before touching prm
-      std::ostringstream declared;
-      prm.print_parameters(declared, ParameterHandler::ShortPRM);
       for (unsigned int i = 0; i + 1 < parts.size(); ++i)
         prm.enter_subsection(parts[i]);
-      try
-        {
-          prm.get(parts.back());
-        }
-      catch (const ExceptionBase &)
-        {
-          for (unsigned int i = 0; i + 1 < parts.size(); ++i)
-            prm.leave_subsection();
-          throw InputError("--set '" + assignment + "': there is no entry '" +
-                           path +
-                           "'. tmfdem --print-parameters lists all entries.");
-        }
+      std::string error;
       try
         {
           prm.set(parts.back(), value);
         }
       catch (const ExceptionBase &exception)
         {
-          for (unsigned int i = 0; i + 1 < parts.size(); ++i)
-            prm.leave_subsection();
-          throw InputError("--set '" + assignment + "': " +
-                           exception_text(exception));
+          error = exception_text(exception);
         }
       for (unsigned int i = 0; i + 1 < parts.size(); ++i)
         prm.leave_subsection();
+      if (error.find("not yet declared") != std::string::npos)
+        throw InputError("--set '" + assignment + "': there is no entry '" +
+                         path +
+                         "'. tmfdem --print-parameters lists all entries.");
+      if (!error.empty())
+        throw InputError("--set '" + assignment + "': " + error);
     }
   } // namespace
 
