@@ -312,9 +312,10 @@ namespace tmfdem
             triangulation.set_manifold(circle_manifold_id,
                                        SphericalManifold<2>(parameters.center));
           }
-        for (const auto &cell : triangulation.active_cell_iterators())
-          cell->set_material_id(parameters.material_id);
       }
+    // (GridGenerator's colorize also numbers the cells' material ids)
+    for (const auto &cell : triangulation.active_cell_iterators())
+      cell->set_material_id(parameters.material_id);
   }
 
   double

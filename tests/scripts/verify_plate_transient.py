@@ -17,4 +17,20 @@ for t in (2.0, 10.0, 20.0, 50.0):
 s = summary(out)
 ok &= check(s["heat"]["relative_imbalance"] < 1e-8,
             f"heat balance: relative imbalance {s['heat']['relative_imbalance']:.2e} < 1e-8")
+
+# the same case on quadrilaterals with transient Kelly refinement and
+# coarsening (p4est, solution transfer every 5 steps)
+amr = f"{out}/amr"
+run(binary, prm, amr, "Mesh/Element type=quadrilaterals", "Adaptive refinement/Enable=true",
+    "Adaptive refinement/Interval=5", "Adaptive refinement/Refine fraction=0.5",
+    "Adaptive refinement/Coarsen fraction=0.05", "Adaptive refinement/Maximum level=2",
+    "Output/Write vtu=false")
+lines = read_csv(f"{amr}/lines.csv")["midline"]
+for t in (2.0, 10.0, 20.0, 50.0):
+    x, y, fields = lines[t]
+    error = abs(fields["T"] - plate_transient(x, t)).max()
+    ok &= check(error <= 0.5, f"quadrilaterals + AMR, t = {t:4.0f} s: max |T - T_exact| = {error:.4f} C <= 0.5 C")
+s = summary(amr)
+ok &= check(s["heat"]["relative_imbalance"] < 1e-5,
+            f"AMR heat balance (solution transfer included): relative imbalance {s['heat']['relative_imbalance']:.1e} < 1e-5")
 sys.exit(0 if ok else 1)
