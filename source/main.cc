@@ -3,21 +3,20 @@
  * selected model. Exit status 0 on success, 1 on bad input, 2 on a failure
  * during the run.
  */
-#include <tmfdem/base/command_line.h>
-#include <tmfdem/base/exceptions.h>
-#include <tmfdem/base/simulation.h>
-
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 
 #include <iostream>
+#include <tmfdem/base/command_line.h>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/simulation.h>
 
 int
 main(int argc, char *argv[])
 {
   using namespace tmfdem;
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const bool root =
+  const bool                               root =
     dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   dealii::deal_II_exceptions::disable_abort_on_exception();
   try
@@ -51,7 +50,8 @@ main(int argc, char *argv[])
   catch (const InputError &error)
     {
       if (root)
-        std::cerr << "tmfdem: error in the input: " << error.what() << std::endl;
+        std::cerr << "tmfdem: error in the input: " << error.what()
+                  << std::endl;
       return 1;
     }
   catch (const RunError &error)

@@ -1,13 +1,12 @@
-#include <tmfdem/base/command_line.h>
-#include <tmfdem/base/exceptions.h>
-#include <tmfdem/base/simulation.h>
-
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
 
 #include <fstream>
 #include <sstream>
+#include <tmfdem/base/command_line.h>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/simulation.h>
 
 namespace tmfdem
 {
@@ -172,7 +171,8 @@ namespace tmfdem
       }
     catch (const InputError &error)
       {
-        throw InputError("in parameter file '" + prm_file + "': " + error.what());
+        throw InputError("in parameter file '" + prm_file +
+                         "': " + error.what());
       }
     catch (const ExceptionBase &exception)
       {
@@ -193,8 +193,9 @@ namespace tmfdem
             "# Units are SI; temperatures in degrees C. Functions of x, y, t "
             "use muparser syntax.\n";
     prm.print_parameters(text,
-                         ParameterHandler::OutputStyle(ParameterHandler::PRM |
-                                                       ParameterHandler::KeepDeclarationOrder));
+                         ParameterHandler::OutputStyle(
+                           ParameterHandler::PRM |
+                           ParameterHandler::KeepDeclarationOrder));
     return text.str();
   }
 } // namespace tmfdem

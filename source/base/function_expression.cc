@@ -1,10 +1,9 @@
-#include <tmfdem/base/exceptions.h>
-#include <tmfdem/base/function_expression.h>
-
 #include <deal.II/base/numbers.h>
 
 #include <map>
 #include <sstream>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/function_expression.h>
 
 namespace tmfdem
 {

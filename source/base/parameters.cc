@@ -1,13 +1,12 @@
-#include <tmfdem/base/exceptions.h>
-#include <tmfdem/base/parameters.h>
-#include <tmfdem/base/simulation.h>
-
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
 
 #include <cmath>
 #include <filesystem>
 #include <set>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/parameters.h>
+#include <tmfdem/base/simulation.h>
 
 namespace tmfdem
 {
@@ -37,8 +36,8 @@ namespace tmfdem
   const std::vector<std::pair<std::string, double>> &
   theta_scheme_registry()
   {
-    static const std::vector<std::pair<std::string, double>> methods = {
-      {"backward Euler", 1.0}, {"Crank-Nicolson", 0.5}};
+    static const std::vector<std::pair<std::string, double>> methods =
+      {{"backward Euler", 1.0}, {"Crank-Nicolson", 0.5}};
     return methods;
   }
 
@@ -103,7 +102,8 @@ namespace tmfdem
                       "Uniform refinements after generation or import [-].");
     prm.declare_entry("Material id",
                       "0",
-                      Patterns::Integer(0, MaterialParameters::max_materials - 1),
+                      Patterns::Integer(0,
+                                        MaterialParameters::max_materials - 1),
                       "Material id of the cells of a generated mesh [-].");
     prm.leave_subsection();
   }
@@ -114,13 +114,13 @@ namespace tmfdem
   {
     prm.enter_subsection("Mesh");
     const std::string source_name = prm.get("Source");
-    source = source_name == "rectangle" ? Source::rectangle :
-             source_name == "annulus"   ? Source::annulus :
-             source_name == "disc"      ? Source::disc :
-                                          Source::file;
-    element_type = prm.get("Element type") == "triangles" ?
-                     ElementType::triangles :
-                     ElementType::quadrilaterals;
+    source             = source_name == "rectangle" ? Source::rectangle :
+                         source_name == "annulus"   ? Source::annulus :
+                         source_name == "disc"      ? Source::disc :
+                                                      Source::file;
+    element_type       = prm.get("Element type") == "triangles" ?
+                           ElementType::triangles :
+                           ElementType::quadrilaterals;
     element_size       = prm.get_double("Element size");
     lower_left         = parse_point(prm.get("Lower left corner"));
     upper_right        = parse_point(prm.get("Upper right corner"));
@@ -140,8 +140,8 @@ namespace tmfdem
         !(upper_right[0] > lower_left[0] && upper_right[1] > lower_left[1]))
       throw InputError("Mesh/Upper right corner must lie above and to the "
                        "right of Mesh/Lower left corner.");
-    if (source == Source::annulus && !(outer_radius > inner_radius &&
-                                       inner_radius > 0.))
+    if (source == Source::annulus &&
+        !(outer_radius > inner_radius && inner_radius > 0.))
       throw InputError("Mesh: an annulus needs 0 < Inner radius < Outer "
                        "radius; got Inner radius = " +
                        std::to_string(inner_radius) + ", Outer radius = " +
@@ -153,7 +153,8 @@ namespace tmfdem
         if (file_name.empty())
           throw InputError("Mesh/Source = file needs Mesh/File name.");
         if (std::filesystem::path(file_name).is_relative())
-          file_name = (std::filesystem::path(input_folder) / file_name).string();
+          file_name =
+            (std::filesystem::path(input_folder) / file_name).string();
       }
   }
 
@@ -233,20 +234,20 @@ namespace tmfdem
       {
         const std::string name = "Materials/Material " + std::to_string(id);
         prm.enter_subsection("Material " + std::to_string(id));
-        MaterialProperties &m     = materials[id];
-        m.density                 = prm.get_double("Density");
-        m.youngs_modulus          = prm.get_double("Young's modulus");
-        m.poisson_ratio           = prm.get_double("Poisson's ratio");
-        m.thermal_conductivity    = prm.get_double("Thermal conductivity");
-        m.specific_heat           = prm.get_double("Specific heat capacity");
-        m.thermal_expansion       = prm.get_double("Thermal expansion coefficient");
-        m.reference_temperature   = prm.get_double("Reference temperature");
-        m.tensile_strength        = prm.get_double("Tensile strength");
-        m.cohesion                = prm.get_double("Cohesion");
-        m.friction_angle          = prm.get_double("Internal friction angle");
-        m.fracture_energy_I       = prm.get_double("Mode I fracture energy");
-        m.fracture_energy_II      = prm.get_double("Mode II fracture energy");
-        m.heat_source             = prm.get("Volumetric heat source");
+        MaterialProperties &m  = materials[id];
+        m.density              = prm.get_double("Density");
+        m.youngs_modulus       = prm.get_double("Young's modulus");
+        m.poisson_ratio        = prm.get_double("Poisson's ratio");
+        m.thermal_conductivity = prm.get_double("Thermal conductivity");
+        m.specific_heat        = prm.get_double("Specific heat capacity");
+        m.thermal_expansion = prm.get_double("Thermal expansion coefficient");
+        m.reference_temperature = prm.get_double("Reference temperature");
+        m.tensile_strength      = prm.get_double("Tensile strength");
+        m.cohesion              = prm.get_double("Cohesion");
+        m.friction_angle        = prm.get_double("Internal friction angle");
+        m.fracture_energy_I     = prm.get_double("Mode I fracture energy");
+        m.fracture_energy_II    = prm.get_double("Mode II fracture energy");
+        m.heat_source           = prm.get("Volumetric heat source");
         prm.leave_subsection();
 
         if (!(m.poisson_ratio < 0.5) || !(m.poisson_ratio > -1.))
@@ -263,8 +264,7 @@ namespace tmfdem
         for (const auto &[entry, value] : positive)
           if (!(value > 0.))
             throw InputError(name + "/" + entry + " = " +
-                             Utilities::to_string(value) +
-                             ": must be > 0.");
+                             Utilities::to_string(value) + ": must be > 0.");
       }
     prm.leave_subsection();
   }
@@ -341,15 +341,15 @@ namespace tmfdem
                Utilities::split_string_list(prm.get("Boundary ids"), ',')))
           condition.boundary_ids.push_back(id);
         const std::string type = prm.get("Type");
-        condition.type = type == "dirichlet" ?
-                           ThermalBoundaryCondition::Type::dirichlet :
-                         type == "neumann" ?
-                           ThermalBoundaryCondition::Type::neumann :
-                           ThermalBoundaryCondition::Type::robin;
-        condition.temperature               = prm.get("Temperature");
-        condition.heat_flux                 = prm.get("Heat flux");
-        condition.heat_transfer_coefficient = prm.get("Heat transfer coefficient");
-        condition.ambient_temperature       = prm.get("Ambient temperature");
+        condition.type =
+          type == "dirichlet" ? ThermalBoundaryCondition::Type::dirichlet :
+          type == "neumann"   ? ThermalBoundaryCondition::Type::neumann :
+                                ThermalBoundaryCondition::Type::robin;
+        condition.temperature = prm.get("Temperature");
+        condition.heat_flux   = prm.get("Heat flux");
+        condition.heat_transfer_coefficient =
+          prm.get("Heat transfer coefficient");
+        condition.ambient_temperature = prm.get("Ambient temperature");
         prm.leave_subsection();
         for (const auto id : condition.boundary_ids)
           if (!used.insert(id).second)
@@ -429,14 +429,14 @@ namespace tmfdem
     if (mode == Mode::transient)
       {
         if (!(time_step > 0.))
-          throw InputError("Time stepping/Time step = " +
-                           Utilities::to_string(time_step) +
-                           ": must be > 0 [s].");
+          throw InputError(
+            "Time stepping/Time step = " + Utilities::to_string(time_step) +
+            ": must be > 0 [s].");
         if (!(end_time > start_time))
-          throw InputError("Time stepping/End time = " +
-                           Utilities::to_string(end_time) +
-                           ": must be later than Start time = " +
-                           Utilities::to_string(start_time) + " [s].");
+          throw InputError(
+            "Time stepping/End time = " + Utilities::to_string(end_time) +
+            ": must be later than Start time = " +
+            Utilities::to_string(start_time) + " [s].");
         if ((end_time - start_time) / time_step > 1e9)
           throw InputError("Time stepping: (End time - Start time) / Time step "
                            "exceeds 1e9 steps.");

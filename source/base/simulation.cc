@@ -1,7 +1,6 @@
+#include <map>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/simulation.h>
-
-#include <map>
 
 namespace tmfdem
 {

@@ -1,11 +1,3 @@
-#include <tmfdem/base/exceptions.h>
-#include <tmfdem/base/function_expression.h>
-#include <tmfdem/continuum/heat_solver.h>
-#include <tmfdem/io/monitors.h>
-#include <tmfdem/io/output_files.h>
-#include <tmfdem/mesh/mesh_checks.h>
-#include <tmfdem/mesh/mesh_generator.h>
-
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/distributed/grid_refinement.h>
@@ -32,6 +24,13 @@
 #include <iostream>
 #include <regex>
 #include <sstream>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/function_expression.h>
+#include <tmfdem/continuum/heat_solver.h>
+#include <tmfdem/io/monitors.h>
+#include <tmfdem/io/output_files.h>
+#include <tmfdem/mesh/mesh_checks.h>
+#include <tmfdem/mesh/mesh_generator.h>
 
 namespace tmfdem
 {
@@ -49,7 +48,8 @@ namespace tmfdem
     bool
     depends_on_time(const std::string &expression)
     {
-      static const std::regex time_variable("(^|[^A-Za-z0-9_])t([^A-Za-z0-9_]|$)");
+      static const std::regex time_variable(
+        "(^|[^A-Za-z0-9_])t([^A-Za-z0-9_]|$)");
       return std::regex_search(expression, time_variable);
     }
   } // namespace
@@ -61,11 +61,12 @@ namespace tmfdem
   {
     for (unsigned int id = 0; id < MaterialParameters::max_materials; ++id)
       {
-        const std::string expression = parameters.materials.materials[id].heat_source;
-        heat_sources.push_back(make_expression_function(
-          expression,
-          "Materials/Material " + std::to_string(id) +
-            "/Volumetric heat source"));
+        const std::string expression =
+          parameters.materials.materials[id].heat_source;
+        heat_sources.push_back(
+          make_expression_function(expression,
+                                   "Materials/Material " + std::to_string(id) +
+                                     "/Volumetric heat source"));
         if (Utilities::trim(expression) != "0")
           any_heat_source = true;
       }
@@ -78,9 +79,10 @@ namespace tmfdem
         functions.heat_flux =
           make_expression_function(condition.heat_flux,
                                    condition.name + "/Heat flux");
-        functions.heat_transfer_coefficient = make_expression_function(
-          condition.heat_transfer_coefficient,
-          condition.name + "/Heat transfer coefficient");
+        functions.heat_transfer_coefficient =
+          make_expression_function(condition.heat_transfer_coefficient,
+                                   condition.name +
+                                     "/Heat transfer coefficient");
         functions.ambient_temperature =
           make_expression_function(condition.ambient_temperature,
                                    condition.name + "/Ambient temperature");
@@ -149,13 +151,14 @@ namespace tmfdem
                    parameters.mesh.source == MeshParameters::Source::disc));
     if (mesh_report->n_triangles > 0 && mesh_report->n_quadrilaterals > 0)
       throw InputError(source + " mixes triangles and quadrilaterals; "
-                       "allowed are meshes of one cell shape.");
+                                "allowed are meshes of one cell shape.");
 
     if (uses_quadrilaterals())
       triangulation = std::make_unique<parallel::distributed::Triangulation<2>>(
         communicator,
-        Triangulation<2>::MeshSmoothing(Triangulation<2>::smoothing_on_refinement |
-                                        Triangulation<2>::smoothing_on_coarsening));
+        Triangulation<2>::MeshSmoothing(
+          Triangulation<2>::smoothing_on_refinement |
+          Triangulation<2>::smoothing_on_coarsening));
     else
       triangulation =
         std::make_unique<parallel::shared::Triangulation<2>>(communicator);
@@ -207,7 +210,8 @@ namespace tmfdem
   {
     dof_handler->distribute_dofs(*fe);
     locally_owned_dofs = dof_handler->locally_owned_dofs();
-    DoFTools::extract_locally_relevant_dofs(*dof_handler, locally_relevant_dofs);
+    DoFTools::extract_locally_relevant_dofs(*dof_handler,
+                                            locally_relevant_dofs);
 
     dirichlet_dof_ids.clear();
     for (const auto &condition : parameters.thermal_boundary.conditions)
@@ -215,7 +219,9 @@ namespace tmfdem
         for (const auto id : condition.boundary_ids)
           {
             const IndexSet dofs =
-              DoFTools::extract_boundary_dofs(*dof_handler, ComponentMask(), {id});
+              DoFTools::extract_boundary_dofs(*dof_handler,
+                                              ComponentMask(),
+                                              {id});
             for (const auto dof : dofs)
               dirichlet_dof_ids.emplace(dof, id);
           }
@@ -234,7 +240,9 @@ namespace tmfdem
                          communicator);
     system_rhs.reinit(locally_owned_dofs, communicator);
     solution.reinit(locally_owned_dofs, locally_relevant_dofs, communicator);
-    old_solution.reinit(locally_owned_dofs, locally_relevant_dofs, communicator);
+    old_solution.reinit(locally_owned_dofs,
+                        locally_relevant_dofs,
+                        communicator);
     preconditioner.reset();
   }
 
@@ -244,7 +252,8 @@ namespace tmfdem
     constraints.clear();
     constraints.reinit(locally_relevant_dofs);
     DoFTools::make_hanging_node_constraints(*dof_handler, constraints);
-    for (unsigned int c = 0; c < parameters.thermal_boundary.conditions.size(); ++c)
+    for (unsigned int c = 0; c < parameters.thermal_boundary.conditions.size();
+         ++c)
       {
         const auto &condition = parameters.thermal_boundary.conditions[c];
         if (condition.type != ThermalBoundaryCondition::Type::dirichlet)
@@ -252,8 +261,11 @@ namespace tmfdem
         auto &temperature = *boundary_functions[c].temperature;
         temperature.set_time(time);
         for (const auto id : condition.boundary_ids)
-          VectorTools::interpolate_boundary_values(
-            *mapping, *dof_handler, id, temperature, constraints);
+          VectorTools::interpolate_boundary_values(*mapping,
+                                                   *dof_handler,
+                                                   id,
+                                                   temperature,
+                                                   constraints);
       }
     constraints.close();
   }
@@ -261,11 +273,11 @@ namespace tmfdem
   void
   HeatSolver::compute_cell_matrices()
   {
-    const unsigned int n = fe->n_dofs_per_cell();
+    const unsigned int  n = fe->n_dofs_per_cell();
     const Quadrature<2> quadrature =
       uses_quadrilaterals() ? Quadrature<2>(QGauss<2>(fe->degree + 1)) :
                               Quadrature<2>(QGaussSimplex<2>(fe->degree + 1));
-    FEValues<2> fe_values(*mapping,
+    FEValues<2>        fe_values(*mapping,
                           *fe,
                           quadrature,
                           update_values | update_gradients | update_JxW_values);
@@ -328,8 +340,10 @@ namespace tmfdem
 
     // boundary id -> condition index
     std::map<types::boundary_id, unsigned int> condition_of;
-    for (unsigned int c = 0; c < parameters.thermal_boundary.conditions.size(); ++c)
-      for (const auto id : parameters.thermal_boundary.conditions[c].boundary_ids)
+    for (unsigned int c = 0; c < parameters.thermal_boundary.conditions.size();
+         ++c)
+      for (const auto id :
+           parameters.thermal_boundary.conditions[c].boundary_ids)
         condition_of[id] = c;
 
     if (assemble_matrix)
@@ -342,7 +356,7 @@ namespace tmfdem
     FullMatrix<double>                   local_matrix(n, n);
     Vector<double>                       local_rhs(n), old_values(n);
     std::vector<types::global_dof_index> dof_indices(n);
-    std::vector<double> old_at_face(face_quadrature.size());
+    std::vector<double>                  old_at_face(face_quadrature.size());
 
     for (const auto &cell : dof_handler->active_cell_iterators())
       {
@@ -390,7 +404,8 @@ namespace tmfdem
           {
             if (!cell->at_boundary(f))
               continue;
-            const auto condition_index = condition_of.find(cell->face(f)->boundary_id());
+            const auto condition_index =
+              condition_of.find(cell->face(f)->boundary_id());
             if (condition_index == condition_of.end())
               continue;
             const auto &condition =
@@ -403,7 +418,8 @@ namespace tmfdem
             double load = 0.;
             if (condition.type == ThermalBoundaryCondition::Type::neumann)
               {
-                for (const unsigned int q : fe_face_values.quadrature_point_indices())
+                for (const unsigned int q :
+                     fe_face_values.quadrature_point_indices())
                   {
                     const Point<2> &x = fe_face_values.quadrature_point(q);
                     functions.heat_flux->set_time(new_time);
@@ -423,7 +439,8 @@ namespace tmfdem
               {
                 fe_face_values.get_function_values(old_solution, old_at_face);
                 FullMatrix<double> robin(n, n);
-                for (const unsigned int q : fe_face_values.quadrature_point_indices())
+                for (const unsigned int q :
+                     fe_face_values.quadrature_point_indices())
                   {
                     const Point<2> &x = fe_face_values.quadrature_point(q);
                     functions.heat_transfer_coefficient->set_time(new_time);
@@ -445,7 +462,8 @@ namespace tmfdem
                     load += known;
                     for (unsigned int i = 0; i < n; ++i)
                       {
-                        local_rhs(i) += known * fe_face_values.shape_value(i, q);
+                        local_rhs(i) +=
+                          known * fe_face_values.shape_value(i, q);
                         for (unsigned int j = 0; j < n; ++j)
                           robin(i, j) += new_weight * h_new *
                                          fe_face_values.shape_value(i, q) *
@@ -463,8 +481,11 @@ namespace tmfdem
         last_cell_rhs[index]    = local_rhs;
         cell->get_dof_indices(dof_indices);
         if (assemble_matrix)
-          constraints.distribute_local_to_global(
-            local_matrix, local_rhs, dof_indices, system_matrix, system_rhs);
+          constraints.distribute_local_to_global(local_matrix,
+                                                 local_rhs,
+                                                 dof_indices,
+                                                 system_matrix,
+                                                 system_rhs);
         else
           constraints.distribute_local_to_global(local_rhs,
                                                  dof_indices,
@@ -494,7 +515,8 @@ namespace tmfdem
           }
         else
           {
-            auto jacobi = std::make_unique<TrilinosWrappers::PreconditionJacobi>();
+            auto jacobi =
+              std::make_unique<TrilinosWrappers::PreconditionJacobi>();
             jacobi->initialize(system_matrix);
             preconditioner = std::move(jacobi);
           }
@@ -502,11 +524,10 @@ namespace tmfdem
     TrilinosWrappers::MPI::Vector distributed(locally_owned_dofs, communicator);
     distributed = solution;
     constraints.set_zero(distributed);
-    const double rhs_norm = system_rhs.l2_norm();
-    SolverControl control(parameters.heat_solver.max_iterations,
-                          std::max(parameters.heat_solver.relative_tolerance *
-                                     rhs_norm,
-                                   1e-300));
+    const double  rhs_norm = system_rhs.l2_norm();
+    SolverControl control(
+      parameters.heat_solver.max_iterations,
+      std::max(parameters.heat_solver.relative_tolerance * rhs_norm, 1e-300));
     SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
     try
       {
@@ -532,14 +553,14 @@ namespace tmfdem
   void
   HeatSolver::accumulate_heat_balance(HeatBalance &balance) const
   {
-    const unsigned int n = fe->n_dofs_per_cell();
+    const unsigned int                   n = fe->n_dofs_per_cell();
     std::map<types::boundary_id, double> heat_in;
     for (const auto id : mesh_report->boundary_ids)
       heat_in[id] = 0.;
-    double                               stored = 0.;
-    Vector<double>                       new_values(n), old_values(n),
-      residual(n), change(n), stored_local(n);
-    std::vector<types::global_dof_index> dof_indices(n);
+    double         stored = 0.;
+    Vector<double> new_values(n), old_values(n), residual(n), change(n),
+      stored_local(n);
+    std::vector<types::global_dof_index>                 dof_indices(n);
     std::multimap<unsigned int, const RobinFaceRecord *> robin_faces_of_cell;
     for (const auto &face : last_robin_faces)
       robin_faces_of_cell.emplace(face.cell_index, &face);
@@ -590,7 +611,10 @@ namespace tmfdem
   {
     initial_temperature->set_time(parameters.time.start_time);
     TrilinosWrappers::MPI::Vector distributed(locally_owned_dofs, communicator);
-    VectorTools::interpolate(*mapping, *dof_handler, *initial_temperature, distributed);
+    VectorTools::interpolate(*mapping,
+                             *dof_handler,
+                             *initial_temperature,
+                             distributed);
     make_constraints(parameters.time.start_time);
     constraints.distribute(distributed);
     solution     = distributed;
@@ -621,7 +645,8 @@ namespace tmfdem
         estimated_error,
         parameters.adaptivity.refine_fraction,
         parameters.adaptivity.coarsen_fraction);
-    const unsigned int max_level = coarse_level + parameters.adaptivity.max_level;
+    const unsigned int max_level =
+      coarse_level + parameters.adaptivity.max_level;
     for (const auto &cell : triangulation->active_cell_iterators())
       {
         if (cell->level() >= static_cast<int>(max_level))
@@ -639,7 +664,8 @@ namespace tmfdem
     compute_cell_matrices();
     if (transfer_solution)
       {
-        TrilinosWrappers::MPI::Vector distributed(locally_owned_dofs, communicator);
+        TrilinosWrappers::MPI::Vector distributed(locally_owned_dofs,
+                                                  communicator);
         transfer.interpolate(distributed);
         constraints.distribute(distributed);
         solution     = distributed;
@@ -672,13 +698,14 @@ namespace tmfdem
   }
 
   void
-  HeatSolver::write_summary(const unsigned long              steps,
-                            const double                     end_time,
-                            const double                     wall_time,
-                            const HeatBalance               &balance,
-                            const std::vector<std::string>  &cycles) const
+  HeatSolver::write_summary(const unsigned long             steps,
+                            const double                    end_time,
+                            const double                    wall_time,
+                            const HeatBalance              &balance,
+                            const std::vector<std::string> &cycles) const
   {
-    const bool steady = parameters.time.mode == TimeSteppingParameters::Mode::steady;
+    const bool steady =
+      parameters.time.mode == TimeSteppingParameters::Mode::steady;
     JsonObject heat;
     JsonObject per_boundary;
     double     total_in = balance.source_heat;
@@ -687,12 +714,15 @@ namespace tmfdem
         per_boundary.add(std::to_string(id), value);
         total_in += value;
       }
-    double scale = std::abs(balance.stored_heat) + std::abs(balance.source_heat);
+    double scale =
+      std::abs(balance.stored_heat) + std::abs(balance.source_heat);
     for (const auto &[id, value] : balance.boundary_heat_in)
       scale += std::abs(value);
     const double imbalance = balance.stored_heat - total_in;
-    heat.add("units", std::string(steady ? "W/m (rates, per unit thickness)" :
-                                           "J/m (per unit thickness)"))
+    heat
+      .add("units",
+           std::string(steady ? "W/m (rates, per unit thickness)" :
+                                "J/m (per unit thickness)"))
       .add("boundary_heat_in", per_boundary)
       .add("source_heat", balance.source_heat)
       .add("stored_heat", balance.stored_heat)
@@ -703,11 +733,13 @@ namespace tmfdem
     std::vector<JsonObject> cycle_objects;
     for (const auto &cycle : cycles)
       {
-        JsonObject object;
+        JsonObject         object;
         std::istringstream in(cycle);
-        long long cells, dofs, iterations;
+        long long          cells, dofs, iterations;
         in >> cells >> dofs >> iterations;
-        object.add("cells", cells).add("dofs", dofs).add("cg_iterations", iterations);
+        object.add("cells", cells)
+          .add("dofs", dofs)
+          .add("cg_iterations", iterations);
         cycle_objects.push_back(object);
       }
 
@@ -717,15 +749,17 @@ namespace tmfdem
       .add("mpi_processes", Utilities::MPI::n_mpi_processes(communicator))
       .add("mode", std::string(steady ? "steady" : "transient"))
       .add("time_method", steady ? std::string("none") : parameters.time.method)
-      .add("cells", static_cast<long long>(triangulation->n_global_active_cells()))
+      .add("cells",
+           static_cast<long long>(triangulation->n_global_active_cells()))
       .add("dofs", static_cast<long long>(dof_handler->n_dofs()))
       .add("steps", static_cast<long long>(steps))
       .add("end_time", end_time)
       .add("wall_time", wall_time)
       .add("element_steps_per_second",
-           wall_time > 0 ? triangulation->n_global_active_cells() *
-                             static_cast<double>(std::max(steps, 1ul)) / wall_time :
-                           0.)
+           wall_time > 0 ?
+             triangulation->n_global_active_cells() *
+               static_cast<double>(std::max(steps, 1ul)) / wall_time :
+             0.)
       .add("linear_iterations", static_cast<long long>(total_linear_iterations))
       .add("broken_joints", 0u)
       .add("cracks", 0u)
@@ -749,19 +783,20 @@ namespace tmfdem
                                           communicator);
     monitors->check_points(*mapping, *dof_handler);
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      std::cout << mesh_report->to_string() << "  dofs: " << dof_handler->n_dofs()
-                << " (after " << parameters.mesh.global_refinements
-                << " global refinements: " << triangulation->n_global_active_cells()
-                << " cells)\n";
+      std::cout << mesh_report->to_string()
+                << "  dofs: " << dof_handler->n_dofs() << " (after "
+                << parameters.mesh.global_refinements << " global refinements: "
+                << triangulation->n_global_active_cells() << " cells)\n";
   }
 
   void
   HeatSolver::run()
   {
     check_input();
-    solution_series = std::make_unique<SolutionSeries>(parameters.output.directory,
-                                                       "solution",
-                                                       communicator);
+    solution_series =
+      std::make_unique<SolutionSeries>(parameters.output.directory,
+                                       "solution",
+                                       communicator);
     if (parameters.time.mode == TimeSteppingParameters::Mode::steady)
       run_steady();
     else
@@ -771,12 +806,15 @@ namespace tmfdem
   void
   HeatSolver::run_steady()
   {
-    ProgressReporter progress(parameters.output.progress_interval, 0., 1., false);
+    ProgressReporter   progress(parameters.output.progress_interval,
+                              0.,
+                              1.,
+                              false);
     const unsigned int n_cycles =
       parameters.adaptivity.enable ? parameters.adaptivity.steady_cycles : 1;
     std::vector<std::string> cycles;
-    HeatBalance balance;
-    const double time = parameters.time.start_time;
+    HeatBalance              balance;
+    const double             time = parameters.time.start_time;
     for (unsigned int cycle = 0; cycle < n_cycles; ++cycle)
       {
         if (cycle > 0)
@@ -807,12 +845,14 @@ namespace tmfdem
   HeatSolver::run_transient()
   {
     const auto  &time_parameters = parameters.time;
-    const double start = time_parameters.start_time, end = time_parameters.end_time;
-    const double time_tolerance = 1e-10 * std::max(1., std::abs(end));
+    const double start           = time_parameters.start_time,
+                 end             = time_parameters.end_time;
+    const double time_tolerance  = 1e-10 * std::max(1., std::abs(end));
 
     set_initial_condition();
     if (parameters.adaptivity.enable)
-      for (unsigned int k = 0; k < parameters.adaptivity.initial_refinements; ++k)
+      for (unsigned int k = 0; k < parameters.adaptivity.initial_refinements;
+           ++k)
         {
           adapt_mesh(false);
           set_initial_condition();
@@ -825,7 +865,8 @@ namespace tmfdem
       if (t > start + time_tolerance && t < end - time_tolerance)
         output_times.push_back(t);
     if (parameters.output.interval > 0)
-      for (double t = start + parameters.output.interval; t < end - time_tolerance;
+      for (double t = start + parameters.output.interval;
+           t < end - time_tolerance;
            t += parameters.output.interval)
         output_times.push_back(t);
     output_times.push_back(end);
@@ -847,11 +888,12 @@ namespace tmfdem
     ProgressReporter progress(parameters.output.progress_interval,
                               start,
                               end,
-                              Utilities::MPI::this_mpi_process(communicator) == 0);
-    HeatBalance   balance;
-    double        time = start, last_dt = -1.;
-    unsigned long step = 0;
-    bool          matrix_is_current = false;
+                              Utilities::MPI::this_mpi_process(communicator) ==
+                                0);
+    HeatBalance      balance;
+    double           time = start, last_dt = -1.;
+    unsigned long    step              = 0;
+    bool             matrix_is_current = false;
     write_output(time);
     for (const double output_time : output_times)
       while (time < output_time - time_tolerance)
@@ -870,9 +912,9 @@ namespace tmfdem
           solve(rebuild);
           accumulate_heat_balance(balance);
           matrix_is_current = true;
-          time              = std::abs(new_time - output_time) < time_tolerance ?
-                                output_time :
-                                new_time;
+          time    = std::abs(new_time - output_time) < time_tolerance ?
+                      output_time :
+                      new_time;
           last_dt = dt;
           ++step;
           if (parameters.adaptivity.enable &&
@@ -890,8 +932,8 @@ namespace tmfdem
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       std::cout << "done: " << step << " steps to t = " << time << " s, "
                 << triangulation->n_global_active_cells() << " cells, "
-                << dof_handler->n_dofs() << " dofs, "
-                << total_linear_iterations << " CG iterations, "
-                << progress.elapsed() << " s wall" << std::endl;
+                << dof_handler->n_dofs() << " dofs, " << total_linear_iterations
+                << " CG iterations, " << progress.elapsed() << " s wall"
+                << std::endl;
   }
 } // namespace tmfdem

@@ -1,6 +1,3 @@
-#include <tmfdem/base/exceptions.h>
-#include <tmfdem/io/monitors.h>
-
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature.h>
 #include <deal.II/fe/fe_values.h>
@@ -11,6 +8,8 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/io/monitors.h>
 
 namespace tmfdem
 {
@@ -67,7 +66,7 @@ namespace tmfdem
         // inverse map: affine for triangles, the mapping's for quads);
         // deal.II 9.4's point search tests simplices as if they were squares
         std::vector<std::pair<DoFHandler<2>::active_cell_iterator, Point<2>>>
-          candidates;
+                        candidates;
         const Point<2> &p = points[i].location;
         for (const auto &cell : dof_handler.active_cell_iterators())
           {
@@ -86,7 +85,7 @@ namespace tmfdem
                 const Tensor<1, 2> a = cell->vertex(1) - cell->vertex(0),
                                    b = cell->vertex(2) - cell->vertex(0),
                                    d = p - cell->vertex(0);
-                const double det = a[0] * b[1] - a[1] * b[0];
+                const double det     = a[0] * b[1] - a[1] * b[0];
                 unit_point = Point<2>((d[0] * b[1] - d[1] * b[0]) / det,
                                       (a[0] * d[1] - a[1] * d[0]) / det);
               }
@@ -111,13 +110,16 @@ namespace tmfdem
             local[i * n_values + n_components] = 1.;
             if (solution != nullptr)
               {
-                const Quadrature<2> quadrature(std::vector<Point<2>>{unit_point});
+                const Quadrature<2> quadrature(
+                  std::vector<Point<2>>{unit_point});
                 FEValues<2> fe_values(mapping,
                                       dof_handler.get_fe(),
                                       quadrature,
                                       update_values);
                 fe_values.reinit(cell);
-                std::vector<Vector<double>> values(1, Vector<double>(n_components));
+                std::vector<Vector<double>> values(1,
+                                                   Vector<double>(
+                                                     n_components));
                 fe_values.get_function_values(*solution, values);
                 for (unsigned int c = 0; c < n_components; ++c)
                   local[i * n_values + c] = values[0][c];

@@ -1,6 +1,3 @@
-#include <tmfdem/base/exceptions.h>
-#include <tmfdem/io/output_files.h>
-
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
@@ -10,13 +7,15 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
-
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/io/output_files.h>
 #include <unistd.h>
 
 namespace tmfdem
 {
   void
-  write_file_atomically(const std::string &file_name, const std::string &content)
+  write_file_atomically(const std::string &file_name,
+                        const std::string &content)
   {
     const std::string temporary =
       file_name + ".tmp" + std::to_string(::getpid());
@@ -25,11 +24,13 @@ namespace tmfdem
       out << content;
       out.flush();
       if (!out)
-        throw RunError("cannot write '" + temporary + "' (disk full or no "
+        throw RunError("cannot write '" + temporary +
+                       "' (disk full or no "
                        "permission?)");
     }
     if (std::rename(temporary.c_str(), file_name.c_str()) != 0)
-      throw RunError("cannot rename '" + temporary + "' to '" + file_name + "'");
+      throw RunError("cannot rename '" + temporary + "' to '" + file_name +
+                     "'");
   }
 
   void
@@ -259,10 +260,10 @@ namespace tmfdem
     const auto now = Clock::now();
     if (std::chrono::duration<double>(now - last).count() < interval)
       return;
-    last                 = now;
-    const double wall    = elapsed();
-    const double done    = (time - start_time) / (end_time - start_time);
-    const double eta     = done > 0 ? wall * (1. - done) / done : 0.;
+    last                    = now;
+    const double       wall = elapsed();
+    const double       done = (time - start_time) / (end_time - start_time);
+    const double       eta  = done > 0 ? wall * (1. - done) / done : 0.;
     std::ostringstream line;
     line << std::setprecision(4) << "[tmfdem] step " << step << "  t = " << time
          << " s (" << std::fixed << std::setprecision(1) << 100. * done

@@ -1,6 +1,3 @@
-#include <tmfdem/base/exceptions.h>
-#include <tmfdem/mesh/mesh_checks.h>
-
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/grid_tools.h>
 
@@ -9,6 +6,8 @@
 #include <map>
 #include <numeric>
 #include <sstream>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/mesh/mesh_checks.h>
 
 namespace tmfdem
 {
@@ -26,8 +25,7 @@ namespace tmfdem
       std::ostringstream text;
       text << "cell " << cell->index() << " (vertices";
       for (const unsigned int v : cell->vertex_indices())
-        text << " " << cell->vertex_index(v) << " (" << cell->vertex(v)
-             << ")";
+        text << " " << cell->vertex_index(v) << " (" << cell->vertex(v) << ")";
       text << ")";
       return text.str();
     }
@@ -59,9 +57,9 @@ namespace tmfdem
              const bool              curved_boundary)
   {
     MeshReport report;
-    report.n_cells    = triangulation.n_active_cells();
-    report.n_vertices = triangulation.n_used_vertices();
-    report.min_edge   = std::numeric_limits<double>::max();
+    report.n_cells        = triangulation.n_active_cells();
+    report.n_vertices     = triangulation.n_used_vertices();
+    report.min_edge       = std::numeric_limits<double>::max();
     double       edge_sum = 0;
     unsigned int n_edges  = 0;
 
@@ -89,7 +87,7 @@ namespace tmfdem
         if (cell->reference_cell() == ReferenceCells::Triangle)
           {
             ++report.n_triangles;
-            area = 0.5 * cross(cell->vertex(1) - cell->vertex(0),
+            area         = 0.5 * cross(cell->vertex(1) - cell->vertex(0),
                                cell->vertex(2) - cell->vertex(0));
             min_jacobian = 2. * area;
           }
@@ -97,12 +95,16 @@ namespace tmfdem
           {
             ++report.n_quadrilaterals;
             // lexicographic quad: 0 (0,0), 1 (1,0), 2 (0,1), 3 (1,1)
-            const unsigned int neighbours[4][2] = {{1, 2}, {3, 0}, {0, 3}, {2, 1}};
+            const unsigned int neighbours[4][2] = {{1, 2},
+                                                   {3, 0},
+                                                   {0, 3},
+                                                   {2, 1}};
             for (unsigned int v = 0; v < 4; ++v)
-              min_jacobian = std::min(
-                min_jacobian,
-                cross(cell->vertex(neighbours[v][0]) - cell->vertex(v),
-                      cell->vertex(neighbours[v][1]) - cell->vertex(v)));
+              min_jacobian =
+                std::min(min_jacobian,
+                         cross(cell->vertex(neighbours[v][0]) - cell->vertex(v),
+                               cell->vertex(neighbours[v][1]) -
+                                 cell->vertex(v)));
             area = 0.5 * (cross(cell->vertex(1) - cell->vertex(0),
                                 cell->vertex(3) - cell->vertex(0)) +
                           cross(cell->vertex(3) - cell->vertex(0),
@@ -188,18 +190,17 @@ namespace tmfdem
         // a polygon of edge h inscribed in a circle misses about pi h^2 / 6
         // of its area, whatever the radius; more than that (and 2 %) is a
         // hole or an overlap. Straight boundaries must match to 0.1 %.
-        const double miss      = std::abs(report.area - expected_area);
+        const double miss = std::abs(report.area - expected_area);
         const double tolerance =
           curved_boundary ?
             0.02 * expected_area + 2. * report.max_edge * report.max_edge :
             1e-3 * expected_area;
         if (miss > tolerance)
-          throw InputError(source + ": the cells cover " +
-                           Utilities::to_string(report.area) +
-                           " m^2 of a domain of " +
-                           Utilities::to_string(expected_area) +
-                           " m^2: part of the domain is not meshed (or cells "
-                           "overlap).");
+          throw InputError(
+            source + ": the cells cover " + Utilities::to_string(report.area) +
+            " m^2 of a domain of " + Utilities::to_string(expected_area) +
+            " m^2: part of the domain is not meshed (or cells "
+            "overlap).");
       }
     return report;
   }

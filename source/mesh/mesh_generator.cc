@@ -1,6 +1,3 @@
-#include <tmfdem/base/exceptions.h>
-#include <tmfdem/mesh/mesh_generator.h>
-
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/grid/grid_generator.h>
@@ -12,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/mesh/mesh_generator.h>
 
 namespace tmfdem
 {
@@ -40,7 +39,7 @@ namespace tmfdem
                 const unsigned int first_point,
                 const unsigned int first_curve)
     {
-      std::string text;
+      std::string  text;
       const double dx[4] = {1, 0, -1, 0}, dy[4] = {0, 1, 0, -1};
       for (unsigned int i = 0; i < 4; ++i)
         text += gmsh_point(first_point + i,
@@ -198,8 +197,8 @@ namespace tmfdem
                      MPI_Comm              communicator)
   {
     using Source = MeshParameters::Source;
-    const bool   triangles = parameters.element_type ==
-                           MeshParameters::ElementType::triangles;
+    const bool triangles =
+      parameters.element_type == MeshParameters::ElementType::triangles;
     const double h = parameters.element_size;
 
     if (parameters.source == Source::file)
@@ -223,10 +222,13 @@ namespace tmfdem
     // structured quadrilaterals, flat (level 0) so that p4est can copy them
     if (parameters.source == Source::rectangle)
       {
-        const Tensor<1, 2> extent = parameters.upper_right - parameters.lower_left;
+        const Tensor<1, 2> extent =
+          parameters.upper_right - parameters.lower_left;
         const std::vector<unsigned int> repetitions = {
-          std::max(1u, static_cast<unsigned int>(std::ceil(extent[0] / h - 1e-9))),
-          std::max(1u, static_cast<unsigned int>(std::ceil(extent[1] / h - 1e-9)))};
+          std::max(1u,
+                   static_cast<unsigned int>(std::ceil(extent[0] / h - 1e-9))),
+          std::max(1u,
+                   static_cast<unsigned int>(std::ceil(extent[1] / h - 1e-9)))};
         GridGenerator::subdivided_hyper_rectangle(triangulation,
                                                   repetitions,
                                                   parameters.lower_left,
@@ -241,11 +243,14 @@ namespace tmfdem
             // one layer of cells of radial width h ... (b-a) each: the
             // shell is built ring by ring so the mesh stays flat
             const unsigned int n_rings =
-              std::max(1u, static_cast<unsigned int>(std::ceil((b - a) / h - 1e-9)));
-            const unsigned int n_around = std::max(
-              8u,
-              4 * static_cast<unsigned int>(
-                    std::ceil(2. * numbers::PI * 0.5 * (a + b) / h / 4. - 1e-9)));
+              std::max(1u,
+                       static_cast<unsigned int>(
+                         std::ceil((b - a) / h - 1e-9)));
+            const unsigned int n_around =
+              std::max(8u,
+                       4 *
+                         static_cast<unsigned int>(std::ceil(
+                           2. * numbers::PI * 0.5 * (a + b) / h / 4. - 1e-9)));
             std::vector<Point<2>>    vertices;
             std::vector<CellData<2>> cells;
             for (unsigned int ring = 0; ring <= n_rings; ++ring)
@@ -256,20 +261,22 @@ namespace tmfdem
                 for (unsigned int k = 0; k < n_around; ++k)
                   {
                     const double phi = 2. * numbers::PI * k / n_around;
-                    vertices.emplace_back(parameters.center[0] + r * std::cos(phi),
-                                          parameters.center[1] + r * std::sin(phi));
+                    vertices.emplace_back(parameters.center[0] +
+                                            r * std::cos(phi),
+                                          parameters.center[1] +
+                                            r * std::sin(phi));
                   }
               }
             for (unsigned int ring = 0; ring < n_rings; ++ring)
               for (unsigned int k = 0; k < n_around; ++k)
                 {
-                  CellData<2> cell;
+                  CellData<2>        cell;
                   const unsigned int k1 = (k + 1) % n_around;
                   // local x radial, local y counterclockwise
-                  cell.vertices = {ring * n_around + k,
-                                   (ring + 1) * n_around + k,
-                                   ring * n_around + k1,
-                                   (ring + 1) * n_around + k1};
+                  cell.vertices    = {ring * n_around + k,
+                                      (ring + 1) * n_around + k,
+                                      ring * n_around + k1,
+                                      (ring + 1) * n_around + k1};
                   cell.material_id = parameters.material_id;
                   cells.push_back(cell);
                 }
@@ -277,10 +284,10 @@ namespace tmfdem
             for (unsigned int k = 0; k < n_around; ++k)
               {
                 CellData<1> inner, outer;
-                inner.vertices = {k, (k + 1) % n_around};
+                inner.vertices    = {k, (k + 1) % n_around};
                 inner.boundary_id = 0;
-                outer.vertices = {n_rings * n_around + k,
-                                  n_rings * n_around + (k + 1) % n_around};
+                outer.vertices    = {n_rings * n_around + k,
+                                     n_rings * n_around + (k + 1) % n_around};
                 outer.boundary_id = 1;
                 boundary.boundary_lines.push_back(inner);
                 boundary.boundary_lines.push_back(outer);
@@ -327,8 +334,8 @@ namespace tmfdem
           return (p.upper_right[0] - p.lower_left[0]) *
                  (p.upper_right[1] - p.lower_left[1]);
         case MeshParameters::Source::annulus:
-          return numbers::PI *
-                 (p.outer_radius * p.outer_radius - p.inner_radius * p.inner_radius);
+          return numbers::PI * (p.outer_radius * p.outer_radius -
+                                p.inner_radius * p.inner_radius);
         case MeshParameters::Source::disc:
           return numbers::PI * p.outer_radius * p.outer_radius;
         default:

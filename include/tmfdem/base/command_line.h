@@ -6,9 +6,8 @@
 #ifndef tmfdem_base_command_line_h
 #define tmfdem_base_command_line_h
 
-#include <tmfdem/base/parameters.h>
-
 #include <string>
+#include <tmfdem/base/parameters.h>
 #include <vector>
 
 namespace tmfdem
@@ -23,8 +22,8 @@ namespace tmfdem
       print_parameters,
       validate
     };
-    Action                   action = Action::run;
-    std::string              prm_file;
+    Action      action = Action::run;
+    std::string prm_file;
     /** "Subsection/Entry=value" strings from --set, in order. */
     std::vector<std::string> overrides;
   };

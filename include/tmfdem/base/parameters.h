@@ -74,19 +74,19 @@ namespace tmfdem
   /** Properties of one material, subsection `Materials/Material <id>`. */
   struct MaterialProperties
   {
-    double density               = 2500.;  ///< [kg/m^3]
-    double youngs_modulus        = 50e9;   ///< [Pa]
-    double poisson_ratio         = 0.25;   ///< [-]
-    double thermal_conductivity  = 3.;     ///< [W/(m K)]
-    double specific_heat         = 800.;   ///< [J/(kg K)]
-    double thermal_expansion     = 1e-5;   ///< [1/K]
-    double reference_temperature = 0.;     ///< stress-free temperature [C]
-    double tensile_strength      = 10e6;   ///< [Pa]
-    double cohesion              = 20e6;   ///< [Pa]
-    double friction_angle        = 30.;    ///< internal friction angle [deg]
-    double fracture_energy_I     = 100.;   ///< Mode I fracture energy [J/m^2]
-    double fracture_energy_II    = 500.;   ///< Mode II fracture energy [J/m^2]
-    std::string heat_source      = "0";    ///< volumetric source f(x,y,t) [W/m^3]
+    double      density               = 2500.; ///< [kg/m^3]
+    double      youngs_modulus        = 50e9;  ///< [Pa]
+    double      poisson_ratio         = 0.25;  ///< [-]
+    double      thermal_conductivity  = 3.;    ///< [W/(m K)]
+    double      specific_heat         = 800.;  ///< [J/(kg K)]
+    double      thermal_expansion     = 1e-5;  ///< [1/K]
+    double      reference_temperature = 0.;    ///< stress-free temperature [C]
+    double      tensile_strength      = 10e6;  ///< [Pa]
+    double      cohesion              = 20e6;  ///< [Pa]
+    double      friction_angle        = 30.; ///< internal friction angle [deg]
+    double      fracture_energy_I  = 100.;   ///< Mode I fracture energy [J/m^2]
+    double      fracture_energy_II = 500.; ///< Mode II fracture energy [J/m^2]
+    std::string heat_source = "0"; ///< volumetric source f(x,y,t) [W/m^3]
 
     /** Thermal diffusivity k / (rho c) [m^2/s]. */
     double
@@ -102,7 +102,7 @@ namespace tmfdem
    */
   struct MaterialParameters
   {
-    static constexpr unsigned int max_materials = 8;
+    static constexpr unsigned int                 max_materials = 8;
     std::array<MaterialProperties, max_materials> materials;
 
     static void
@@ -126,7 +126,7 @@ namespace tmfdem
     /** `Thermal boundary conditions/Condition <n>`, for messages. */
     std::string                     name;
     std::vector<types::boundary_id> boundary_ids;
-    Type                            type = Type::dirichlet;
+    Type                            type  = Type::dirichlet;
     std::string temperature               = "0"; ///< Dirichlet T(x,y,t) [C]
     std::string heat_flux                 = "0"; ///< inward q(x,y,t) [W/m^2]
     std::string heat_transfer_coefficient = "0"; ///< h(x,y,t) [W/(m^2 K)]
@@ -169,11 +169,11 @@ namespace tmfdem
       steady
     };
     Mode        mode = Mode::transient;
-    std::string method;            ///< name from theta_scheme_registry()
-    double      theta      = 1.;   ///< implicitness of the chosen method
-    double      start_time = 0.;   ///< [s]
-    double      end_time   = 1.;   ///< [s]
-    double      time_step  = 0.1;  ///< [s]
+    std::string method;           ///< name from theta_scheme_registry()
+    double      theta      = 1.;  ///< implicitness of the chosen method
+    double      start_time = 0.;  ///< [s]
+    double      end_time   = 1.;  ///< [s]
+    double      time_step  = 0.1; ///< [s]
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -184,7 +184,7 @@ namespace tmfdem
   /** Subsection `Adaptive refinement` (Kelly estimator). */
   struct AdaptivityParameters
   {
-    bool         enable              = false;
+    bool enable = false;
     /** "fixed fraction" (of the estimated error) or "fixed number" (of
      *  cells) marking. */
     std::string  strategy            = "fixed fraction";
@@ -218,10 +218,10 @@ namespace tmfdem
   /** Subsection `Output`. */
   struct OutputParameters
   {
-    std::string         directory;          ///< folder for all outputs
-    std::vector<double> times;              ///< output times [s]
-    double              interval = 0.;      ///< output every ... [s], 0: off
-    bool                write_vtu = true;   ///< solution.pvd and vtu files
+    std::string         directory;        ///< folder for all outputs
+    std::vector<double> times;            ///< output times [s]
+    double              interval  = 0.;   ///< output every ... [s], 0: off
+    bool                write_vtu = true; ///< solution.pvd and vtu files
     double              progress_interval = 2.; ///< stderr progress [s wall]
 
     static void

@@ -7,13 +7,11 @@
 #ifndef tmfdem_base_simulation_h
 #define tmfdem_base_simulation_h
 
-#include <tmfdem/base/parameters.h>
-
-#include <mpi.h>
-
 #include <functional>
 #include <memory>
+#include <mpi.h>
 #include <string>
+#include <tmfdem/base/parameters.h>
 #include <vector>
 
 namespace tmfdem
@@ -39,8 +37,8 @@ namespace tmfdem
 
   /** Adds a model to the registry (done once per model, at load time). */
   bool
-  register_simulation(const std::string &name,
-                      const std::string &description,
+  register_simulation(const std::string       &name,
+                      const std::string       &description,
                       const SimulationFactory &factory);
 
   /** Names of the registered models, for Patterns::Selection. */

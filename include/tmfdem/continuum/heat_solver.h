@@ -10,9 +10,6 @@
 #ifndef tmfdem_continuum_heat_solver_h
 #define tmfdem_continuum_heat_solver_h
 
-#include <tmfdem/base/parameters.h>
-#include <tmfdem/base/simulation.h>
-
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/distributed/tria_base.h>
@@ -28,6 +25,8 @@
 
 #include <map>
 #include <memory>
+#include <tmfdem/base/parameters.h>
+#include <tmfdem/base/simulation.h>
 #include <vector>
 
 namespace tmfdem
@@ -120,10 +119,10 @@ namespace tmfdem
     void
     run_steady();
     void
-    write_summary(const unsigned long steps,
-                  const double        end_time,
-                  const double        wall_time,
-                  const HeatBalance  &balance,
+    write_summary(const unsigned long             steps,
+                  const double                    end_time,
+                  const double                    wall_time,
+                  const HeatBalance              &balance,
                   const std::vector<std::string> &cycles) const;
     bool
     uses_quadrilaterals() const;
@@ -133,14 +132,14 @@ namespace tmfdem
     const double     theta;
 
     std::unique_ptr<parallel::TriangulationBase<2>> triangulation;
-    std::unique_ptr<FiniteElement<2>>                fe;
-    std::unique_ptr<Mapping<2>>                      mapping;
-    std::unique_ptr<DoFHandler<2>>                   dof_handler;
-    std::unique_ptr<MeshReport>                      mesh_report;
-    unsigned int                                     coarse_level = 0;
+    std::unique_ptr<FiniteElement<2>>               fe;
+    std::unique_ptr<Mapping<2>>                     mapping;
+    std::unique_ptr<DoFHandler<2>>                  dof_handler;
+    std::unique_ptr<MeshReport>                     mesh_report;
+    unsigned int                                    coarse_level = 0;
 
-    IndexSet                      locally_owned_dofs, locally_relevant_dofs;
-    AffineConstraints<double>     constraints;
+    IndexSet                       locally_owned_dofs, locally_relevant_dofs;
+    AffineConstraints<double>      constraints;
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;
     TrilinosWrappers::MPI::Vector  solution;     ///< ghosted, T^{n+1}
@@ -157,9 +156,9 @@ namespace tmfdem
     std::map<types::boundary_id, double> last_boundary_load;
     struct RobinFaceRecord
     {
-      unsigned int           cell_index;
-      types::boundary_id     boundary_id;
-      FullMatrix<double>     matrix;
+      unsigned int       cell_index;
+      types::boundary_id boundary_id;
+      FullMatrix<double> matrix;
     };
     std::vector<RobinFaceRecord> last_robin_faces;
     double                       last_source_heat = 0.;
@@ -175,7 +174,7 @@ namespace tmfdem
       bool time_dependent_coefficient = false;
       bool time_dependent_temperature = false;
     };
-    std::vector<BoundaryFunctions> boundary_functions;
+    std::vector<BoundaryFunctions>     boundary_functions;
     std::unique_ptr<FunctionParser<2>> initial_temperature;
     bool                               any_heat_source = false;
 

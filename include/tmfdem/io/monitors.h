@@ -6,14 +6,13 @@
 #ifndef tmfdem_io_monitors_h
 #define tmfdem_io_monitors_h
 
-#include <tmfdem/base/parameters.h>
-#include <tmfdem/io/output_files.h>
-
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <string>
+#include <tmfdem/base/parameters.h>
+#include <tmfdem/io/output_files.h>
 #include <vector>
 
 namespace tmfdem
@@ -39,13 +38,14 @@ namespace tmfdem
      * outside the mesh of @p dof_handler.
      */
     void
-    check_points(const Mapping<2> &mapping, const DoFHandler<2> &dof_handler) const;
+    check_points(const Mapping<2>    &mapping,
+                 const DoFHandler<2> &dof_handler) const;
 
     /** Appends the rows of output time @p time [s]; @p solution is ghosted. */
     void
-    write(const double                        time,
-          const Mapping<2>                   &mapping,
-          const DoFHandler<2>                &dof_handler,
+    write(const double                         time,
+          const Mapping<2>                    &mapping,
+          const DoFHandler<2>                 &dof_handler,
           const TrilinosWrappers::MPI::Vector &solution);
 
   private:

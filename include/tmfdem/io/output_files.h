@@ -9,10 +9,9 @@
 
 #include <deal.II/numerics/data_out.h>
 
-#include <mpi.h>
-
 #include <chrono>
 #include <fstream>
+#include <mpi.h>
 #include <string>
 #include <utility>
 #include <vector>
@@ -50,9 +49,9 @@ namespace tmfdem
     write(DataOut<2> &data_out, const double time);
 
   private:
-    std::string                              folder;
-    std::string                              base_name;
-    MPI_Comm                                 communicator;
+    std::string                                 folder;
+    std::string                                 base_name;
+    MPI_Comm                                    communicator;
     std::vector<std::pair<double, std::string>> records;
   };
 
@@ -72,8 +71,8 @@ namespace tmfdem
     append(const std::string &rows);
 
   private:
-    std::string   file_name;
-    bool          writer = false;
+    std::string file_name;
+    bool        writer = false;
   };
 
   /**
@@ -120,7 +119,9 @@ namespace tmfdem
                      const bool   active);
     /** Reports if the interval has passed since the last line. */
     void
-    update(const unsigned long step, const double time, const std::string &extra = "");
+    update(const unsigned long step,
+           const double        time,
+           const std::string  &extra = "");
     /** Wall time since construction [s]. */
     double
     elapsed() const;

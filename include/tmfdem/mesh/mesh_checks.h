@@ -19,14 +19,14 @@ namespace tmfdem
   /** What a mesh holds, for `--validate` and summary.json. */
   struct MeshReport
   {
-    unsigned int                 n_cells     = 0;
-    unsigned int                 n_vertices  = 0;
-    unsigned int                 n_triangles = 0;
-    unsigned int                 n_quadrilaterals = 0;
+    unsigned int                 n_cells            = 0;
+    unsigned int                 n_vertices         = 0;
+    unsigned int                 n_triangles        = 0;
+    unsigned int                 n_quadrilaterals   = 0;
     unsigned int                 n_connected_pieces = 0;
-    double                       area = 0.;               ///< [m^2]
+    double                       area               = 0.;      ///< [m^2]
     double                       min_edge = 0., max_edge = 0.; ///< [m]
-    double                       mean_edge = 0.;          ///< [m]
+    double                       mean_edge = 0.;               ///< [m]
     std::set<types::boundary_id> boundary_ids;
     std::set<types::material_id> material_ids;
 

@@ -7,13 +7,11 @@
 #ifndef tmfdem_mesh_mesh_generator_h
 #define tmfdem_mesh_mesh_generator_h
 
-#include <tmfdem/base/parameters.h>
-
 #include <deal.II/grid/tria.h>
 
 #include <mpi.h>
-
 #include <string>
+#include <tmfdem/base/parameters.h>
 
 namespace tmfdem
 {
