@@ -52,7 +52,7 @@ namespace tmfdem
       Patterns::Selection("rectangle|annulus|disc|file"),
       "Where the mesh comes from: a generated rectangle (boundary ids 0 left, "
       "1 right, 2 bottom, 3 top), annulus (0 inner, 1 outer), disc (0 rim), "
-      "or a gmsh .msh file (physical curves -> boundary ids, physical "
+      "or a gmsh .msh/.geo file (physical curves -> boundary ids, physical "
       "surfaces -> material ids).");
     prm.declare_entry(
       "Element type",
@@ -89,7 +89,9 @@ namespace tmfdem
                       "",
                       Patterns::Anything(),
                       "Source = file: gmsh .msh file (format 2 or 4, ASCII), "
-                      "relative to the folder of the prm file.");
+                      "or a gmsh .geo script that tmfdem meshes with the "
+                      "gmsh program (2D, into <output>/mesh.msh); relative "
+                      "to the folder of the prm file.");
     prm.declare_entry("Expected area",
                       "0",
                       Patterns::Double(0.),
@@ -679,6 +681,8 @@ namespace tmfdem
     HeatSolverParameters::declare_parameters(prm);
     OutputParameters::declare_parameters(prm);
     MonitorParameters::declare_parameters(prm);
+    DiscreteMechanicsParameters::declare_parameters(prm);
+    DiscreteBodyParameters::declare_parameters(prm);
   }
 
   void
@@ -695,5 +699,7 @@ namespace tmfdem
     heat_solver.parse_parameters(prm);
     output.parse_parameters(prm, path.stem().string());
     monitors.parse_parameters(prm);
+    discrete_mechanics.parse_parameters(prm);
+    discrete_bodies.parse_parameters(prm);
   }
 } // namespace tmfdem

@@ -104,22 +104,25 @@ namespace tmfdem
       return geo.str();
     }
 
+    /** Meshes @p geo_file with gmsh into @p msh_file; with an empty
+     *  @p script the .geo file is the user's own. */
     void
-    run_gmsh(const MeshParameters &parameters,
-             const std::string    &work_folder,
-             const std::string    &msh_file,
-             MPI_Comm              communicator)
+    run_gmsh(const std::string &script,
+             const std::string &geo_file,
+             const std::string &work_folder,
+             const std::string &msh_file,
+             MPI_Comm           communicator)
     {
       std::string error;
       if (Utilities::MPI::this_mpi_process(communicator) == 0)
         {
-          const auto geo_file = work_folder + "/mesh.geo";
-          {
-            std::ofstream geo(geo_file);
-            geo << gmsh_script(parameters);
-            if (!geo)
-              error = "cannot write " + geo_file;
-          }
+          if (!script.empty())
+            {
+              std::ofstream geo(geo_file);
+              geo << script;
+              if (!geo)
+                error = "cannot write " + geo_file;
+            }
           if (error.empty())
             {
               std::filesystem::remove(msh_file);
@@ -203,14 +206,29 @@ namespace tmfdem
 
     if (parameters.source == Source::file)
       {
-        read_gmsh_file(parameters.file_name, triangulation);
+        const std::string &name = parameters.file_name;
+        if (name.size() > 4 && name.substr(name.size() - 4) == ".geo")
+          {
+            if (!std::filesystem::exists(name))
+              throw InputError("Mesh/File name: cannot open '" + name +
+                               "' (missing or unreadable).");
+            const std::string msh_file = work_folder + "/mesh.msh";
+            run_gmsh("", name, work_folder, msh_file, communicator);
+            read_gmsh_file(msh_file, triangulation);
+          }
+        else
+          read_gmsh_file(name, triangulation);
         return;
       }
 
     if (triangles)
       {
         const std::string msh_file = work_folder + "/mesh.msh";
-        run_gmsh(parameters, work_folder, msh_file, communicator);
+        run_gmsh(gmsh_script(parameters),
+                 work_folder + "/mesh.geo",
+                 work_folder,
+                 msh_file,
+                 communicator);
         read_gmsh_file(msh_file, triangulation);
         for (const auto &cell : triangulation.active_cell_iterators())
           cell->set_material_id(parameters.material_id);

@@ -14,6 +14,7 @@
 #include <deal.II/base/types.h>
 
 #include <array>
+#include <tmfdem/discrete/discrete_parameters.h>
 #include <string>
 #include <vector>
 
@@ -267,6 +268,8 @@ namespace tmfdem
     HeatSolverParameters       heat_solver;
     OutputParameters           output;
     MonitorParameters          monitors;
+    DiscreteMechanicsParameters discrete_mechanics;
+    DiscreteBodyParameters      discrete_bodies;
 
     static void
     declare_parameters(ParameterHandler &prm);

@@ -1,0 +1,297 @@
+/**
+ * @file
+ * Contact between triangles (paper Sec. 2.3, theory manual "Contact"):
+ * Munjiza's potential phi = 3 min(lambda_0, lambda_1, lambda_2) (paper
+ * Eq. 4, 1 at the centroid, 0 on the edges), the distributed force
+ * p grad(phi_c - phi_t) dA (Eq. 5) turned by the divergence theorem into
+ * integrals of phi_t along the contactor's edges inside the target (and vice
+ * versa), integrated exactly: phi is piecewise linear along an edge, the
+ * shape functions are linear, so Simpson's rule on each linear piece is
+ * exact. Coulomb friction with an elastic slip history per contactor edge
+ * (Eq. 6). The broad phase is a linked-cell grid (NBS type) rebuilt only
+ * when the accumulated displacement passes the buffer.
+ */
+#ifndef tmfdem_discrete_contact_h
+#define tmfdem_discrete_contact_h
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    /**
+     * Integrals along a contactor edge P->Q of the target's potential,
+     * u in [0, 1] the edge parameter (multiply by the edge length to get
+     * lengths): phi_start = int phi (1-u) du, phi_end = int phi u du,
+     * phi_target[k] = int phi lambda_k du.
+     */
+    struct EdgePotentialIntegrals
+    {
+      double                phi_start = 0., phi_end = 0.;
+      std::array<double, 3> phi_target{{0., 0., 0.}};
+      double                clipped_length_fraction = 0.;
+
+      double
+      total() const
+      {
+        return phi_start + phi_end;
+      }
+    };
+
+    /**
+     * Exact integrals of the target triangle's potential (nodes
+     * @p tx, @p ty, counter-clockwise) along the segment (px,py)->(qx,qy).
+     * Returns false if the segment does not enter the target.
+     */
+    inline bool
+    edge_potential_integrals(const double           px,
+                             const double           py,
+                             const double           qx,
+                             const double           qy,
+                             const double          *tx,
+                             const double          *ty,
+                             EdgePotentialIntegrals &result)
+    {
+      const double det = (ty[1] - ty[2]) * (tx[0] - tx[2]) +
+                         (tx[2] - tx[1]) * (ty[0] - ty[2]);
+      if (!(det > 0.))
+        return false;
+      const double inv = 1. / det;
+      // barycentric coordinates of P and Q
+      double lp[3], lq[3];
+      lp[0] = ((ty[1] - ty[2]) * (px - tx[2]) + (tx[2] - tx[1]) * (py - ty[2])) *
+              inv;
+      lp[1] = ((ty[2] - ty[0]) * (px - tx[2]) + (tx[0] - tx[2]) * (py - ty[2])) *
+              inv;
+      lp[2] = 1. - lp[0] - lp[1];
+      lq[0] = ((ty[1] - ty[2]) * (qx - tx[2]) + (tx[2] - tx[1]) * (qy - ty[2])) *
+              inv;
+      lq[1] = ((ty[2] - ty[0]) * (qx - tx[2]) + (tx[0] - tx[2]) * (qy - ty[2])) *
+              inv;
+      lq[2] = 1. - lq[0] - lq[1];
+      // quick rejection: both ends outside the same edge
+      for (unsigned int k = 0; k < 3; ++k)
+        if (lp[k] <= 0. && lq[k] <= 0.)
+          return false;
+      double a[3], b[3];
+      double u0 = 0., u1 = 1.;
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          a[k] = lp[k];
+          b[k] = lq[k] - lp[k];
+          if (b[k] > 0.)
+            u0 = std::max(u0, -a[k] / b[k]);
+          else if (b[k] < 0.)
+            u1 = std::min(u1, -a[k] / b[k]);
+          else if (a[k] < 0.)
+            return false;
+        }
+      if (!(u1 > u0))
+        return false;
+      // breakpoints of min(lambda) inside (u0, u1)
+      double       knots[5];
+      unsigned int n_knots = 0;
+      knots[n_knots++]     = u0;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = i + 1; j < 3; ++j)
+          {
+            const double db = b[i] - b[j];
+            if (db != 0.)
+              {
+                const double u = (a[j] - a[i]) / db;
+                if (u > u0 && u < u1)
+                  knots[n_knots++] = u;
+              }
+          }
+      knots[n_knots++] = u1;
+      std::sort(knots + 1, knots + n_knots - 1);
+
+      result = EdgePotentialIntegrals();
+      result.clipped_length_fraction = u1 - u0;
+      auto add_point = [&](const double u, const double weight) {
+        const double l0  = a[0] + b[0] * u;
+        const double l1  = a[1] + b[1] * u;
+        const double l2  = a[2] + b[2] * u;
+        double       phi = std::min(l0, std::min(l1, l2));
+        phi              = 3. * std::max(phi, 0.) * weight;
+        result.phi_start += phi * (1. - u);
+        result.phi_end += phi * u;
+        result.phi_target[0] += phi * l0;
+        result.phi_target[1] += phi * l1;
+        result.phi_target[2] += phi * l2;
+      };
+      for (unsigned int piece = 0; piece + 1 < n_knots; ++piece)
+        {
+          const double ua = knots[piece], ub = knots[piece + 1];
+          const double w  = (ub - ua) / 6.;
+          add_point(ua, w);
+          add_point(0.5 * (ua + ub), 4. * w);
+          add_point(ub, w);
+        }
+      return true;
+    }
+
+    /** A candidate pair of elements (first < second) and its friction
+     * history: accumulated elastic slip per contactor edge [m], edges 0-2 of
+     * `first` against `second`, then edges 0-2 of `second` against
+     * `first`. */
+    struct ContactPair
+    {
+      unsigned int          first, second;
+      std::array<double, 6> slip{{0., 0., 0., 0., 0., 0.}};
+    };
+
+    /**
+     * Linked-cell broad phase: candidate pairs of active elements whose
+     * bounding boxes, enlarged by the buffer, overlap.
+     */
+    class LinkedCellSearch
+    {
+    public:
+      /**
+       * Rebuilds @p pairs (sorted by (first, second)) from node coordinates
+       * @p x, @p y (node 3e+k is node k of element e), the list of active
+       * elements, and the predicate @p excluded(i, j) (intact joint between
+       * i and j). Friction history of pairs present in the old list is kept.
+       */
+      template <typename Excluded>
+      void
+      rebuild(const std::vector<double>       &x,
+              const std::vector<double>       &y,
+              const std::vector<unsigned int> &active_elements,
+              const double                     buffer,
+              const Excluded                  &excluded,
+              std::vector<ContactPair>        &pairs);
+
+    private:
+      std::vector<double>       box;        // xmin, ymin, xmax, ymax per active
+      std::vector<unsigned int> cell_start; // counting sort
+      std::vector<unsigned int> cell_items;
+      std::vector<unsigned int> item_cell;
+      std::vector<ContactPair>  new_pairs;
+    };
+
+    template <typename Excluded>
+    void
+    LinkedCellSearch::rebuild(const std::vector<double>       &x,
+                              const std::vector<double>       &y,
+                              const std::vector<unsigned int> &active,
+                              const double                     buffer,
+                              const Excluded                  &excluded,
+                              std::vector<ContactPair>        &pairs)
+    {
+      const std::size_t n = active.size();
+      new_pairs.clear();
+      if (n < 2)
+        {
+          pairs.swap(new_pairs);
+          return;
+        }
+      box.resize(4 * n);
+      double gx0 = 1e300, gy0 = 1e300, gx1 = -1e300, gy1 = -1e300;
+      double largest = 0.;
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          const unsigned int e  = active[i];
+          const double      *xe = &x[3 * e], *ye = &y[3 * e];
+          double *bx = &box[4 * i];
+          bx[0] = std::min(xe[0], std::min(xe[1], xe[2])) - 0.5 * buffer;
+          bx[1] = std::min(ye[0], std::min(ye[1], ye[2])) - 0.5 * buffer;
+          bx[2] = std::max(xe[0], std::max(xe[1], xe[2])) + 0.5 * buffer;
+          bx[3] = std::max(ye[0], std::max(ye[1], ye[2])) + 0.5 * buffer;
+          largest = std::max(largest, std::max(bx[2] - bx[0], bx[3] - bx[1]));
+          gx0 = std::min(gx0, bx[0]);
+          gy0 = std::min(gy0, bx[1]);
+          gx1 = std::max(gx1, bx[2]);
+          gy1 = std::max(gy1, bx[3]);
+        }
+      double cell = largest;
+      auto   dims = [&](const double c) {
+        return std::array<std::size_t, 2>{
+          {static_cast<std::size_t>((gx1 - gx0) / c) + 1,
+           static_cast<std::size_t>((gy1 - gy0) / c) + 1}};
+      };
+      // keep the grid at most 4 cells per element (bodies far apart)
+      while (dims(cell)[0] * dims(cell)[1] > 4 * n + 16)
+        cell *= 2.;
+      const auto nc = dims(cell);
+      cell_start.assign(nc[0] * nc[1] + 1, 0);
+      item_cell.resize(n);
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          const std::size_t cx =
+            static_cast<std::size_t>((box[4 * i] - gx0) / cell);
+          const std::size_t cy =
+            static_cast<std::size_t>((box[4 * i + 1] - gy0) / cell);
+          item_cell[i] = static_cast<unsigned int>(cy * nc[0] + cx);
+          ++cell_start[item_cell[i] + 1];
+        }
+      for (std::size_t c = 0; c + 1 < cell_start.size(); ++c)
+        cell_start[c + 1] += cell_start[c];
+      cell_items.resize(n);
+      {
+        std::vector<unsigned int> fill(cell_start.begin(),
+                                       cell_start.end() - 1);
+        for (std::size_t i = 0; i < n; ++i)
+          cell_items[fill[item_cell[i]]++] = static_cast<unsigned int>(i);
+      }
+      // boxes start in their own cell (lower-left corner) and span at most
+      // two cells per direction: look at the cell and its 8 neighbours
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          const std::size_t cx = item_cell[i] % nc[0], cy = item_cell[i] / nc[0];
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx)
+              {
+                const long long ncx = static_cast<long long>(cx) + dx;
+                const long long ncy = static_cast<long long>(cy) + dy;
+                if (ncx < 0 || ncy < 0 || ncx >= static_cast<long long>(nc[0]) ||
+                    ncy >= static_cast<long long>(nc[1]))
+                  continue;
+                const std::size_t c = ncy * nc[0] + ncx;
+                for (unsigned int p = cell_start[c]; p < cell_start[c + 1]; ++p)
+                  {
+                    const unsigned int j = cell_items[p];
+                    if (active[j] <= active[i])
+                      continue;
+                    const double *bi = &box[4 * i], *bj = &box[4 * j];
+                    if (bi[0] > bj[2] || bj[0] > bi[2] || bi[1] > bj[3] ||
+                        bj[1] > bi[3])
+                      continue;
+                    if (excluded(active[i], active[j]))
+                      continue;
+                    ContactPair pair;
+                    pair.first  = active[i];
+                    pair.second = active[j];
+                    new_pairs.push_back(pair);
+                  }
+              }
+        }
+      std::sort(new_pairs.begin(),
+                new_pairs.end(),
+                [](const ContactPair &a, const ContactPair &b) {
+                  return a.first < b.first ||
+                         (a.first == b.first && a.second < b.second);
+                });
+      // keep the friction history of surviving pairs (both lists sorted)
+      std::size_t old = 0;
+      for (ContactPair &p : new_pairs)
+        {
+          while (old < pairs.size() &&
+                 (pairs[old].first < p.first ||
+                  (pairs[old].first == p.first && pairs[old].second < p.second)))
+            ++old;
+          if (old < pairs.size() && pairs[old].first == p.first &&
+              pairs[old].second == p.second)
+            p.slip = pairs[old].slip;
+        }
+      pairs.swap(new_pairs);
+    }
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif

@@ -1,0 +1,131 @@
+/**
+ * @file
+ * The state of the discrete layer in flat structure-of-arrays form: the
+ * exploded mesh (every triangle owns its three nodes; node 3e+k is local
+ * node k of element e, counter-clockwise), the joints on every interior
+ * edge, and the per-element and per-joint history. Built once from a
+ * deal.II triangulation; the explicit loop touches nothing else.
+ *
+ * Node numbering equals the DoF numbering of FE_SimplexDGP(1) on the same
+ * triangulation (checked when built), so a nodal field of the discrete layer
+ * is a deal.II Vector on that DoFHandler.
+ */
+#ifndef tmfdem_discrete_discrete_model_h
+#define tmfdem_discrete_discrete_model_h
+
+#include <deal.II/base/types.h>
+#include <deal.II/dofs/dof_handler.h>
+
+#include <tmfdem/discrete/cohesive_law.h>
+#include <vector>
+
+namespace tmfdem
+{
+  using namespace dealii;
+
+  namespace discrete
+  {
+    /** How a joint ended. */
+    enum class JointStatus : unsigned char
+    {
+      intact  = 0,
+      mode_I  = 1, ///< broken in tension
+      mode_II = 2, ///< broken in shear
+      mixed   = 3  ///< broken in mixed mode
+    };
+
+    /** The flat state of the discrete layer. Units SI. */
+    struct DiscreteModel
+    {
+      unsigned int n_elements = 0;
+      unsigned int n_nodes    = 0;
+      unsigned int n_joints   = 0;
+
+      // ------------------------------------------------------------ nodes
+      std::vector<double> x, y;         ///< current position [m]
+      std::vector<double> x_ref, y_ref; ///< reference position [m]
+      std::vector<double> vx, vy;       ///< velocity (half step) [m/s]
+      std::vector<double> mass;         ///< lumped mass [kg/m]
+      /** Vertex of the original (unexploded) mesh the node sits on. */
+      std::vector<unsigned int> node_vertex;
+
+      // --------------------------------------------------------- elements
+      /** Inverse initial basis F_i^-1 (row-major 2x2) per element. */
+      std::vector<double> inverse_basis;
+      std::vector<double> reference_area; ///< [m^2]
+      std::vector<types::material_id> material;
+      /** Body index per element (see DiscreteBodyParameters), or 255. */
+      std::vector<unsigned char> body;
+      /** In-plane thermal stretch s of F_T = s I per element [-]; 1 here,
+       *  set by the thermal coupling. */
+      std::vector<double> thermal_stretch;
+      /** Cauchy stress of the last step per element (xx, yy, xy) [Pa]. */
+      std::vector<double> stress;
+      /**
+       * Per element edge k (nodes k -> k+1): 2 j + side for joint j with
+       * the element on side 0 (A) or 1 (B), or -1 for a boundary edge.
+       */
+      std::vector<int> edge_joint;
+      /** Boundary id per element edge (numbers::internal_face_boundary_id
+       *  for interior edges). */
+      std::vector<types::boundary_id> edge_boundary;
+
+      // ----------------------------------------------------------- joints
+      /** Nodes a0, a1 (edge of element A, counter-clockwise in A) and
+       *  b0, b1 of element B coinciding initially with a0, a1. */
+      std::vector<unsigned int>   joint_nodes;
+      std::vector<unsigned int>   joint_elements; ///< A, B per joint
+      std::vector<JointConstants> joint_constants;
+      std::vector<double>         joint_length;  ///< reference [m]
+      std::vector<double>         joint_damage;  ///< per Gauss point (2)
+      std::vector<JointStatus>    joint_status;
+      std::vector<double>         joint_break_time; ///< [s]
+      /** Forces of the last step on a0, a1, b0, b1 (x, y each) [N/m]. */
+      std::vector<double> joint_force;
+
+      /**
+       * Builds the exploded mesh from @p dof_handler, which must carry
+       * FE_SimplexDGP(1) on a serial triangle mesh. Joint constants are left
+       * for the caller. Throws InputError for cells with non-positive area
+       * (naming the cell).
+       */
+      void
+      build(const DoFHandler<2> &dof_handler);
+
+      /** Elements joined across edge k of element e by an intact joint, or
+       *  -1. */
+      int
+      intact_neighbour(const unsigned int e, const unsigned int k) const
+      {
+        const int code = edge_joint[3 * e + k];
+        if (code < 0)
+          return -1;
+        const unsigned int j = code / 2;
+        if (joint_status[j] != JointStatus::intact)
+          return -1;
+        return joint_elements[2 * j + 1 - code % 2];
+      }
+
+      /** True if an intact joint joins elements @p a and @p b. */
+      bool
+      joined(const unsigned int a, const unsigned int b) const
+      {
+        for (unsigned int k = 0; k < 3; ++k)
+          if (intact_neighbour(a, k) == static_cast<int>(b))
+            return true;
+        return false;
+      }
+
+      /** Number of broken joints. */
+      unsigned int
+      n_broken_joints() const;
+
+      /** Number of cracks: connected sets of broken joints (joints that
+       *  share a vertex of the original mesh are connected). */
+      unsigned int
+      n_cracks() const;
+    };
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif

@@ -1,0 +1,51 @@
+/**
+ * @file
+ * Output of the discrete layer in the current (exploded) configuration, so
+ * that cracks open visibly in ParaView: `solution.pvd` with displacement,
+ * velocity, stress, material, body and joint damage per triangle, and
+ * `cracks.pvd` with every broken joint as a line cell labelled by failure
+ * mode (1 Mode I, 2 Mode II, 3 mixed) and break time.
+ */
+#ifndef tmfdem_discrete_discrete_output_h
+#define tmfdem_discrete_discrete_output_h
+
+#include <string>
+#include <tmfdem/discrete/discrete_model.h>
+#include <utility>
+#include <vector>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    /** A vtu time series: `<base>_NNNNN.vtu` files and `<base>.pvd`, each
+     *  written atomically. */
+    class VtuSeries
+    {
+    public:
+      VtuSeries(const std::string &folder, const std::string &base_name);
+      /** Writes @p vtu_text as the output at @p time [s]. */
+      void
+      write(const double time, const std::string &vtu_text);
+
+    private:
+      std::string                                  folder, base_name;
+      std::vector<std::pair<double, std::string>> records;
+    };
+
+    /** The exploded mesh as a VTK UnstructuredGrid document. Extra nodal
+     *  scalar fields (name, values per node) are added as point data. */
+    std::string
+    discrete_solution_vtu(
+      const DiscreteModel &model,
+      const std::vector<std::pair<std::string, const std::vector<double> *>>
+        &extra_point_fields = {});
+
+    /** Broken joints as line cells (one per joint, between the midpoints
+     *  of its two faces' end nodes). */
+    std::string
+    crack_vtu(const DiscreteModel &model);
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif

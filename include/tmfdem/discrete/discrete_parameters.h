@@ -1,0 +1,88 @@
+/**
+ * @file
+ * Parameters of the discrete (FDEM) layer: subsection `Discrete mechanics`
+ * (time step, penalties, damping, contact, friction, softening law,
+ * heterogeneity, gravity, threads) and subsection `Discrete bodies`
+ * (which material ids move freely, are fixed or move with a prescribed
+ * velocity, and their initial velocities).
+ */
+#ifndef tmfdem_discrete_discrete_parameters_h
+#define tmfdem_discrete_discrete_parameters_h
+
+#include <deal.II/base/types.h>
+
+#include <string>
+#include <vector>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace tmfdem
+{
+  using namespace dealii;
+
+  /** Subsection `Discrete mechanics`. */
+  struct DiscreteMechanicsParameters
+  {
+    /** "plane stress" or "plane strain". */
+    std::string idealisation = "plane stress";
+    double      time_step    = 0.;  ///< [s]; 0: safety factor x stable step
+    double      safety_factor = 0.5; ///< fraction of the stable step [-]
+    double joint_normal_penalty_factor     = 10.; ///< p_n / E [-]
+    double joint_tangential_penalty_factor = 10.; ///< p_t / E [-]
+    double contact_penalty_factor          = 10.; ///< p_c / E [-]
+    double contact_tangential_penalty_factor = 1.; ///< p_ct / E [-]
+    double friction_coefficient            = 0.5; ///< mu [-]
+    std::string softening_law              = "Munjiza";
+    double      damping_ratio = 1.; ///< eta / (2 h sqrt(E rho)) [-]
+    std::vector<double> gravity = {0., 0.}; ///< [m/s^2]
+    double              contact_buffer = 0.; ///< [m]; 0: 0.25 x smallest h
+    unsigned int        threads        = 0;  ///< 0: all cores
+    std::string         heterogeneity  = "none"; ///< none|Weibull|normal
+    double weibull_modulus          = 10.; ///< m [-]
+    double coefficient_of_variation = 0.1; ///< normal: std/mean [-]
+    unsigned int random_seed        = 1;
+    unsigned int max_steps          = 0;    ///< 0: no limit
+    bool         contact            = true;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+  /** One body: the cells of some material ids and how they move. */
+  struct DiscreteBody
+  {
+    enum class Motion
+    {
+      free,
+      fixed,
+      velocity
+    };
+    std::string                     name; ///< for messages
+    std::vector<types::material_id> material_ids;
+    Motion                          motion     = Motion::free;
+    std::string                     velocity_x = "0"; ///< v_x(t) [m/s]
+    std::string                     velocity_y = "0"; ///< v_y(t) [m/s]
+    std::string initial_velocity_x = "0"; ///< v_x(x, y) at start [m/s]
+    std::string initial_velocity_y = "0"; ///< v_y(x, y) at start [m/s]
+  };
+
+  /** Subsection `Discrete bodies`: up to max_bodies `Body <n>`. Cells of
+   *  material ids named by no body move freely with zero initial velocity. */
+  struct DiscreteBodyParameters
+  {
+    static constexpr unsigned int max_bodies = 8;
+    std::vector<DiscreteBody>     bodies;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+} // namespace tmfdem
+
+#endif

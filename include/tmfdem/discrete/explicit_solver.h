@@ -1,0 +1,222 @@
+/**
+ * @file
+ * The explicit dynamics of the discrete layer (model `discrete mechanics`):
+ * central differences (paper Eq. 2) over the exploded triangle mesh with
+ * finite-strain triangles, cohesive joints and potential contact with
+ * friction, bodies that are free, fixed or driven, gravity, energy
+ * bookkeeping, and the output contract (solution.pvd, cracks.pvd,
+ * probes.csv, lines.csv, history.csv, summary.json).
+ */
+#ifndef tmfdem_discrete_explicit_solver_h
+#define tmfdem_discrete_explicit_solver_h
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/grid/tria.h>
+
+#include <array>
+#include <memory>
+#include <tmfdem/base/parameters.h>
+#include <tmfdem/base/simulation.h>
+#include <tmfdem/discrete/cohesive_law.h>
+#include <tmfdem/discrete/contact.h>
+#include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/solid.h>
+#include <vector>
+
+namespace tmfdem
+{
+  class CsvSeries;
+
+  namespace discrete
+  {
+    class VtuSeries;
+
+    /**
+     * Energy terms of the discrete layer [J/m] (per unit thickness). Works
+     * are integrated with the trapezoidal rule consistent with the central
+     * difference scheme, so that kinetic energy + strain energy + joint,
+     * contact and viscous work = external work + initial energy holds to the
+     * time-integration error, which is reported as the balance error.
+     */
+    struct EnergyBalance
+    {
+      double kinetic              = 0.;
+      double strain               = 0.;
+      double initial_kinetic      = 0.;
+      double initial_strain       = 0.;
+      double joint_work           = 0.; ///< done on the joints
+      double joint_stored         = 0.; ///< recoverable part, intact joints
+      double contact_work         = 0.; ///< done on contacts (incl. friction)
+      double friction_dissipation = 0.;
+      double viscous_dissipation  = 0.;
+      double external_work = 0.; ///< gravity and driven/fixed bodies
+      double elastic_work  = 0.; ///< done on the solid's elastic stress
+
+      /** Energy in minus energy accounted for [J/m]. */
+      double
+      balance_error() const
+      {
+        return (initial_kinetic + initial_strain + external_work) -
+               (kinetic + strain + joint_work + contact_work +
+                viscous_dissipation);
+      }
+      /** The largest term, the scale of the relative balance error. */
+      double
+      scale() const;
+    };
+
+    /** Explicit FDEM mechanics (paper Sec. 2). */
+    class ExplicitSolver : public Simulation
+    {
+    public:
+      ExplicitSolver(const Parameters &parameters, MPI_Comm communicator);
+      ~ExplicitSolver() override;
+
+      void
+      check_input() override;
+      void
+      run() override;
+
+      /** The exploded mesh and its state. */
+      DiscreteModel &
+      get_model()
+      {
+        return model;
+      }
+      /** The FE_SimplexDGP(1) DoFHandler whose DoFs are the nodes. */
+      const DoFHandler<2> &
+      get_dof_handler() const
+      {
+        return dof_handler;
+      }
+      /** Explicit time step in use [s]. */
+      double
+      get_time_step() const
+      {
+        return time_step;
+      }
+      /** Stable time step of the mesh, penalties and damping [s]. */
+      double
+      get_stable_time_step() const
+      {
+        return stable_time_step;
+      }
+      /** Advance by one explicit step. */
+      void
+      step();
+      /** Current energy terms (computes kinetic and strain energy). */
+      EnergyBalance
+      energy();
+
+    private:
+      /** Per material constants of the solid. */
+      struct SolidMaterial
+      {
+        LameConstants lame;
+        double        density = 0.;
+      };
+
+      void
+      setup_materials();
+      void
+      setup_joints();
+      void
+      setup_bodies();
+      void
+      compute_stable_time_step();
+      void
+      update_contact_candidates();
+      void
+      compute_joint_forces();
+      template <SofteningLaw law>
+      void
+      compute_joint_forces_with();
+      void
+      compute_contact_forces();
+      void
+      update_nodes();
+      void
+      write_output();
+      void
+      write_history_row();
+      void
+      write_summary(const bool finished) const;
+
+      const Parameters &parameters;
+      MPI_Comm          communicator;
+      bool              input_checked = false;
+
+      Triangulation<2>   triangulation;
+      FE_SimplexDGP<2>   fe;
+      DoFHandler<2>      dof_handler;
+      DiscreteModel      model;
+      Idealisation       idealisation = Idealisation::plane_stress;
+      SofteningLaw       softening_law = SofteningLaw::munjiza;
+      std::vector<SolidMaterial> solid;    ///< by material id
+      std::vector<double>        viscosity; ///< eta per element [Pa s]
+
+      // bodies: motion per node, driven velocities
+      std::vector<unsigned char> node_body; ///< body index or 255 (free)
+      std::vector<DiscreteBody::Motion> body_motion;
+      std::vector<std::unique_ptr<FunctionParser<2>>> body_velocity;
+      std::vector<std::array<double, 2>> body_velocity_now;
+      std::array<double, 2>              gravity{{0., 0.}};
+
+      // contact
+      bool                      contact_enabled = true;
+      double                    contact_penalty = 0.;
+      double                    contact_tangential_penalty = 0.;
+      double                    friction_coefficient       = 0.;
+      double                    contact_buffer             = 0.;
+      double                    travel_since_search        = 0.;
+      bool                      contact_search_needed      = true;
+      LinkedCellSearch          linked_cells;
+      std::vector<ContactPair>  pairs;
+      std::vector<double>       pair_force; ///< 12 per pair
+      std::vector<double>       pair_friction; ///< dissipation this step
+      std::vector<unsigned int> element_pair_start;
+      std::vector<unsigned int> element_pair_entries; ///< 2 pair + side
+      std::vector<unsigned int> active_elements;
+      unsigned long             n_contact_searches = 0;
+
+      // time
+      double        time             = 0.;
+      double        time_step        = 0.;
+      double        stable_time_step = 0.;
+      unsigned long step_number      = 0;
+      unsigned int  n_threads        = 1;
+
+      // bookkeeping: per chunk sums, summed in chunk order (thread-count
+      // independent)
+      static constexpr unsigned int chunk_size  = 512;
+      static constexpr unsigned int n_sums      = 6;
+      static constexpr unsigned int max_bodies  = 8;
+      std::vector<double>           chunk_sums; ///< n_sums + 2 max_bodies
+      EnergyBalance                 balance;
+      std::vector<std::array<double, 2>> body_reaction; ///< [N/m]
+      bool                               joints_broke = false;
+      std::vector<char>                  joint_chunk_broke;
+
+      // output
+      std::unique_ptr<VtuSeries> solution_series, crack_series;
+      std::unique_ptr<CsvSeries> history_csv, probes_csv, lines_csv;
+      std::vector<double>        output_times;
+      unsigned int               next_output = 0;
+      double                     history_interval = 0.;
+      double                     next_history     = 0.;
+      double                     wall_time        = 0.;
+      struct Sample
+      {
+        std::string  name;
+        double       x, y;
+        unsigned int element;
+        double       lambda[3];
+      };
+      std::vector<Sample> probe_samples, line_samples;
+    };
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif

@@ -1,0 +1,201 @@
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/grid/reference_cell.h>
+#include <deal.II/grid/tria.h>
+
+#include <numeric>
+#include <sstream>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/solid.h>
+#include <unordered_map>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    void
+    DiscreteModel::build(const DoFHandler<2> &dof_handler)
+    {
+      const auto &triangulation = dof_handler.get_triangulation();
+      n_elements                = triangulation.n_active_cells();
+      n_nodes                   = 3 * n_elements;
+      if (dof_handler.n_dofs() != n_nodes)
+        throw RunError("discrete layer: the DoFHandler has " +
+                       std::to_string(dof_handler.n_dofs()) +
+                       " DoFs, expected 3 per triangle (FE_SimplexDGP(1)).");
+
+      x_ref.assign(n_nodes, 0.);
+      y_ref.assign(n_nodes, 0.);
+      node_vertex.assign(n_nodes, 0);
+      mass.assign(n_nodes, 0.);
+      vx.assign(n_nodes, 0.);
+      vy.assign(n_nodes, 0.);
+      inverse_basis.assign(4 * n_elements, 0.);
+      reference_area.assign(n_elements, 0.);
+      material.assign(n_elements, 0);
+      body.assign(n_elements, 255);
+      thermal_stretch.assign(n_elements, 1.);
+      stress.assign(3 * n_elements, 0.);
+      edge_joint.assign(3 * n_elements, -1);
+      edge_boundary.assign(3 * n_elements, numbers::internal_face_boundary_id);
+      joint_nodes.clear();
+      joint_elements.clear();
+
+      std::vector<types::global_dof_index> dofs(3);
+      auto local_edge = [](const auto &cell, const unsigned int v0,
+                           const unsigned int v1) {
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            const unsigned int a = cell->vertex_index(k);
+            const unsigned int b = cell->vertex_index((k + 1) % 3);
+            if ((a == v0 && b == v1) || (a == v1 && b == v0))
+              return k;
+          }
+        return 3u;
+      };
+
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        {
+          const unsigned int e = cell->active_cell_index();
+          if (cell->reference_cell() != ReferenceCells::Triangle)
+            throw InputError("discrete layer: cell " + std::to_string(e) +
+                             " is not a triangle; the discrete layer needs "
+                             "a triangle mesh (Mesh/Element type = "
+                             "triangles).");
+          cell->get_dof_indices(dofs);
+          for (unsigned int k = 0; k < 3; ++k)
+            if (dofs[k] != 3 * e + k)
+              throw RunError("discrete layer: unexpected DoF numbering of "
+                             "FE_SimplexDGP(1) at cell " +
+                             std::to_string(e) + ".");
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              x_ref[3 * e + k]       = cell->vertex(k)[0];
+              y_ref[3 * e + k]       = cell->vertex(k)[1];
+              node_vertex[3 * e + k] = cell->vertex_index(k);
+            }
+          material[e] = cell->material_id();
+          const Matrix2 basis =
+            element_basis(x_ref[3 * e], y_ref[3 * e], x_ref[3 * e + 1],
+                          y_ref[3 * e + 1], x_ref[3 * e + 2], y_ref[3 * e + 2]);
+          const double det = determinant(basis);
+          if (!(det > 0.))
+            {
+              std::ostringstream where;
+              where << "(" << cell->center()[0] << ", " << cell->center()[1]
+                    << ")";
+              throw InputError("discrete layer: triangle " +
+                               std::to_string(e) + " at " + where.str() +
+                               " has " +
+                               (det == 0. ? std::string("zero area") :
+                                            std::string("clockwise nodes")) +
+                               "; every triangle must have positive area "
+                               "with counter-clockwise nodes.");
+            }
+          const Matrix2 inv = inverse(basis);
+          inverse_basis[4 * e + 0] = inv.a00;
+          inverse_basis[4 * e + 1] = inv.a01;
+          inverse_basis[4 * e + 2] = inv.a10;
+          inverse_basis[4 * e + 3] = inv.a11;
+          reference_area[e]        = 0.5 * det;
+
+          for (unsigned int f = 0; f < 3; ++f)
+            {
+              const auto         face = cell->face(f);
+              const unsigned int k =
+                local_edge(cell, face->vertex_index(0), face->vertex_index(1));
+              if (face->at_boundary())
+                {
+                  edge_boundary[3 * e + k] = face->boundary_id();
+                  continue;
+                }
+              const auto neighbour = cell->neighbor(f);
+              if (neighbour->has_children() || neighbour->level() != cell->level())
+                throw InputError(
+                  "discrete layer: the mesh has hanging nodes at triangle " +
+                  std::to_string(e) +
+                  "; the discrete layer needs a conforming mesh (use global "
+                  "refinement only).");
+              const unsigned int n = neighbour->active_cell_index();
+              if (n < e)
+                continue; // made when visiting n
+              const unsigned int j  = joint_elements.size() / 2;
+              const unsigned int a0 = 3 * e + k, a1 = 3 * e + (k + 1) % 3;
+              unsigned int       b0 = 0, b1 = 0;
+              for (unsigned int m = 0; m < 3; ++m)
+                {
+                  if (neighbour->vertex_index(m) == cell->vertex_index(k))
+                    b0 = 3 * n + m;
+                  if (neighbour->vertex_index(m) ==
+                      cell->vertex_index((k + 1) % 3))
+                    b1 = 3 * n + m;
+                }
+              const unsigned int kb = local_edge(neighbour,
+                                                 cell->vertex_index(k),
+                                                 cell->vertex_index((k + 1) % 3));
+              joint_nodes.insert(joint_nodes.end(), {a0, a1, b0, b1});
+              joint_elements.insert(joint_elements.end(), {e, n});
+              edge_joint[3 * e + k]  = 2 * j;
+              edge_joint[3 * n + kb] = 2 * j + 1;
+            }
+        }
+      n_joints = joint_elements.size() / 2;
+      x        = x_ref;
+      y        = y_ref;
+      joint_constants.assign(n_joints, JointConstants());
+      joint_length.assign(n_joints, 0.);
+      for (unsigned int j = 0; j < n_joints; ++j)
+        {
+          const unsigned int a0 = joint_nodes[4 * j], a1 = joint_nodes[4 * j + 1];
+          joint_length[j] = std::hypot(x_ref[a1] - x_ref[a0], y_ref[a1] - y_ref[a0]);
+        }
+      joint_damage.assign(2 * n_joints, 0.);
+      joint_status.assign(n_joints, JointStatus::intact);
+      joint_break_time.assign(n_joints, -1.);
+      joint_force.assign(8 * n_joints, 0.);
+    }
+
+    unsigned int
+    DiscreteModel::n_broken_joints() const
+    {
+      unsigned int n = 0;
+      for (const auto status : joint_status)
+        n += status != JointStatus::intact;
+      return n;
+    }
+
+    unsigned int
+    DiscreteModel::n_cracks() const
+    {
+      std::vector<unsigned int> parent(n_joints);
+      std::iota(parent.begin(), parent.end(), 0u);
+      auto find = [&](unsigned int a) {
+        while (parent[a] != a)
+          a = parent[a] = parent[parent[a]];
+        return a;
+      };
+      std::unordered_map<unsigned int, unsigned int> joint_at_vertex;
+      unsigned int                                   n_broken = 0;
+      for (unsigned int j = 0; j < n_joints; ++j)
+        if (joint_status[j] != JointStatus::intact)
+          {
+            ++n_broken;
+            for (unsigned int end = 0; end < 2; ++end)
+              {
+                const unsigned int vertex = node_vertex[joint_nodes[4 * j + end]];
+                const auto [it, inserted] = joint_at_vertex.emplace(vertex, j);
+                if (!inserted)
+                  {
+                    const unsigned int r1 = find(j), r2 = find(it->second);
+                    if (r1 != r2)
+                      {
+                        parent[r1] = r2;
+                        --n_broken;
+                      }
+                  }
+              }
+          }
+      return n_broken;
+    }
+  } // namespace discrete
+} // namespace tmfdem

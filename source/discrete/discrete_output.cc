@@ -1,0 +1,181 @@
+#include <cstdio>
+#include <iomanip>
+#include <sstream>
+#include <tmfdem/discrete/discrete_output.h>
+#include <tmfdem/io/output_files.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    namespace
+    {
+      /** A DataArray element with @p values written with 9 digits. */
+      template <typename T>
+      void
+      data_array(std::ostringstream   &out,
+                 const std::string    &type,
+                 const std::string    &name,
+                 const unsigned int    components,
+                 const std::vector<T> &values)
+      {
+        out << "<DataArray type=\"" << type << "\" Name=\"" << name
+            << "\" NumberOfComponents=\"" << components
+            << "\" format=\"ascii\">\n";
+        for (std::size_t i = 0; i < values.size(); ++i)
+          out << values[i] << ((i + 1) % 9 == 0 ? '\n' : ' ');
+        out << "\n</DataArray>\n";
+      }
+
+      std::string
+      grid(const std::vector<double>       &points_xy,
+           const std::vector<unsigned int> &connectivity,
+           const unsigned int               nodes_per_cell,
+           const unsigned int               vtk_type,
+           const std::string               &point_data,
+           const std::string               &cell_data)
+      {
+        const std::size_t  n_points = points_xy.size() / 2;
+        const std::size_t  n_cells  = connectivity.size() / nodes_per_cell;
+        std::ostringstream out;
+        out << std::setprecision(9);
+        out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" "
+               "version=\"0.1\" byte_order=\"LittleEndian\">\n"
+               "<UnstructuredGrid>\n<Piece NumberOfPoints=\""
+            << n_points << "\" NumberOfCells=\"" << n_cells << "\">\n";
+        out << "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" "
+               "format=\"ascii\">\n";
+        for (std::size_t i = 0; i < n_points; ++i)
+          out << points_xy[2 * i] << ' ' << points_xy[2 * i + 1] << " 0\n";
+        out << "</DataArray>\n</Points>\n<Cells>\n";
+        data_array(out, "Int64", "connectivity", 1, connectivity);
+        std::vector<unsigned int> offsets(n_cells), types(n_cells, vtk_type);
+        for (std::size_t c = 0; c < n_cells; ++c)
+          offsets[c] = (c + 1) * nodes_per_cell;
+        data_array(out, "Int64", "offsets", 1, offsets);
+        data_array(out, "UInt8", "types", 1, types);
+        out << "</Cells>\n<PointData>\n"
+            << point_data << "</PointData>\n<CellData>\n"
+            << cell_data << "</CellData>\n</Piece>\n</UnstructuredGrid>\n"
+            << "</VTKFile>\n";
+        return out.str();
+      }
+    } // namespace
+
+    VtuSeries::VtuSeries(const std::string &folder, const std::string &base_name)
+      : folder(folder)
+      , base_name(base_name)
+    {}
+
+    void
+    VtuSeries::write(const double time, const std::string &vtu_text)
+    {
+      char number[16];
+      std::snprintf(number, sizeof(number), "%05u",
+                    static_cast<unsigned int>(records.size()));
+      const std::string file = base_name + "_" + number + ".vtu";
+      write_file_atomically(folder + "/" + file, vtu_text);
+      records.emplace_back(time, file);
+      std::ostringstream pvd;
+      pvd << std::setprecision(12)
+          << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" "
+             "version=\"0.1\">\n<Collection>\n";
+      for (const auto &[t, name] : records)
+        pvd << "  <DataSet timestep=\"" << t << "\" part=\"0\" file=\"" << name
+            << "\"/>\n";
+      pvd << "</Collection>\n</VTKFile>\n";
+      write_file_atomically(folder + "/" + base_name + ".pvd", pvd.str());
+    }
+
+    std::string
+    discrete_solution_vtu(
+      const DiscreteModel &model,
+      const std::vector<std::pair<std::string, const std::vector<double> *>>
+        &extra_point_fields)
+    {
+      std::vector<double>       points(2 * model.n_nodes);
+      std::vector<unsigned int> connectivity(model.n_nodes);
+      std::vector<double>       displacement(3 * model.n_nodes), velocity(3 * model.n_nodes);
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        {
+          points[2 * n]         = model.x[n];
+          points[2 * n + 1]     = model.y[n];
+          connectivity[n]       = n;
+          displacement[3 * n]   = model.x[n] - model.x_ref[n];
+          displacement[3 * n + 1] = model.y[n] - model.y_ref[n];
+          displacement[3 * n + 2] = 0.;
+          velocity[3 * n]         = model.vx[n];
+          velocity[3 * n + 1]     = model.vy[n];
+          velocity[3 * n + 2]     = 0.;
+        }
+      std::ostringstream point_data;
+      point_data << std::setprecision(9);
+      data_array(point_data, "Float64", "displacement", 3, displacement);
+      data_array(point_data, "Float64", "velocity", 3, velocity);
+      for (const auto &[name, values] : extra_point_fields)
+        data_array(point_data, "Float64", name, 1, *values);
+
+      std::vector<double> sxx(model.n_elements), syy(model.n_elements),
+        sxy(model.n_elements), damage(model.n_elements, 0.);
+      std::vector<int> material(model.n_elements), body(model.n_elements);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          sxx[e]      = model.stress[3 * e];
+          syy[e]      = model.stress[3 * e + 1];
+          sxy[e]      = model.stress[3 * e + 2];
+          material[e] = model.material[e];
+          body[e]     = model.body[e] == 255 ? -1 : model.body[e];
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              const int code = model.edge_joint[3 * e + k];
+              if (code >= 0)
+                {
+                  const unsigned int j = code / 2;
+                  const double       d =
+                    model.joint_status[j] != JointStatus::intact ?
+                            1. :
+                            std::max(model.joint_damage[2 * j],
+                               model.joint_damage[2 * j + 1]);
+                  damage[e] = std::max(damage[e], d);
+                }
+            }
+        }
+      std::ostringstream cell_data;
+      cell_data << std::setprecision(9);
+      data_array(cell_data, "Float64", "sxx", 1, sxx);
+      data_array(cell_data, "Float64", "syy", 1, syy);
+      data_array(cell_data, "Float64", "sxy", 1, sxy);
+      data_array(cell_data, "Float64", "joint_damage", 1, damage);
+      data_array(cell_data, "Int32", "material_id", 1, material);
+      data_array(cell_data, "Int32", "body", 1, body);
+      return grid(points, connectivity, 3, 5, point_data.str(), cell_data.str());
+    }
+
+    std::string
+    crack_vtu(const DiscreteModel &model)
+    {
+      std::vector<double>       points;
+      std::vector<unsigned int> connectivity;
+      std::vector<int>          mode;
+      std::vector<double>       break_time;
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        if (model.joint_status[j] != JointStatus::intact)
+          {
+            const unsigned int *n = &model.joint_nodes[4 * j];
+            for (unsigned int end = 0; end < 2; ++end)
+              {
+                connectivity.push_back(points.size() / 2);
+                points.push_back(0.5 * (model.x[n[end]] + model.x[n[2 + end]]));
+                points.push_back(0.5 * (model.y[n[end]] + model.y[n[2 + end]]));
+              }
+            mode.push_back(static_cast<int>(model.joint_status[j]));
+            break_time.push_back(model.joint_break_time[j]);
+          }
+      std::ostringstream cell_data;
+      cell_data << std::setprecision(9);
+      data_array(cell_data, "Int32", "failure_mode", 1, mode);
+      data_array(cell_data, "Float64", "break_time", 1, break_time);
+      return grid(points, connectivity, 2, 3, "", cell_data.str());
+    }
+  } // namespace discrete
+} // namespace tmfdem

@@ -1,0 +1,248 @@
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
+
+#include <set>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/discrete/cohesive_law.h>
+#include <tmfdem/discrete/discrete_parameters.h>
+
+namespace tmfdem
+{
+  namespace
+  {
+    std::string
+    softening_selection()
+    {
+      std::string names;
+      for (const auto &[name, law] : discrete::softening_law_registry())
+        names += (names.empty() ? "" : "|") + name;
+      return names;
+    }
+
+    void
+    require_positive(const double value, const std::string &entry)
+    {
+      if (!(value > 0.))
+        throw InputError("Discrete mechanics/" + entry + " = " +
+                         Utilities::to_string(value) + ": must be > 0.");
+    }
+  } // namespace
+
+  void
+  DiscreteMechanicsParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Discrete mechanics");
+    prm.declare_entry("Idealisation",
+                      "plane stress",
+                      Patterns::Selection("plane stress|plane strain"),
+                      "2D idealisation of the triangles: plane stress "
+                      "(lambda* = E nu/(1-nu^2)) or plane strain "
+                      "(lambda = E nu/((1+nu)(1-2nu))).");
+    prm.declare_entry("Time step",
+                      "0",
+                      Patterns::Double(0.),
+                      "Explicit time step [s]; 0: Safety factor times the "
+                      "stable step computed from the mesh and penalties. A "
+                      "step above the stable step is refused.");
+    prm.declare_entry("Safety factor",
+                      "0.5",
+                      Patterns::Double(1e-6, 1.),
+                      "Fraction of the stable step used when Time step = 0 "
+                      "[-].");
+    prm.declare_entry("Joint normal penalty factor",
+                      "10",
+                      Patterns::Double(0.),
+                      "Joint normal penalty p_n = factor x E [Pa]; the "
+                      "initial joint stiffness is p_n / h [Pa/m], h the "
+                      "joint length.");
+    prm.declare_entry("Joint tangential penalty factor",
+                      "10",
+                      Patterns::Double(0.),
+                      "Joint tangential penalty p_t = factor x E [Pa].");
+    prm.declare_entry("Contact penalty factor",
+                      "10",
+                      Patterns::Double(0.),
+                      "Normal contact penalty p_c = factor x E [Pa] of the "
+                      "potential contact force (paper Eq. 5).");
+    prm.declare_entry("Contact tangential penalty factor",
+                      "1",
+                      Patterns::Double(0.),
+                      "Tangential (stick) contact penalty = factor x E [Pa] "
+                      "per unit contact length fraction.");
+    prm.declare_entry("Friction coefficient",
+                      "0.5",
+                      Patterns::Double(0.),
+                      "Coulomb friction coefficient between broken faces "
+                      "and bodies [-].");
+    prm.declare_entry("Softening law",
+                      "Munjiza",
+                      Patterns::Selection(softening_selection()),
+                      "Post-peak softening of the joints: Munjiza's curve "
+                      "or linear; both dissipate exactly G per unit area "
+                      "in pure Mode I and II.");
+    prm.declare_entry("Damping ratio",
+                      "1",
+                      Patterns::Double(0.),
+                      "Viscosity eta of the solid as a fraction of "
+                      "2 h sqrt(E rho), the critical damping of the "
+                      "highest element mode [-]; 0: undamped.");
+    prm.declare_entry("Gravity",
+                      "0, 0",
+                      Patterns::List(Patterns::Double(), 2, 2, ","),
+                      "Gravitational acceleration g_x, g_y [m/s^2].");
+    prm.declare_entry("Contact buffer",
+                      "0",
+                      Patterns::Double(0.),
+                      "Broad-phase buffer [m]: contact candidates are "
+                      "searched again once nodes have moved half of it; "
+                      "0: a quarter of the smallest element size.");
+    prm.declare_entry("Contact",
+                      "true",
+                      Patterns::Bool(),
+                      "Contact between free faces (boundary edges and "
+                      "broken joints); false: no contact at all.");
+    prm.declare_entry("Threads",
+                      "0",
+                      Patterns::Integer(0, 1024),
+                      "Threads of the explicit loop; 0: all cores. Results "
+                      "do not depend on it.");
+    prm.declare_entry("Heterogeneity",
+                      "none",
+                      Patterns::Selection("none|Weibull|normal"),
+                      "Per-joint random tensile strength and cohesion: none, "
+                      "Weibull (mean = material value, modulus below) or "
+                      "normal (mean = material value, coefficient of "
+                      "variation below, truncated at 1 % of the mean).");
+    prm.declare_entry("Weibull modulus",
+                      "10",
+                      Patterns::Double(0.1),
+                      "Weibull modulus m of the joint strengths [-].");
+    prm.declare_entry("Coefficient of variation",
+                      "0.1",
+                      Patterns::Double(0.),
+                      "Standard deviation / mean of normal joint strengths "
+                      "[-].");
+    prm.declare_entry("Random seed",
+                      "1",
+                      Patterns::Integer(0),
+                      "Seed of the joint-strength generator.");
+    prm.declare_entry("Maximum steps",
+                      "0",
+                      Patterns::Integer(0),
+                      "Stop after this many explicit steps even before End "
+                      "time; 0: no limit.");
+    prm.leave_subsection();
+  }
+
+  void
+  DiscreteMechanicsParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Discrete mechanics");
+    idealisation                    = prm.get("Idealisation");
+    time_step                       = prm.get_double("Time step");
+    safety_factor                   = prm.get_double("Safety factor");
+    joint_normal_penalty_factor     = prm.get_double("Joint normal penalty factor");
+    joint_tangential_penalty_factor =
+      prm.get_double("Joint tangential penalty factor");
+    contact_penalty_factor = prm.get_double("Contact penalty factor");
+    contact_tangential_penalty_factor =
+      prm.get_double("Contact tangential penalty factor");
+    friction_coefficient = prm.get_double("Friction coefficient");
+    softening_law        = prm.get("Softening law");
+    damping_ratio        = prm.get_double("Damping ratio");
+    gravity              = Utilities::string_to_double(
+      Utilities::split_string_list(prm.get("Gravity"), ','));
+    contact_buffer           = prm.get_double("Contact buffer");
+    contact                  = prm.get_bool("Contact");
+    threads                  = prm.get_integer("Threads");
+    heterogeneity            = prm.get("Heterogeneity");
+    weibull_modulus          = prm.get_double("Weibull modulus");
+    coefficient_of_variation = prm.get_double("Coefficient of variation");
+    random_seed              = prm.get_integer("Random seed");
+    max_steps                = prm.get_integer("Maximum steps");
+    prm.leave_subsection();
+    require_positive(joint_normal_penalty_factor, "Joint normal penalty factor");
+    require_positive(joint_tangential_penalty_factor,
+                     "Joint tangential penalty factor");
+    require_positive(contact_penalty_factor, "Contact penalty factor");
+    require_positive(contact_tangential_penalty_factor,
+                     "Contact tangential penalty factor");
+  }
+
+  void
+  DiscreteBodyParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Discrete bodies");
+    for (unsigned int n = 1; n <= max_bodies; ++n)
+      {
+        prm.enter_subsection("Body " + std::to_string(n));
+        prm.declare_entry("Material ids",
+                          "",
+                          Patterns::List(Patterns::Integer(0, 255), 0, 256, ","),
+                          "Cells of these material ids form the body (empty: "
+                          "unused). Material ids named by no body move "
+                          "freely.");
+        prm.declare_entry("Motion",
+                          "free",
+                          Patterns::Selection("free|fixed|velocity"),
+                          "free: moves under its forces; fixed: never "
+                          "moves (walls, supports); velocity: every node "
+                          "moves with the prescribed velocity below "
+                          "(platens).");
+        prm.declare_entry("Velocity x",
+                          "0",
+                          Patterns::Anything(),
+                          "Prescribed velocity v_x(t) for Motion = velocity, "
+                          "function of t [m/s].");
+        prm.declare_entry("Velocity y",
+                          "0",
+                          Patterns::Anything(),
+                          "Prescribed velocity v_y(t) for Motion = velocity, "
+                          "function of t [m/s].");
+        prm.declare_entry("Initial velocity x",
+                          "0",
+                          Patterns::Anything(),
+                          "Initial velocity v_x(x, y) of a free body [m/s].");
+        prm.declare_entry("Initial velocity y",
+                          "0",
+                          Patterns::Anything(),
+                          "Initial velocity v_y(x, y) of a free body [m/s].");
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+  void
+  DiscreteBodyParameters::parse_parameters(ParameterHandler &prm)
+  {
+    bodies.clear();
+    std::set<types::material_id> used;
+    prm.enter_subsection("Discrete bodies");
+    for (unsigned int n = 1; n <= max_bodies; ++n)
+      {
+        DiscreteBody body;
+        body.name = "Discrete bodies/Body " + std::to_string(n);
+        prm.enter_subsection("Body " + std::to_string(n));
+        for (const int id : Utilities::string_to_int(
+               Utilities::split_string_list(prm.get("Material ids"), ',')))
+          body.material_ids.push_back(static_cast<types::material_id>(id));
+        const std::string motion = prm.get("Motion");
+        body.motion = motion == "fixed"    ? DiscreteBody::Motion::fixed :
+                      motion == "velocity" ? DiscreteBody::Motion::velocity :
+                                             DiscreteBody::Motion::free;
+        body.velocity_x         = prm.get("Velocity x");
+        body.velocity_y         = prm.get("Velocity y");
+        body.initial_velocity_x = prm.get("Initial velocity x");
+        body.initial_velocity_y = prm.get("Initial velocity y");
+        prm.leave_subsection();
+        for (const auto id : body.material_ids)
+          if (!used.insert(id).second)
+            throw InputError(body.name + "/Material ids: material id " +
+                             std::to_string(id) +
+                             " already belongs to another body.");
+        if (!body.material_ids.empty())
+          bodies.push_back(body);
+      }
+    prm.leave_subsection();
+  }
+} // namespace tmfdem

@@ -1,0 +1,1137 @@
+#include <deal.II/base/utilities.h>
+#include <deal.II/dofs/dof_handler.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <random>
+#include <sstream>
+#include <thread>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/function_expression.h>
+#include <tmfdem/discrete/discrete_output.h>
+#include <tmfdem/discrete/explicit_solver.h>
+#include <tmfdem/io/output_files.h>
+#include <tmfdem/mesh/mesh_checks.h>
+#include <tmfdem/mesh/mesh_generator.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    namespace
+    {
+      const bool registered = register_simulation(
+        "discrete mechanics",
+        "explicit FDEM dynamics: finite-strain triangles, cohesive joints, "
+        "contact with friction (no heat)",
+        [](const Parameters &parameters, MPI_Comm communicator) {
+          return std::make_unique<ExplicitSolver>(parameters, communicator);
+        });
+
+      /** Runs @p body(chunk_begin, chunk_end, chunk_index) over fixed chunks
+       *  of @p n items on @p threads threads. */
+      template <typename Body>
+      void
+      for_each_chunk(tbb::task_arena  &arena,
+                     const std::size_t n,
+                     const std::size_t chunk,
+                     const Body       &body)
+      {
+        const std::size_t n_chunks = (n + chunk - 1) / chunk;
+        arena.execute([&] {
+          tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_chunks),
+                            [&](const tbb::blocked_range<std::size_t> &r) {
+                              for (std::size_t c = r.begin(); c != r.end(); ++c)
+                                body(c * chunk, std::min(n, (c + 1) * chunk), c);
+                            });
+        });
+      }
+
+      tbb::task_arena &
+      arena_for(const unsigned int threads)
+      {
+        static std::unique_ptr<tbb::task_arena> arena;
+        static unsigned int                     arena_threads = 0;
+        if (!arena || arena_threads != threads)
+          {
+            arena         = std::make_unique<tbb::task_arena>(threads);
+            arena_threads = threads;
+          }
+        return *arena;
+      }
+    } // namespace
+
+    double
+    EnergyBalance::scale() const
+    {
+      return std::max({std::abs(initial_kinetic + initial_strain),
+                       std::abs(external_work),
+                       std::abs(kinetic),
+                       std::abs(strain),
+                       std::abs(joint_work),
+                       std::abs(contact_work),
+                       std::abs(viscous_dissipation),
+                       1e-300});
+    }
+
+    ExplicitSolver::ExplicitSolver(const Parameters &parameters,
+                                   MPI_Comm          communicator)
+      : parameters(parameters)
+      , communicator(communicator)
+      , fe(1)
+    {}
+
+    ExplicitSolver::~ExplicitSolver() = default;
+
+    // --------------------------------------------------------------- input
+    void
+    ExplicitSolver::check_input()
+    {
+      if (input_checked)
+        return;
+      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+        throw InputError("the discrete layer runs on one MPI process with "
+                         "threads (Discrete mechanics/Threads); run it "
+                         "without mpirun -np > 1.");
+      const auto &dm = parameters.discrete_mechanics;
+      idealisation   = dm.idealisation == "plane strain" ?
+                         Idealisation::plane_strain :
+                         Idealisation::plane_stress;
+      for (const auto &[name, law] : softening_law_registry())
+        if (name == dm.softening_law)
+          softening_law = law;
+
+      create_output_folder(parameters.output.directory, communicator);
+      create_coarse_mesh(parameters.mesh,
+                         parameters.output.directory,
+                         triangulation,
+                         communicator);
+      const std::string source =
+        parameters.mesh.source == MeshParameters::Source::file ?
+          "mesh file '" + parameters.mesh.file_name + "'" :
+          "generated mesh";
+      const MeshReport report =
+        check_mesh(triangulation,
+                   source,
+                   domain_area(parameters.mesh),
+                   parameters.mesh.source == MeshParameters::Source::annulus ||
+                     parameters.mesh.source == MeshParameters::Source::disc);
+      if (report.n_quadrilaterals > 0)
+        throw InputError(source +
+                         " has quadrilaterals; the discrete layer needs "
+                         "triangles (Mesh/Element type = triangles).");
+      triangulation.refine_global(parameters.mesh.global_refinements);
+      dof_handler.reinit(triangulation);
+      dof_handler.distribute_dofs(fe);
+      model.build(dof_handler);
+
+      setup_materials();
+      setup_bodies();
+      setup_joints();
+      compute_stable_time_step();
+
+      const double requested = dm.time_step;
+      if (requested > stable_time_step)
+        throw InputError(
+          "Discrete mechanics/Time step = " + Utilities::to_string(requested) +
+          " s exceeds the stable step " +
+          Utilities::to_string(stable_time_step) +
+          " s of this mesh, penalties and damping; allowed is at most the "
+          "stable step (or 0 for Safety factor x stable step).");
+      time_step = requested > 0. ? requested : dm.safety_factor * stable_time_step;
+      time      = parameters.time.start_time;
+      if (!(parameters.time.end_time > time))
+        throw InputError("Time stepping/End time must be later than Start "
+                         "time for the discrete layer.");
+      const double n_steps = (parameters.time.end_time - time) / time_step;
+      if (n_steps > 1e10)
+        throw InputError("Time stepping/End time: " +
+                         Utilities::to_string(n_steps) +
+                         " explicit steps of " +
+                         Utilities::to_string(time_step) +
+                         " s; allowed are at most 1e10.");
+
+      // contact
+      contact_enabled = dm.contact;
+      double min_h    = 1e300;
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        min_h = std::min(min_h, model.joint_length[j]);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        min_h = std::min(min_h, std::sqrt(2. * model.reference_area[e]));
+      contact_buffer = dm.contact_buffer > 0. ? dm.contact_buffer : 0.25 * min_h;
+      friction_coefficient = dm.friction_coefficient;
+
+      n_threads = dm.threads > 0 ? dm.threads :
+                                   std::max(1u, std::thread::hardware_concurrency());
+
+      // monitors: reference points located in the reference mesh
+      auto locate = [&](const std::string &name, const Point<2> &p) {
+        Sample sample;
+        sample.name = name;
+        sample.x    = p[0];
+        sample.y    = p[1];
+        for (unsigned int e = 0; e < model.n_elements; ++e)
+          {
+            const double *xr = &model.x_ref[3 * e], *yr = &model.y_ref[3 * e];
+            const double det = (yr[1] - yr[2]) * (xr[0] - xr[2]) +
+                               (xr[2] - xr[1]) * (yr[0] - yr[2]);
+            const double l0 = ((yr[1] - yr[2]) * (p[0] - xr[2]) +
+                               (xr[2] - xr[1]) * (p[1] - yr[2])) /
+                              det;
+            const double l1 = ((yr[2] - yr[0]) * (p[0] - xr[2]) +
+                               (xr[0] - xr[2]) * (p[1] - yr[2])) /
+                              det;
+            const double l2  = 1. - l0 - l1;
+            const double tol = -1e-10;
+            if (l0 >= tol && l1 >= tol && l2 >= tol)
+              {
+                sample.element   = e;
+                sample.lambda[0] = l0;
+                sample.lambda[1] = l1;
+                sample.lambda[2] = l2;
+                return sample;
+              }
+          }
+        std::ostringstream where;
+        where << "(" << p[0] << ", " << p[1] << ")";
+        throw InputError("Monitors: point '" + name + "' at " + where.str() +
+                         " lies outside the mesh.");
+      };
+      probe_samples.clear();
+      line_samples.clear();
+      for (const auto &probe : parameters.monitors.probes)
+        probe_samples.push_back(locate(probe.name, probe.location));
+      for (const auto &line : parameters.monitors.lines)
+        for (unsigned int i = 0; i < line.n_points; ++i)
+          {
+            const double s = line.n_points > 1 ? double(i) / (line.n_points - 1) : 0.;
+            line_samples.push_back(
+              locate(line.name, line.start + s * (line.end - line.start)));
+          }
+      input_checked = true;
+    }
+
+    void
+    ExplicitSolver::setup_materials()
+    {
+      solid.assign(256, SolidMaterial());
+      viscosity.assign(model.n_elements, 0.);
+      std::vector<bool> used(256, false);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        used[model.material[e]] = true;
+      for (unsigned int id = 0; id < 256; ++id)
+        if (used[id])
+          {
+            const MaterialProperties &m = parameters.materials[id];
+            solid[id].lame =
+              lame_constants(m.youngs_modulus, m.poisson_ratio, idealisation);
+            solid[id].density = m.density;
+          }
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          const MaterialProperties &m = parameters.materials[model.material[e]];
+          const double h = std::sqrt(2. * model.reference_area[e]);
+          viscosity[e]   = parameters.discrete_mechanics.damping_ratio * 2. * h *
+                         std::sqrt(m.youngs_modulus * m.density);
+          const double node_mass = m.density * model.reference_area[e] / 3.;
+          for (unsigned int k = 0; k < 3; ++k)
+            model.mass[3 * e + k] = node_mass;
+        }
+    }
+
+    void
+    ExplicitSolver::setup_joints()
+    {
+      const auto &dm = parameters.discrete_mechanics;
+      std::mt19937_64 generator(dm.random_seed);
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        {
+          const unsigned int ea = model.joint_elements[2 * j];
+          const unsigned int eb = model.joint_elements[2 * j + 1];
+          const MaterialProperties &ma = parameters.materials[model.material[ea]];
+          const MaterialProperties &mb = parameters.materials[model.material[eb]];
+          // interfaces between materials take the weaker of both
+          double ft  = std::min(ma.tensile_strength, mb.tensile_strength);
+          double coh = std::min(ma.cohesion, mb.cohesion);
+          const double phi = std::min(ma.friction_angle, mb.friction_angle);
+          const double GI  = std::min(ma.fracture_energy_I, mb.fracture_energy_I);
+          const double GII =
+            std::min(ma.fracture_energy_II, mb.fracture_energy_II);
+          const double E = std::max(ma.youngs_modulus, mb.youngs_modulus);
+          if (dm.heterogeneity != "none")
+            {
+              double factor = 1.;
+              if (dm.heterogeneity == "Weibull")
+                {
+                  // Weibull with mean 1: scale = 1 / Gamma(1 + 1/m)
+                  const double m = dm.weibull_modulus;
+                  std::weibull_distribution<double> weibull(
+                    m, 1. / std::tgamma(1. + 1. / m));
+                  factor = weibull(generator);
+                }
+              else
+                {
+                  std::normal_distribution<double> normal(
+                    1., dm.coefficient_of_variation);
+                  factor = std::max(0.01, normal(generator));
+                }
+              ft *= factor;
+              coh *= factor;
+            }
+          const bool ok = make_joint_constants(ft,
+                                               coh,
+                                               phi,
+                                               GI,
+                                               GII,
+                                               dm.joint_normal_penalty_factor * E,
+                                               dm.joint_tangential_penalty_factor * E,
+                                               model.joint_length[j],
+                                               softening_law,
+                                               model.joint_constants[j]);
+          if (!ok)
+            throw InputError(
+              "joint " + std::to_string(j) + " between materials " +
+              std::to_string(model.material[ea]) + " and " +
+              std::to_string(model.material[eb]) + " (length " +
+              Utilities::to_string(model.joint_length[j]) +
+              " m): the fracture energies G_I = " + Utilities::to_string(GI) +
+              ", G_II = " + Utilities::to_string(GII) +
+              " J/m^2 are below the work stored before the peak, 4 f^2 h / "
+              "(3 p) = " +
+              Utilities::to_string(4. / 3. * ft * ft * model.joint_length[j] /
+                                   (dm.joint_normal_penalty_factor * E)) +
+              " and " +
+              Utilities::to_string(4. / 3. * coh * coh * model.joint_length[j] /
+                                   (dm.joint_tangential_penalty_factor * E)) +
+              " J/m^2; allowed are larger G or larger joint penalty factors.");
+        }
+      contact_penalty =
+        0.; // set per pair from the stiffer material in compute_contact
+      double E_max = 0.;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        E_max = std::max(E_max,
+                         parameters.materials[model.material[e]].youngs_modulus);
+      contact_penalty            = dm.contact_penalty_factor * E_max;
+      contact_tangential_penalty = dm.contact_tangential_penalty_factor * E_max;
+    }
+
+    void
+    ExplicitSolver::setup_bodies()
+    {
+      const auto &bodies = parameters.discrete_bodies.bodies;
+      body_motion.clear();
+      body_velocity.clear();
+      for (const auto &b : bodies)
+        {
+          body_motion.push_back(b.motion);
+          body_velocity.push_back(
+            make_expression_function(b.velocity_x, b.name + "/Velocity x"));
+          body_velocity.push_back(
+            make_expression_function(b.velocity_y, b.name + "/Velocity y"));
+        }
+      body_velocity_now.assign(bodies.size(), {{0., 0.}});
+      body_reaction.assign(bodies.size(), {{0., 0.}});
+      std::vector<unsigned char> body_of_material(256, 255);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        for (const auto id : bodies[b].material_ids)
+          body_of_material[id] = b;
+      std::vector<bool> body_has_cells(bodies.size(), false);
+      node_body.assign(model.n_nodes, 255);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          model.body[e] = body_of_material[model.material[e]];
+          if (model.body[e] != 255)
+            body_has_cells[model.body[e]] = true;
+          for (unsigned int k = 0; k < 3; ++k)
+            node_body[3 * e + k] = model.body[e];
+        }
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        if (!body_has_cells[b])
+          throw InputError(bodies[b].name +
+                           "/Material ids: no cell of the mesh has these "
+                           "material ids.");
+      // initial velocities
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          auto vx0 = make_expression_function(bodies[b].initial_velocity_x,
+                                              bodies[b].name +
+                                                "/Initial velocity x");
+          auto vy0 = make_expression_function(bodies[b].initial_velocity_y,
+                                              bodies[b].name +
+                                                "/Initial velocity y");
+          for (unsigned int n = 0; n < model.n_nodes; ++n)
+            if (node_body[n] == b && bodies[b].motion == DiscreteBody::Motion::free)
+              {
+                const Point<2> p(model.x_ref[n], model.y_ref[n]);
+                model.vx[n] = vx0->value(p);
+                model.vy[n] = vy0->value(p);
+              }
+        }
+      gravity = {{parameters.discrete_mechanics.gravity[0],
+                  parameters.discrete_mechanics.gravity[1]}};
+    }
+
+    void
+    ExplicitSolver::compute_stable_time_step()
+    {
+      const auto &dm = parameters.discrete_mechanics;
+      double      dt = 1e300;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          const SolidMaterial &m = solid[model.material[e]];
+          const double c = std::sqrt((m.lame.lambda + 2. * m.lame.mu) / m.density);
+          double longest = 0.;
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              const unsigned int a = 3 * e + k, b = 3 * e + (k + 1) % 3;
+              longest = std::max(longest,
+                                 std::hypot(model.x_ref[b] - model.x_ref[a],
+                                            model.y_ref[b] - model.y_ref[a]));
+            }
+          const double altitude = 2. * model.reference_area[e] / longest;
+          const double E        = parameters.materials[model.material[e]].youngs_modulus;
+          // damping ratio of the highest mode of a bar of length h
+          const double zeta =
+            viscosity[e] / (altitude * std::sqrt(E * m.density));
+          dt = std::min(dt,
+                        altitude / c * (std::sqrt(1. + zeta * zeta) - zeta));
+        }
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        {
+          const double k = 0.5 * std::max(model.joint_constants[j].normal_stiffness,
+                                           model.joint_constants[j].tangential_stiffness) *
+                           model.joint_length[j];
+          const double m_a = model.mass[model.joint_nodes[4 * j]];
+          const double m_b = model.mass[model.joint_nodes[4 * j + 2]];
+          const double omega = std::sqrt(k * (1. / m_a + 1. / m_b));
+          dt = std::min(dt, 2. / omega);
+        }
+      if (dm.contact)
+        {
+          double E_max = 0.;
+          for (unsigned int e = 0; e < model.n_elements; ++e)
+            E_max = std::max(E_max,
+                             parameters.materials[model.material[e]].youngs_modulus);
+          const double p = dm.contact_penalty_factor * E_max;
+          for (unsigned int e = 0; e < model.n_elements; ++e)
+            {
+              // an edge of length L pressed flat into a target of altitude
+              // h ~ L feels about 3 p L / h per unit penetration per node,
+              // both pair directions counted: k ~ 3 p
+              const double k = 3. * p;
+              const double m = model.mass[3 * e];
+              dt = std::min(dt, 2. / std::sqrt(2. * k / m));
+            }
+        }
+      stable_time_step = dt;
+    }
+
+    // ------------------------------------------------------------- contact
+    void
+    ExplicitSolver::update_contact_candidates()
+    {
+      // active: elements with a free edge, and their intact neighbours
+      std::vector<unsigned char> active(model.n_elements, 0);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        for (unsigned int k = 0; k < 3; ++k)
+          if (model.intact_neighbour(e, k) < 0)
+            {
+              active[e] = 1;
+              break;
+            }
+      std::vector<unsigned char> with_neighbours = active;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        if (active[e])
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              const int n = model.intact_neighbour(e, k);
+              if (n >= 0)
+                with_neighbours[n] = 1;
+            }
+      active_elements.clear();
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        if (with_neighbours[e])
+          active_elements.push_back(e);
+
+      const auto excluded = [&](const unsigned int a, const unsigned int b) {
+        if (model.body[a] == model.body[b] && model.body[a] != 255 &&
+            body_motion[model.body[a]] != DiscreteBody::Motion::free)
+          return true;
+        return model.joined(a, b);
+      };
+      linked_cells.rebuild(
+        model.x, model.y, active_elements, contact_buffer, excluded, pairs);
+      pair_force.assign(12 * pairs.size(), 0.);
+      pair_friction.assign(pairs.size(), 0.);
+      element_pair_start.assign(model.n_elements + 1, 0);
+      for (const auto &p : pairs)
+        {
+          ++element_pair_start[p.first + 1];
+          ++element_pair_start[p.second + 1];
+        }
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        element_pair_start[e + 1] += element_pair_start[e];
+      element_pair_entries.resize(2 * pairs.size());
+      std::vector<unsigned int> fill(element_pair_start.begin(),
+                                     element_pair_start.end() - 1);
+      for (unsigned int p = 0; p < pairs.size(); ++p)
+        {
+          element_pair_entries[fill[pairs[p].first]++]  = 2 * p;
+          element_pair_entries[fill[pairs[p].second]++] = 2 * p + 1;
+        }
+      travel_since_search   = 0.;
+      contact_search_needed = false;
+      ++n_contact_searches;
+    }
+
+    void
+    ExplicitSolver::compute_contact_forces()
+    {
+      if (pairs.empty())
+        return;
+      const double  p_n = contact_penalty, p_t = contact_tangential_penalty;
+      const double  mu  = friction_coefficient;
+      const double  dt  = time_step;
+      DiscreteModel &m  = model;
+      for_each_chunk(
+        arena_for(n_threads),
+        pairs.size(),
+        256,
+        [&](const std::size_t begin, const std::size_t end, const std::size_t) {
+          for (std::size_t p = begin; p < end; ++p)
+            {
+              ContactPair &pair  = pairs[p];
+              double      *force = &pair_force[12 * p];
+              for (unsigned int i = 0; i < 12; ++i)
+                force[i] = 0.;
+              double dissipated = 0.;
+              for (unsigned int direction = 0; direction < 2; ++direction)
+                {
+                  const unsigned int c = direction == 0 ? pair.first : pair.second;
+                  const unsigned int t = direction == 0 ? pair.second : pair.first;
+                  double *fc = force + 6 * direction;
+                  double *ft = force + 6 * (1 - direction);
+                  const double *tx = &m.x[3 * t], *ty = &m.y[3 * t];
+                  for (unsigned int edge = 0; edge < 3; ++edge)
+                    {
+                      double            &slip = pair.slip[3 * direction + edge];
+                      const unsigned int a = 3 * c + edge, b = 3 * c + (edge + 1) % 3;
+                      EdgePotentialIntegrals I;
+                      if (!edge_potential_integrals(
+                            m.x[a], m.y[a], m.x[b], m.y[b], tx, ty, I))
+                        {
+                          slip = 0.;
+                          continue;
+                        }
+                      const double ex = m.x[b] - m.x[a], ey = m.y[b] - m.y[a];
+                      const double L  = std::sqrt(ex * ex + ey * ey);
+                      const double tx_u = ex / L, ty_u = ey / L;
+                      const double nx = ty_u, ny = -tx_u; // outward of c
+                      const double scale = p_n * L;
+                      // normal: on c -p L int phi_t N n, reaction on t
+                      const double fa = scale * I.phi_start, fb = scale * I.phi_end;
+                      const unsigned int ka = edge, kb = (edge + 1) % 3;
+                      fc[2 * ka] -= fa * nx;
+                      fc[2 * ka + 1] -= fa * ny;
+                      fc[2 * kb] -= fb * nx;
+                      fc[2 * kb + 1] -= fb * ny;
+                      for (unsigned int k = 0; k < 3; ++k)
+                        {
+                          ft[2 * k] += scale * I.phi_target[k] * nx;
+                          ft[2 * k + 1] += scale * I.phi_target[k] * ny;
+                        }
+                      // Coulomb friction with elastic slip history
+                      const double normal_force = fa + fb;
+                      if (!(normal_force > 0.) || mu <= 0.)
+                        {
+                          slip = 0.;
+                          continue;
+                        }
+                      const double total = I.total();
+                      const double u     = I.phi_end / total;
+                      const double lt[3] = {I.phi_target[0] / total,
+                                            I.phi_target[1] / total,
+                                            I.phi_target[2] / total};
+                      const double vcx = (1. - u) * m.vx[a] + u * m.vx[b];
+                      const double vcy = (1. - u) * m.vy[a] + u * m.vy[b];
+                      double       vtx = 0., vty = 0.;
+                      for (unsigned int k = 0; k < 3; ++k)
+                        {
+                          vtx += lt[k] * m.vx[3 * t + k];
+                          vty += lt[k] * m.vy[3 * t + k];
+                        }
+                      const double rate =
+                        (vcx - vtx) * tx_u + (vcy - vty) * ty_u;
+                      const double trial = slip + rate * dt;
+                      const double stiffness = p_t * I.clipped_length_fraction;
+                      double       tangential = -stiffness * trial;
+                      const double limit      = mu * normal_force;
+                      double       new_slip   = trial;
+                      if (std::abs(tangential) > limit)
+                        {
+                          tangential = trial > 0. ? -limit : limit;
+                          new_slip   = -tangential / stiffness;
+                          dissipated += limit * (std::abs(trial) - std::abs(new_slip));
+                        }
+                      slip = new_slip;
+                      fc[2 * ka] += (1. - u) * tangential * tx_u;
+                      fc[2 * ka + 1] += (1. - u) * tangential * ty_u;
+                      fc[2 * kb] += u * tangential * tx_u;
+                      fc[2 * kb + 1] += u * tangential * ty_u;
+                      for (unsigned int k = 0; k < 3; ++k)
+                        {
+                          ft[2 * k] -= lt[k] * tangential * tx_u;
+                          ft[2 * k + 1] -= lt[k] * tangential * ty_u;
+                        }
+                    }
+                }
+              pair_friction[p] = dissipated;
+            }
+        });
+      // friction dissipation, summed in pair order
+      double sum = 0.;
+      for (const double d : pair_friction)
+        sum += d;
+      balance.friction_dissipation += sum;
+    }
+
+    // -------------------------------------------------------------- joints
+    template <SofteningLaw law>
+    void
+    ExplicitSolver::compute_joint_forces_with()
+    {
+      DiscreteModel     &m = model;
+      const double       t = time;
+      std::vector<char> &broke_in_chunk = joint_chunk_broke;
+      broke_in_chunk.assign((m.n_joints + chunk_size - 1) / chunk_size, 0);
+      for_each_chunk(
+        arena_for(n_threads),
+        m.n_joints,
+        chunk_size,
+        [&](const std::size_t begin, const std::size_t end, const std::size_t c) {
+          // Gauss points on the edge, parameter u in [0, 1]
+          constexpr double g0 = 0.21132486540518713, g1 = 0.78867513459481287;
+          for (std::size_t j = begin; j < end; ++j)
+            {
+              double *f = &m.joint_force[8 * j];
+              if (m.joint_status[j] != JointStatus::intact)
+                continue;
+              const unsigned int *n  = &m.joint_nodes[4 * j];
+              const double        d0x = m.x[n[2]] - m.x[n[0]];
+              const double        d0y = m.y[n[2]] - m.y[n[0]];
+              const double        d1x = m.x[n[3]] - m.x[n[1]];
+              const double        d1y = m.y[n[3]] - m.y[n[1]];
+              const double ex = 0.5 * (m.x[n[1]] + m.x[n[3]] - m.x[n[0]] - m.x[n[2]]);
+              const double ey = 0.5 * (m.y[n[1]] + m.y[n[3]] - m.y[n[0]] - m.y[n[2]]);
+              const double L  = std::sqrt(ex * ex + ey * ey);
+              const double tx = ex / L, ty = ey / L;
+              const double nx = ty, ny = -tx; // outward of element A
+              const JointConstants &k = m.joint_constants[j];
+              double fa0x = 0, fa0y = 0, fa1x = 0, fa1y = 0;
+              double last_do = 0., last_ds = 0.;
+              for (unsigned int q = 0; q < 2; ++q)
+                {
+                  const double u  = q == 0 ? g0 : g1;
+                  const double dx = (1. - u) * d0x + u * d1x;
+                  const double dy = (1. - u) * d0y + u * d1y;
+                  const double o  = dx * nx + dy * ny;
+                  const double s  = dx * tx + dy * ty;
+                  const JointTraction tr =
+                    cohesive_traction<law>(o, s, k, m.joint_damage[2 * j + q]);
+                  last_do = std::max(last_do, tr.d_opening);
+                  last_ds = std::max(last_ds, tr.d_slip);
+                  // traction on A (pulls A toward B), weight L/2
+                  const double w  = 0.5 * L;
+                  const double px = w * (tr.normal * nx + tr.shear * tx);
+                  const double py = w * (tr.normal * ny + tr.shear * ty);
+                  fa0x += (1. - u) * px;
+                  fa0y += (1. - u) * py;
+                  fa1x += u * px;
+                  fa1y += u * py;
+                }
+              if (m.joint_damage[2 * j] >= 1. && m.joint_damage[2 * j + 1] >= 1.)
+                {
+                  const double ratio =
+                    last_do * last_do /
+                    std::max(1e-300, last_do * last_do + last_ds * last_ds);
+                  m.joint_status[j] = ratio > 0.9 ? JointStatus::mode_I :
+                                      ratio < 0.1 ? JointStatus::mode_II :
+                                                    JointStatus::mixed;
+                  m.joint_break_time[j] = t;
+                  for (unsigned int i = 0; i < 8; ++i)
+                    f[i] = 0.;
+                  broke_in_chunk[c] = 1;
+                  continue;
+                }
+              f[0] = fa0x;
+              f[1] = fa0y;
+              f[2] = fa1x;
+              f[3] = fa1y;
+              f[4] = -fa0x;
+              f[5] = -fa0y;
+              f[6] = -fa1x;
+              f[7] = -fa1y;
+            }
+        });
+      for (const char b : broke_in_chunk)
+        if (b)
+          {
+            joints_broke          = true;
+            contact_search_needed = true;
+          }
+    }
+
+    void
+    ExplicitSolver::compute_joint_forces()
+    {
+      if (softening_law == SofteningLaw::linear)
+        compute_joint_forces_with<SofteningLaw::linear>();
+      else
+        compute_joint_forces_with<SofteningLaw::munjiza>();
+    }
+
+    // ---------------------------------------------------- the fused update
+    void
+    ExplicitSolver::update_nodes()
+    {
+      DiscreteModel     &m  = model;
+      const double       dt = time_step;
+      const unsigned int n_bodies = body_motion.size();
+      const unsigned int stride   = n_sums + 2 * max_bodies;
+      const std::size_t  n_chunks = (m.n_elements + chunk_size - 1) / chunk_size;
+      chunk_sums.assign(n_chunks * stride, 0.);
+      const bool have_contact = !pairs.empty();
+      for_each_chunk(
+        arena_for(n_threads),
+        m.n_elements,
+        chunk_size,
+        [&](const std::size_t begin, const std::size_t end, const std::size_t c) {
+          double *sums = &chunk_sums[c * stride];
+          double  w_elastic = 0., w_viscous = 0., w_joint = 0., w_contact = 0.,
+                 w_external = 0., max_speed = 0.;
+          for (std::size_t e = begin; e < end; ++e)
+            {
+              const unsigned int n0 = 3 * e;
+              const double *X = &m.x[n0], *Y = &m.y[n0];
+              const double *VX = &m.vx[n0], *VY = &m.vy[n0];
+              const double *ib = &m.inverse_basis[4 * e];
+              const Matrix2 Fi_inv{ib[0], ib[1], ib[2], ib[3]};
+              const Matrix2 F =
+                multiply(element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2]), Fi_inv);
+              const double s     = m.thermal_stretch[e];
+              const double inv_s = 1. / s;
+              const Matrix2 Fe{F.a00 * inv_s, F.a01 * inv_s, F.a10 * inv_s, F.a11 * inv_s};
+              const Stress2 sigma = elastic_stress(Fe, solid[m.material[e]].lame);
+              // viscous stress 2 eta sym(dF/dt F^-1)
+              const Matrix2 Fdot = multiply(
+                element_basis(VX[0], VY[0], VX[1], VY[1], VX[2], VY[2]), Fi_inv);
+              const Matrix2 L   = multiply(Fdot, inverse(F));
+              const double  eta = viscosity[e];
+              const Stress2 sigma_v{2. * eta * L.a00,
+                                    2. * eta * L.a11,
+                                    eta * (L.a01 + L.a10)};
+              double f_el[6], f_v[6];
+              nodal_forces(sigma, X[0], Y[0], X[1], Y[1], X[2], Y[2], f_el);
+              nodal_forces(sigma_v, X[0], Y[0], X[1], Y[1], X[2], Y[2], f_v);
+              m.stress[3 * e]     = sigma.xx + sigma_v.xx;
+              m.stress[3 * e + 1] = sigma.yy + sigma_v.yy;
+              m.stress[3 * e + 2] = sigma.xy + sigma_v.xy;
+
+              double f_contact[6] = {0., 0., 0., 0., 0., 0.};
+              if (have_contact)
+                for (unsigned int p = element_pair_start[e];
+                     p < element_pair_start[e + 1];
+                     ++p)
+                  {
+                    const unsigned int entry = element_pair_entries[p];
+                    const double *pf = &pair_force[12 * (entry / 2) + 6 * (entry % 2)];
+                    for (unsigned int i = 0; i < 6; ++i)
+                      f_contact[i] += pf[i];
+                  }
+              for (unsigned int k = 0; k < 3; ++k)
+                {
+                  const unsigned int node = n0 + k;
+                  // joints: node k starts edge k and ends edge k+2
+                  double     fjx = 0., fjy = 0.;
+                  const int start_code = m.edge_joint[n0 + k];
+                  if (start_code >= 0)
+                    {
+                      const double *jf = &m.joint_force[8 * (start_code / 2)];
+                      const unsigned int slot = start_code % 2 == 0 ? 0 : 3;
+                      fjx += jf[2 * slot];
+                      fjy += jf[2 * slot + 1];
+                    }
+                  const int end_code = m.edge_joint[n0 + (k + 2) % 3];
+                  if (end_code >= 0)
+                    {
+                      const double *jf = &m.joint_force[8 * (end_code / 2)];
+                      const unsigned int slot = end_code % 2 == 0 ? 1 : 2;
+                      fjx += jf[2 * slot];
+                      fjy += jf[2 * slot + 1];
+                    }
+                  const double mass = m.mass[node];
+                  const double fgx = mass * gravity[0], fgy = mass * gravity[1];
+                  const double fx = f_el[2 * k] + f_v[2 * k] + fjx + f_contact[2 * k] + fgx;
+                  const double fy = f_el[2 * k + 1] + f_v[2 * k + 1] + fjy +
+                                    f_contact[2 * k + 1] + fgy;
+                  const double vx_old = m.vx[node], vy_old = m.vy[node];
+                  double       vx_new, vy_new;
+                  const unsigned char b = node_body[node];
+                  if (b == 255 || body_motion[b] == DiscreteBody::Motion::free)
+                    {
+                      vx_new = vx_old + dt * fx / mass;
+                      vy_new = vy_old + dt * fy / mass;
+                    }
+                  else
+                    {
+                      if (body_motion[b] == DiscreteBody::Motion::fixed)
+                        vx_new = vy_new = 0.;
+                      else
+                        {
+                          vx_new = body_velocity_now[b][0];
+                          vy_new = body_velocity_now[b][1];
+                        }
+                      // reaction of the support or driver
+                      const double rx = mass * (vx_new - vx_old) / dt - fx;
+                      const double ry = mass * (vy_new - vy_old) / dt - fy;
+                      w_external += 0.5 * dt * (rx * (vx_old + vx_new) + ry * (vy_old + vy_new));
+                      sums[n_sums + 2 * b] += rx;
+                      sums[n_sums + 2 * b + 1] += ry;
+                    }
+                  const double ax = 0.5 * dt * (vx_old + vx_new);
+                  const double ay = 0.5 * dt * (vy_old + vy_new);
+                  w_elastic += f_el[2 * k] * ax + f_el[2 * k + 1] * ay;
+                  w_viscous += f_v[2 * k] * ax + f_v[2 * k + 1] * ay;
+                  w_joint += fjx * ax + fjy * ay;
+                  w_contact += f_contact[2 * k] * ax + f_contact[2 * k + 1] * ay;
+                  w_external += fgx * ax + fgy * ay;
+                  m.vx[node] = vx_new;
+                  m.vy[node] = vy_new;
+                  m.x[node] += dt * vx_new;
+                  m.y[node] += dt * vy_new;
+                  max_speed = std::max(max_speed, vx_new * vx_new + vy_new * vy_new);
+                }
+            }
+          sums[0] = w_elastic;
+          sums[1] = w_viscous;
+          sums[2] = w_joint;
+          sums[3] = w_contact;
+          sums[4] = w_external;
+          sums[5] = max_speed;
+        });
+      double max_speed = 0.;
+      for (auto &r : body_reaction)
+        r = {{0., 0.}};
+      for (std::size_t c = 0; c < n_chunks; ++c)
+        {
+          const double *sums = &chunk_sums[c * stride];
+          balance.elastic_work -= sums[0];
+          balance.viscous_dissipation -= sums[1];
+          balance.joint_work -= sums[2];
+          balance.contact_work -= sums[3];
+          balance.external_work += sums[4];
+          max_speed = std::max(max_speed, sums[5]);
+          for (unsigned int b = 0; b < n_bodies; ++b)
+            {
+              body_reaction[b][0] += sums[n_sums + 2 * b];
+              body_reaction[b][1] += sums[n_sums + 2 * b + 1];
+            }
+        }
+      travel_since_search += std::sqrt(max_speed) * dt;
+      if (2. * travel_since_search > contact_buffer)
+        contact_search_needed = true;
+    }
+
+    void
+    ExplicitSolver::step()
+    {
+      // driven bodies move with their velocity at mid step
+      const Point<2> mid_time(0., 0.);
+      for (unsigned int b = 0; b < body_motion.size(); ++b)
+        if (body_motion[b] == DiscreteBody::Motion::velocity)
+          {
+            body_velocity[2 * b]->set_time(time + 0.5 * time_step);
+            body_velocity[2 * b + 1]->set_time(time + 0.5 * time_step);
+            body_velocity_now[b] = {{body_velocity[2 * b]->value(mid_time),
+                                     body_velocity[2 * b + 1]->value(mid_time)}};
+          }
+      if (contact_enabled)
+        {
+          if (contact_search_needed)
+            update_contact_candidates();
+          compute_contact_forces();
+        }
+      compute_joint_forces();
+      update_nodes();
+      time += time_step;
+      ++step_number;
+    }
+
+    EnergyBalance
+    ExplicitSolver::energy()
+    {
+      double kinetic = 0., strain = 0., stored = 0.;
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        kinetic += 0.5 * model.mass[n] *
+                   (model.vx[n] * model.vx[n] + model.vy[n] * model.vy[n]);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          const unsigned int n0 = 3 * e;
+          const double      *ib = &model.inverse_basis[4 * e];
+          const Matrix2      F  = multiply(element_basis(model.x[n0],
+                                                   model.y[n0],
+                                                   model.x[n0 + 1],
+                                                   model.y[n0 + 1],
+                                                   model.x[n0 + 2],
+                                                   model.y[n0 + 2]),
+                                     Matrix2{ib[0], ib[1], ib[2], ib[3]});
+          const double s = model.thermal_stretch[e];
+          const Matrix2 Fe{F.a00 / s, F.a01 / s, F.a10 / s, F.a11 / s};
+          strain += model.reference_area[e] * s * s *
+                    strain_energy_density(Fe, solid[model.material[e]].lame);
+        }
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        if (model.joint_status[j] == JointStatus::intact &&
+            model.joint_damage[2 * j] == 0. && model.joint_damage[2 * j + 1] == 0.)
+          {
+            const unsigned int *n = &model.joint_nodes[4 * j];
+            const double ex = model.x[n[1]] - model.x[n[0]];
+            const double ey = model.y[n[1]] - model.y[n[0]];
+            const double L  = std::hypot(ex, ey);
+            const double tx = ex / L, ty = ey / L;
+            const double d0x = model.x[n[2]] - model.x[n[0]];
+            const double d0y = model.y[n[2]] - model.y[n[0]];
+            const double d1x = model.x[n[3]] - model.x[n[1]];
+            const double d1y = model.y[n[3]] - model.y[n[1]];
+            // the two Gauss points of the force computation
+            for (const double u : {0.21132486540518713, 0.78867513459481287})
+              {
+                const double dx = (1. - u) * d0x + u * d1x;
+                const double dy = (1. - u) * d0y + u * d1y;
+                stored += 0.5 * L *
+                          stored_joint_energy(dx * ty - dy * tx,
+                                              dx * tx + dy * ty,
+                                              model.joint_constants[j]);
+              }
+          }
+      balance.kinetic      = kinetic;
+      balance.strain       = strain;
+      balance.joint_stored = stored;
+      return balance;
+    }
+
+    // -------------------------------------------------------------- output
+    void
+    ExplicitSolver::write_history_row()
+    {
+      energy();
+      std::ostringstream row;
+      row << std::setprecision(10) << time << ',' << step_number << ','
+          << balance.kinetic << ',' << balance.strain << ','
+          << balance.joint_work << ',' << balance.contact_work << ','
+          << balance.friction_dissipation << ','
+          << balance.viscous_dissipation << ',' << balance.external_work
+          << ',' << balance.balance_error() << ',' << model.n_broken_joints();
+      for (const auto &r : body_reaction)
+        row << ',' << r[0] << ',' << r[1];
+      row << '\n';
+      history_csv->append(row.str());
+    }
+
+    void
+    ExplicitSolver::write_output()
+    {
+      if (parameters.output.write_vtu)
+        {
+          solution_series->write(time, discrete_solution_vtu(model));
+          crack_series->write(time, crack_vtu(model));
+        }
+      auto rows = [&](const std::vector<Sample> &samples) {
+        std::ostringstream out;
+        out << std::setprecision(10);
+        for (const auto &s : samples)
+          {
+            double ux = 0., uy = 0.;
+            for (unsigned int k = 0; k < 3; ++k)
+              {
+                const unsigned int n = 3 * s.element + k;
+                ux += s.lambda[k] * (model.x[n] - model.x_ref[n]);
+                uy += s.lambda[k] * (model.y[n] - model.y_ref[n]);
+              }
+            out << time << ',' << s.name << ',' << s.x << ',' << s.y << ','
+                << ux << ',' << uy << ',' << model.stress[3 * s.element] << ','
+                << model.stress[3 * s.element + 1] << ','
+                << model.stress[3 * s.element + 2] << '\n';
+          }
+        return out.str();
+      };
+      if (!probe_samples.empty())
+        probes_csv->append(rows(probe_samples));
+      if (!line_samples.empty())
+        lines_csv->append(rows(line_samples));
+    }
+
+    void
+    ExplicitSolver::write_summary(const bool finished) const
+    {
+      JsonObject energies;
+      energies.add("kinetic", balance.kinetic)
+        .add("strain", balance.strain)
+        .add("initial_kinetic", balance.initial_kinetic)
+        .add("initial_strain", balance.initial_strain)
+        .add("joint_work", balance.joint_work)
+        .add("joint_stored", balance.joint_stored)
+        .add("joint_dissipated", balance.joint_work - balance.joint_stored)
+        .add("contact_work", balance.contact_work)
+        .add("contact_penalty", balance.contact_work - balance.friction_dissipation)
+        .add("friction_dissipation", balance.friction_dissipation)
+        .add("viscous_dissipation", balance.viscous_dissipation)
+        .add("external_work", balance.external_work)
+        .add("elastic_work", balance.elastic_work)
+        .add("balance_error", balance.balance_error())
+        .add("relative_balance_error",
+             std::abs(balance.balance_error()) / balance.scale());
+      unsigned int by_mode[4] = {0, 0, 0, 0};
+      for (const auto s : model.joint_status)
+        ++by_mode[static_cast<unsigned int>(s)];
+      double px = 0., py = 0.;
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        {
+          px += model.mass[n] * model.vx[n];
+          py += model.mass[n] * model.vy[n];
+        }
+      std::vector<JsonObject> reactions;
+      for (unsigned int b = 0; b < body_reaction.size(); ++b)
+        {
+          JsonObject r;
+          r.add("body", parameters.discrete_bodies.bodies[b].name)
+            .add("force_x", body_reaction[b][0])
+            .add("force_y", body_reaction[b][1]);
+          reactions.push_back(r);
+        }
+      JsonObject summary;
+      summary.add("model", std::string("discrete mechanics"))
+        .add("finished", finished)
+        .add("elements", model.n_elements)
+        .add("nodes", model.n_nodes)
+        .add("joints", model.n_joints)
+        .add("steps", static_cast<long long>(step_number))
+        .add("end_time", time)
+        .add("time_step", time_step)
+        .add("stable_time_step", stable_time_step)
+        .add("threads", n_threads)
+        .add("wall_time", wall_time)
+        .add("element_steps_per_second",
+             wall_time > 0. ? model.n_elements * double(step_number) / wall_time :
+                              0.)
+        .add("broken_joints", model.n_broken_joints())
+        .add("broken_mode_I", by_mode[1])
+        .add("broken_mode_II", by_mode[2])
+        .add("broken_mixed", by_mode[3])
+        .add("cracks", model.n_cracks())
+        .add("contact_searches", static_cast<long long>(n_contact_searches))
+        .add("contact_pairs", static_cast<unsigned int>(pairs.size()))
+        .add("momentum_x", px)
+        .add("momentum_y", py)
+        .add("energy", energies)
+        .add("body_reactions", reactions);
+      write_file_atomically(parameters.output.directory + "/summary.json",
+                            summary.str() + "\n");
+    }
+
+    void
+    ExplicitSolver::run()
+    {
+      check_input();
+      const std::string &folder = parameters.output.directory;
+      solution_series = std::make_unique<VtuSeries>(folder, "solution");
+      crack_series    = std::make_unique<VtuSeries>(folder, "cracks");
+      std::string header =
+        "time,step,kinetic,strain,joint_work,contact_work,friction_dissipation,"
+        "viscous_dissipation,external_work,balance_error,broken_joints";
+      for (unsigned int b = 0; b < body_motion.size(); ++b)
+        header += ",body" + std::to_string(b + 1) + "_fx,body" +
+                  std::to_string(b + 1) + "_fy";
+      history_csv = std::make_unique<CsvSeries>(folder + "/history.csv",
+                                                header + "\n",
+                                                communicator);
+      const std::string monitor_header = "time,name,x,y,ux,uy,sxx,syy,sxy\n";
+      if (!probe_samples.empty())
+        probes_csv = std::make_unique<CsvSeries>(folder + "/probes.csv",
+                                                 monitor_header,
+                                                 communicator);
+      if (!line_samples.empty())
+        lines_csv = std::make_unique<CsvSeries>(folder + "/lines.csv",
+                                                monitor_header,
+                                                communicator);
+
+      const double start = time, end = parameters.time.end_time;
+      output_times.clear();
+      for (const double t : parameters.output.times)
+        if (t > start && t < end)
+          output_times.push_back(t);
+      if (parameters.output.interval > 0.)
+        for (double t = start + parameters.output.interval; t < end;
+             t += parameters.output.interval)
+          output_times.push_back(t);
+      output_times.push_back(end);
+      std::sort(output_times.begin(), output_times.end());
+      history_interval = (end - start) / 1000.;
+      next_history     = start + history_interval;
+
+      energy();
+      balance.initial_kinetic = balance.kinetic;
+      balance.initial_strain  = balance.strain;
+      write_output();
+      write_history_row();
+
+      ProgressReporter progress(parameters.output.progress_interval,
+                                start,
+                                end,
+                                true);
+      const unsigned long max_steps = parameters.discrete_mechanics.max_steps;
+      while (time < end - 0.5 * time_step &&
+             (max_steps == 0 || step_number < max_steps))
+        {
+          step();
+          if (time >= next_history - 0.5 * time_step)
+            {
+              write_history_row();
+              next_history += history_interval;
+            }
+          while (next_output < output_times.size() &&
+                 time >= output_times[next_output] - 0.5 * time_step)
+            {
+              energy();
+              write_output();
+              ++next_output;
+            }
+          if ((step_number & 255) == 0)
+            {
+              wall_time = progress.elapsed();
+              progress.update(step_number,
+                              time,
+                              "broken joints " +
+                                std::to_string(model.n_broken_joints()));
+            }
+        }
+      wall_time = progress.elapsed();
+      energy();
+      write_history_row();
+      if (next_output < output_times.size())
+        write_output();
+      write_summary(true);
+      std::cerr << "[tmfdem] discrete mechanics: " << step_number
+                << " steps of " << time_step << " s to t = " << time << " s, "
+                << model.n_broken_joints() << " broken joints, "
+                << model.n_cracks() << " cracks, energy balance error "
+                << std::abs(balance.balance_error()) / balance.scale() * 100.
+                << " %\n";
+    }
+  } // namespace discrete
+} // namespace tmfdem
