@@ -76,7 +76,7 @@ namespace tmfdem
                        std::abs(joint_work),
                        std::abs(contact_work),
                        std::abs(viscous_dissipation),
-                       1e-300});
+                       1e-9}); // [J/m]: below this nothing happened
     }
 
     ExplicitSolver::ExplicitSolver(const Parameters &parameters,

@@ -1,0 +1,74 @@
+#!/usr/bin/env python3
+"""Discrete dynamics checks.
+  incline:   a block on a 30-degree incline slides with a = g (sin - mu cos)
+             within 1 % (mu = 0.3) and does not slide for mu = 0.6 >= tan 30.
+  collision: two blocks collide and fracture: momentum conserved to
+             round-off, energy balance error below 1 %.
+  threads:   the collision with 1 and 2 threads gives identical outputs."""
+import filecmp
+import math
+import os
+import sys
+
+import numpy as np
+
+from common import run, summary, check
+
+binary, out, which = sys.argv[1], sys.argv[2], sys.argv[3]
+prm_dir = os.path.join(os.path.dirname(__file__), "..", "..", "prm")
+ok = True
+
+if which == "incline":
+    g, theta = 9.81, math.radians(30.0)
+    for mu in (0.3, 0.6):
+        folder = os.path.join(out, f"mu_{mu}")
+        run(binary, os.path.join(prm_dir, "block_on_incline.prm"), folder,
+            f"Discrete mechanics/Friction coefficient={mu}")
+        d = np.genfromtxt(os.path.join(folder, "probes.csv"), delimiter=",",
+                          names=True, dtype=None, encoding=None)
+        t, ux = d["time"], d["ux"]
+        if mu < math.tan(theta):
+            late = t >= 0.02
+            a = 2.0 * np.polyfit(t[late], ux[late], 2)[0]
+            exact = g * (math.sin(theta) - mu * math.cos(theta))
+            error = abs(a / exact - 1.0)
+            ok &= check(error < 0.01, f"mu = {mu}: a = {a:.6f} m/s^2 vs "
+                        f"g (sin - mu cos) = {exact:.6f}, error {100 * error:.4f} % (< 1 %)")
+        else:
+            drift = np.max(np.abs(ux))
+            ok &= check(drift < 1e-5, f"mu = {mu} >= tan 30: block sticks, "
+                        f"max |ux| = {drift:.3e} m (< 1e-5 m, elastic stick only)")
+
+elif which == "collision":
+    folder = os.path.join(out, "collision")
+    run(binary, os.path.join(prm_dir, "two_blocks_collision.prm"), folder)
+    s = summary(folder)
+    # initial momentum: both bodies 0.01 m^2 x 2500 kg/m^3 = 25 kg/m
+    p0x, p0y = 25.0 * 8.0 - 25.0 * 2.0, 25.0 * 0.5
+    dp = math.hypot(s["momentum_x"] - p0x, s["momentum_y"] - p0y)
+    ok &= check(dp < 1e-9 * math.hypot(p0x, p0y),
+                f"momentum ({s['momentum_x']:.15g}, {s['momentum_y']:.15g}) vs "
+                f"({p0x}, {p0y}): change {dp:.2e} (round-off)")
+    ok &= check(s["broken_joints"] > 10 and s["cracks"] >= 1,
+                f"the impact fractures: {s['broken_joints']} broken joints, "
+                f"{s['cracks']} cracks")
+    rel = s["energy"]["relative_balance_error"]
+    ok &= check(rel < 0.01, f"energy balance error {100 * rel:.5f} % (< 1 %)")
+
+elif which == "threads":
+    folders = []
+    for threads in (1, 2):
+        folder = os.path.join(out, f"threads_{threads}")
+        run(binary, os.path.join(prm_dir, "two_blocks_collision.prm"), folder,
+            f"Discrete mechanics/Threads={threads}")
+        folders.append(folder)
+    names = sorted(f for f in os.listdir(folders[0])
+                   if f.endswith(".vtu") or f == "history.csv")
+    same = all(filecmp.cmp(os.path.join(folders[0], f),
+                           os.path.join(folders[1], f), shallow=False) for f in names)
+    s1, s2 = summary(folders[0]), summary(folders[1])
+    ok &= check(same and len(names) > 2,
+                f"{len(names)} output files identical with 1 and 2 threads")
+    ok &= check(s1["energy"] == s2["energy"] and s1["broken_joints"] == s2["broken_joints"],
+                "summary energies and broken joints identical")
+sys.exit(0 if ok else 1)
