@@ -4,11 +4,12 @@
    F_e = I/(1 + alpha dT) to 1e-8 (both idealisations), and finite minus
    small strain equals the exact difference of doc/theory.md (to 1e-6 of
    that difference); its leading term is (lambda - mu) s^2;
-2. a rigid rotation of the boundary by 90 degrees in 10 load steps gives no
-   stress (below 1e-9 E) and moves the corner (2, 2) to (-2, 2);
+2. a rigid rotation by 90 degrees of the left edge (the other edges free),
+   in 10 load steps, turns the whole sheet without stress (below 1e-9 E)
+   and moves the corner (2, 2) to (-2, 2); Newton (whose first, linearised
+   step stretches the sheet) converges quadratically in every step;
 3. the same rotation combined with free thermal expansion s = 0.05
-   (u = (1 + s) R X - X on the boundary) gives no stress either;
-4. the Newton history is in summary.json and converges quadratically."""
+   (u = (1 + s) R X - X on the left edge) gives no stress either."""
 import sys
 import numpy as np
 from common import run, summary, check
@@ -45,18 +46,13 @@ for idealisation in ("plane stress", "plane strain"):
     ok &= check(err_d < 1e-6, f"{idealisation}: finite - small = {difference / 1e6:.6f} MPa vs theory "
                 f"{exact_difference / 1e6:.6f} MPa (relative error {err_d:.1e}); leading term "
                 f"(lambda - mu) s^2 = {leading / 1e6:.4f} MPa, next -2 lambda s^3 = {-2 * lam * s**3 / 1e6:.4f} MPa")
-    history = summary(finite_dir)["newton_history"]
-    last_step = [h for h in history if h["time"] == max(h["time"] for h in history)]
-    residuals = [h["residual"] for h in last_step]
-    print(f"  Newton residuals at t = 1 ({idealisation}):", ", ".join(f"{r:.2e}" for r in residuals))
-    ok &= check(len(last_step) - 1 <= 6, f"{idealisation}: Newton converges in {len(last_step) - 1} iterations <= 6")
 
 rotation = "(pi/2)*t"
 for name, stretch in (("rotation", "1"), ("heated_rotation", "(1 + 0.05*t)")):
     folder = f"{out}/{name}"
     settings = ["Mechanics/Temperature=100*t" if name == "heated_rotation" else "Mechanics/Temperature=0",
                 "Time stepping/Time step=0.1",
-                "Mechanical boundary conditions/Condition 1/Boundary ids=0, 1, 2, 3",
+                "Mechanical boundary conditions/Condition 1/Boundary ids=0",
                 "Mechanical boundary conditions/Condition 1/Type=displacement",
                 f"Mechanical boundary conditions/Condition 1/Displacement x="
                 f"{stretch}*(cos({rotation})*x - sin({rotation})*y) - x",
@@ -70,6 +66,14 @@ for name, stretch in (("rotation", "1"), ("heated_rotation", "(1 + 0.05*t)")):
     corner = probe_values(folder)["corner"]
     k = 1.05 if name == "heated_rotation" else 1.0
     moved = np.array([2 + corner["ux"], 2 + corner["uy"]])
+    history = summary(folder)["newton_history"]
+    worst_iterations = 0
+    for t in sorted(set(h["time"] for h in history)):
+        residuals = [h["residual"] for h in history if h["time"] == t]
+        worst_iterations = max(worst_iterations, len(residuals) - 1)
+        if abs(t - 0.5) < 1e-12:
+            print(f"  {name}: Newton residuals at t = 0.5 [N/m]:", ", ".join(f"{r:.2e}" for r in residuals))
+    ok &= check(worst_iterations <= 8, f"{name}: Newton converges in at most {worst_iterations} iterations per load step (<= 8)")
     ok &= check(np.abs(moved - k * np.array([-2.0, 2.0])).max() < 1e-10,
                 f"{name}: corner (2, 2) moves to ({moved[0]:.12f}, {moved[1]:.12f})")
 sys.exit(0 if ok else 1)
