@@ -14,6 +14,11 @@ Point(4) = {-R, 0, 0, h}; Point(5) = {0, -R, 0, h};
 Circle(1) = {2, 1, 3}; Circle(2) = {3, 1, 4};
 Circle(3) = {4, 1, 5}; Circle(4) = {5, 1, 2};
 Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+// the loaded diameter is a mesh line, so that joints lie along it: a crack
+// can then run straight, and the joints there carry the full tensile stress
+// (on unstructured edges inclined by theta it is sigma (1 - 4 sin^2 theta))
+Line(5) = {5, 3};
+Line{5} In Surface{1};
 // top jaw: a seat of radius Rs over +-alpha, then flat shoulders
 Point(11) = {Rs * Sin(alpha), Rs * Cos(alpha), 0, hp};
 Point(12) = {-Rs * Sin(alpha), Rs * Cos(alpha), 0, hp};

@@ -3,11 +3,13 @@
 
     plot_case.py CASE OUTPUT_FOLDER PNG
 
-Reads OUTPUT_FOLDER/lines.csv (header time,name,x,y,T; one row per sample
-point per output time), evaluates the reference from tests/scripts/analytic.py
-on the same points, and draws two panels: T (computed as markers, reference
-as lines, one colour per time) and the error T - T_exact. The max abs error
-per time is printed as a table. To add a case, add an entry to CASES.
+Reads OUTPUT_FOLDER/lines.csv (header time,name,x,y,<fields>; one row per
+sample point per output time), evaluates the reference from
+tests/scripts/analytic.py on the same points, and draws two panels: the
+field (computed as markers, reference as lines, one colour per time or per
+field) and the error. The max abs error is printed as a table. To add a
+case, add an entry to CASES; `fields` lists (column, reference, label,
+scale) for cases other than temperature.
 """
 import os
 import sys
@@ -36,7 +38,68 @@ CASES = {
         abscissa=lambda x, y: np.hypot(x, y), xlabel="r [m]",
         steady=True,
         title="Thick cylinder, steady conduction: radial line"),
+    # thermoelastic cases: stresses in MPa (scale 1e-6)
+    "thick_cylinder_stress-continuum": dict(
+        line="radial",
+        fields=[("srr", lambda x, y, t: analytic.cylinder_stress(np.hypot(x, y))[0], "sigma_r", 1e-6),
+                ("stt", lambda x, y, t: analytic.cylinder_stress(np.hypot(x, y))[1], "sigma_theta", 1e-6)],
+        unit="MPa",
+        abscissa=lambda x, y: np.hypot(x, y), xlabel="r [m]",
+        steady=True,
+        title="Thick cylinder, steady thermal stress (plane strain, tension +)"),
+    "sheet_free_expansion-continuum": dict(
+        line="diagonal",
+        fields=[("ux", lambda x, y, t: 3e-6 * 100 * x, "u_x", 1e3),
+                ("uy", lambda x, y, t: 3e-6 * 100 * y, "u_y", 1e3),
+                ("sxx", lambda x, y, t: 0 * x, "sigma_xx in mPa (1e-3 Pa)", 1e3)],
+        unit="mm",
+        abscissa=lambda x, y: np.hypot(x, y), xlabel="distance along the diagonal [m]",
+        steady=True,
+        title="Free sheet, dT = 100 C (plane stress): u = alpha dT x, no stress"),
+    "sheet_restrained_expansion-continuum": dict(
+        line="diagonal",
+        fields=[("sxx", lambda x, y, t: -75.1e9 * 3e-6 * 100 / (1 - 0.311) + 0 * x, "sigma_xx", 1e-6),
+                ("syy", lambda x, y, t: -75.1e9 * 3e-6 * 100 / (1 - 0.311) + 0 * x, "sigma_yy", 1e-6)],
+        unit="MPa",
+        abscissa=lambda x, y: np.hypot(x, y), xlabel="distance along the diagonal [m]",
+        steady=True,
+        title="Restrained sheet, dT = 100 C (plane stress): -E alpha dT / (1 - nu)"),
 }
+
+
+def plot_fields(case, spec, by_time, png):
+    """Steady multi-field plot: each field computed (markers) against its
+    reference (line), and the errors."""
+    t = max(by_time)
+    x, y, cols = by_time[t]
+    s = spec["abscissa"](x, y)
+    order = np.argsort(s)
+    fig, (ax_f, ax_e) = plt.subplots(2, 1, figsize=(7, 7), sharex=True, dpi=150,
+                                     gridspec_kw=dict(height_ratios=[3, 2]))
+    colours = plt.cm.viridis(np.linspace(0, 0.8, len(spec["fields"])))
+    print(f"{case}: line '{spec['line']}', t = {t:g} s")
+    print(f"{'field':>8} {'points':>7} {'max |computed - exact|':>24} [{spec['unit']}]")
+    for (column, reference, label, scale), c in zip(spec["fields"], colours):
+        computed = cols[column][order] * scale
+        exact = reference(x, y, t)[order] * scale
+        err = computed - exact
+        print(f"{column:>8} {len(s):>7d} {np.max(np.abs(err)):>24.4g}")
+        ax_f.plot(s[order], exact, "-", color=c, lw=1.2)
+        ax_f.plot(s[order], computed, "o", color=c, ms=3, mfc="none",
+                  label=f"{label} (max err {np.max(np.abs(err)):.3g} {spec['unit']})")
+        ax_e.plot(s[order], err, "o-", color=c, ms=2, lw=0.8)
+    ax_f.plot([], [], "-", color="gray", label="analytic")
+    ax_f.set_ylabel(spec["unit"])
+    ax_f.set_title(spec["title"])
+    ax_f.legend(fontsize=8)
+    ax_f.grid(alpha=0.3)
+    ax_e.axhline(0, color="k", lw=0.5)
+    ax_e.set_xlabel(spec["xlabel"])
+    ax_e.set_ylabel(f"computed - exact [{spec['unit']}]")
+    ax_e.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(png)
+    print(f"wrote {png}")
 
 
 def main():
@@ -49,6 +112,9 @@ def main():
     if spec["line"] not in data:
         sys.exit(f"{folder}/lines.csv: no line '{spec['line']}' (have: {', '.join(data)})")
     by_time = data[spec["line"]]
+    if "fields" in spec:
+        plot_fields(case, spec, by_time, png)
+        return
     times = sorted(by_time)
     if spec["steady"]:
         times = times[-1:]

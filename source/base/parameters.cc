@@ -549,6 +549,236 @@ namespace tmfdem
     prm.leave_subsection();
   }
 
+  // ------------------------------------------------------------- Mechanics
+  void
+  MechanicsParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mechanics");
+    prm.declare_entry(
+      "Idealisation",
+      "plane stress",
+      Patterns::Selection("plane stress|plane strain"),
+      "2D idealisation, shared by the continuum and discrete layers. plane "
+      "stress (thin sheet, sigma_zz = 0): plane-stress Lame constants and "
+      "in-plane thermal strain alpha dT. plane strain (long body, eps_zz = "
+      "0): plane-strain Lame constants and in-plane thermal strain (1 + nu) "
+      "alpha dT.");
+    prm.declare_entry(
+      "Strain measure",
+      "small",
+      Patterns::Selection("small|finite"),
+      "small: linear thermoelasticity (one linear solve). finite: total "
+      "Lagrangian, F = F_T F_e with F_T = (1 + beta dT) I, Cauchy stress of "
+      "the paper's Eq. 44 evaluated with F_e, Newton's method with the "
+      "consistent tangent (doc/theory.md, chapter 3).");
+    prm.declare_entry(
+      "Temperature source",
+      "function",
+      Patterns::Selection("function|heat solver"),
+      "function: the temperature is Mechanics/Temperature, T(x, y, t), "
+      "solved at every time step (steady: once). heat solver: the continuum "
+      "heat solver runs on the same mesh (all heat entries apply, its own "
+      "outputs go to <Output/Directory>/heat) and the stress is solved at "
+      "each of its output times.");
+    prm.declare_entry("Temperature",
+                      "0",
+                      Patterns::Anything(),
+                      "Temperature source = function: T as a function of x, "
+                      "y [m] (reference coordinates) and t [s] [C]. The "
+                      "stress-free temperature is the material's Reference "
+                      "temperature.");
+    prm.declare_entry("Polynomial degree",
+                      "2",
+                      Patterns::Integer(1, 3),
+                      "Degree of the Lagrange elements for displacement [-].");
+    prm.declare_entry(
+      "Newton tolerance",
+      "1e-10",
+      Patterns::Double(1e-15, 1e-2),
+      "Newton stops when the residual norm falls below this times the "
+      "largest residual norm of the solve (or below 1e-13 E sqrt(area), "
+      "round-off) [-].");
+    prm.declare_entry("Newton maximum iterations",
+                      "25",
+                      Patterns::Integer(1, 1000),
+                      "Newton iterations per solve; not converging within "
+                      "them stops the run with exit status 2 [-].");
+    prm.declare_entry("Line search",
+                      "true",
+                      Patterns::Bool(),
+                      "Backtracking line search on the residual norm (step "
+                      "halved up to 10 times until the residual decreases).");
+    prm.declare_entry("Linear solver tolerance",
+                      "1e-12",
+                      Patterns::Double(1e-16, 1e-2),
+                      "CG (with algebraic multigrid) stops when the residual "
+                      "falls below this times the right-hand side norm [-].");
+    prm.declare_entry("Linear solver maximum iterations",
+                      "5000",
+                      Patterns::Integer(1),
+                      "CG iteration limit; exceeding it stops the run with "
+                      "exit status 2 [-].");
+    prm.declare_entry("Polar frame",
+                      "false",
+                      Patterns::Bool(),
+                      "Also write sigma_rr and sigma_tt (columns srr, stt) "
+                      "about Polar centre to probes.csv and lines.csv.");
+    prm.declare_entry("Polar centre",
+                      "0, 0",
+                      point_pattern,
+                      "Centre of the polar frame x, y [m].");
+    prm.declare_entry(
+      "Pinned points",
+      "",
+      Patterns::Anything(),
+      "Mesh vertices held against rigid-body motion without restraining "
+      "expansion: 'x, y: c; x, y: c' with c = x (u_x = 0), y (u_y = 0) or xy "
+      "(both), x, y in m. Each point must be a vertex of the coarse mesh. "
+      "Example, a free annulus of outer radius b: 'b, 0: y; -b, 0: y; 0, b: "
+      "x'.");
+    prm.leave_subsection();
+  }
+
+  void
+  MechanicsParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mechanics");
+    idealisation          = prm.get("Idealisation") == "plane stress" ?
+                              Idealisation::plane_stress :
+                              Idealisation::plane_strain;
+    strain_measure        = prm.get("Strain measure") == "small" ?
+                              StrainMeasure::small :
+                              StrainMeasure::finite;
+    temperature_source    = prm.get("Temperature source") == "function" ?
+                              TemperatureSource::function :
+                              TemperatureSource::heat_solver;
+    temperature           = prm.get("Temperature");
+    degree                = prm.get_integer("Polynomial degree");
+    newton_tolerance      = prm.get_double("Newton tolerance");
+    newton_max_iterations = prm.get_integer("Newton maximum iterations");
+    line_search           = prm.get_bool("Line search");
+    linear_tolerance      = prm.get_double("Linear solver tolerance");
+    linear_max_iterations = prm.get_integer("Linear solver maximum iterations");
+    polar_frame           = prm.get_bool("Polar frame");
+    polar_centre          = parse_point(prm.get("Polar centre"));
+    const std::string pinned = prm.get("Pinned points");
+    prm.leave_subsection();
+
+    pinned_points.clear();
+    for (const auto &item : Utilities::split_string_list(pinned, ';'))
+      {
+        const std::string message =
+          "Mechanics/Pinned points: '" + item +
+          "' is not 'x, y: c' with c = x, y or xy (x, y in m).";
+        const auto key_value = Utilities::split_string_list(item, ':');
+        if (key_value.size() != 2 || !point_pattern.match(key_value[0]) ||
+            (key_value[1] != "x" && key_value[1] != "y" &&
+             key_value[1] != "xy"))
+          throw InputError(message);
+        PinnedPoint point;
+        point.location = parse_point(key_value[0]);
+        point.fix_x    = key_value[1].find('x') != std::string::npos;
+        point.fix_y    = key_value[1].find('y') != std::string::npos;
+        point.text     = item;
+        pinned_points.push_back(point);
+      }
+  }
+
+  // ---------------------------------------- Mechanical boundary conditions
+  void
+  MechanicalBoundaryParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mechanical boundary conditions");
+    for (unsigned int n = 1; n <= max_conditions; ++n)
+      {
+        prm.enter_subsection("Condition " + std::to_string(n));
+        prm.declare_entry("Boundary ids",
+                          "",
+                          Patterns::List(Patterns::Integer(0), 0, 1000, ","),
+                          "Boundary ids this condition applies to (empty: "
+                          "unused). Boundary ids named by no condition are "
+                          "traction free.");
+        prm.declare_entry(
+          "Type",
+          "fixed",
+          Patterns::Selection(
+            "fixed|roller x|roller y|displacement|traction|velocity"),
+          "fixed: u = 0; roller x: u_x = 0 (u_y free); roller y: u_y = 0 "
+          "(u_x free); displacement: u = (Displacement x, Displacement y); "
+          "traction: nominal traction (Traction x, Traction y), force per "
+          "unit reference length; velocity: v = (Velocity x, Velocity y), "
+          "discrete layer only (the continuum solver refuses it).");
+        const char *axes[] = {"x", "y"};
+        for (const char *axis : axes)
+          {
+            prm.declare_entry(std::string("Displacement ") + axis,
+                              "0",
+                              Patterns::Anything(),
+                              std::string("Type = displacement: u_") + axis +
+                                " as a function of x, y [m] (reference "
+                                "coordinates) and t [s] [m].");
+            prm.declare_entry(std::string("Traction ") + axis,
+                              "0",
+                              Patterns::Anything(),
+                              std::string("Type = traction: t_") + axis +
+                                " per unit reference length, function of x, "
+                                "y, t [Pa].");
+            prm.declare_entry(std::string("Velocity ") + axis,
+                              "0",
+                              Patterns::Anything(),
+                              std::string("Type = velocity (discrete layer "
+                                          "only): v_") +
+                                axis + ", function of x, y, t [m/s].");
+          }
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+  void
+  MechanicalBoundaryParameters::parse_parameters(ParameterHandler &prm)
+  {
+    using Type = MechanicalBoundaryCondition::Type;
+    conditions.clear();
+    std::set<types::boundary_id> used;
+    prm.enter_subsection("Mechanical boundary conditions");
+    for (unsigned int n = 1; n <= max_conditions; ++n)
+      {
+        MechanicalBoundaryCondition condition;
+        condition.name =
+          "Mechanical boundary conditions/Condition " + std::to_string(n);
+        prm.enter_subsection("Condition " + std::to_string(n));
+        for (const int id : Utilities::string_to_int(
+               Utilities::split_string_list(prm.get("Boundary ids"), ',')))
+          condition.boundary_ids.push_back(id);
+        const std::string type = prm.get("Type");
+        condition.type         = type == "fixed"        ? Type::fixed :
+                                 type == "roller x"     ? Type::roller_x :
+                                 type == "roller y"     ? Type::roller_y :
+                                 type == "displacement" ? Type::displacement :
+                                 type == "traction"     ? Type::traction :
+                                                          Type::velocity;
+        const char *axes[]     = {"x", "y"};
+        for (unsigned int d = 0; d < 2; ++d)
+          {
+            condition.displacement[d] =
+              prm.get(std::string("Displacement ") + axes[d]);
+            condition.traction[d] = prm.get(std::string("Traction ") + axes[d]);
+            condition.velocity[d] = prm.get(std::string("Velocity ") + axes[d]);
+          }
+        prm.leave_subsection();
+        for (const auto id : condition.boundary_ids)
+          if (!used.insert(id).second)
+            throw InputError(condition.name + "/Boundary ids: boundary id " +
+                             std::to_string(id) +
+                             " already has a mechanical condition; each "
+                             "boundary id takes at most one.");
+        if (!condition.boundary_ids.empty())
+          conditions.push_back(condition);
+      }
+    prm.leave_subsection();
+  }
+
   // ---------------------------------------------------------------- Output
   void
   OutputParameters::declare_parameters(ParameterHandler &prm)
@@ -681,6 +911,8 @@ namespace tmfdem
     HeatSolverParameters::declare_parameters(prm);
     OutputParameters::declare_parameters(prm);
     MonitorParameters::declare_parameters(prm);
+    MechanicsParameters::declare_parameters(prm);
+    MechanicalBoundaryParameters::declare_parameters(prm);
     DiscreteMechanicsParameters::declare_parameters(prm);
     DiscreteBodyParameters::declare_parameters(prm);
   }
@@ -699,6 +931,8 @@ namespace tmfdem
     heat_solver.parse_parameters(prm);
     output.parse_parameters(prm, path.stem().string());
     monitors.parse_parameters(prm);
+    mechanics.parse_parameters(prm);
+    mechanical_boundary.parse_parameters(prm);
     discrete_mechanics.parse_parameters(prm);
     discrete_bodies.parse_parameters(prm);
   }

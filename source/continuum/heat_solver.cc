@@ -129,42 +129,30 @@ namespace tmfdem
     return solution;
   }
 
+  parallel::TriangulationBase<2> &
+  HeatSolver::get_triangulation()
+  {
+    return *triangulation;
+  }
+
+  void
+  HeatSolver::set_output_hook(
+    const std::function<void(const double time)> &hook)
+  {
+    output_hook = hook;
+  }
+
   // ------------------------------------------------------------------ mesh
   void
   HeatSolver::make_mesh()
   {
     create_output_folder(parameters.output.directory, communicator);
-    Triangulation<2> coarse;
-    create_coarse_mesh(parameters.mesh,
-                       parameters.output.directory,
-                       coarse,
-                       communicator);
-    const std::string source =
-      parameters.mesh.source == MeshParameters::Source::file ?
-        "mesh file '" + parameters.mesh.file_name + "'" :
-        "generated mesh";
-    mesh_report = std::make_unique<MeshReport>(
-      check_mesh(coarse,
-                 source,
-                 domain_area(parameters.mesh),
-                 parameters.mesh.source == MeshParameters::Source::annulus ||
-                   parameters.mesh.source == MeshParameters::Source::disc));
-    if (mesh_report->n_triangles > 0 && mesh_report->n_quadrilaterals > 0)
-      throw InputError(source + " mixes triangles and quadrilaterals; "
-                                "allowed are meshes of one cell shape.");
-
-    if (uses_quadrilaterals())
-      triangulation = std::make_unique<parallel::distributed::Triangulation<2>>(
-        communicator,
-        Triangulation<2>::MeshSmoothing(
-          Triangulation<2>::smoothing_on_refinement |
-          Triangulation<2>::smoothing_on_coarsening));
-    else
-      triangulation =
-        std::make_unique<parallel::shared::Triangulation<2>>(communicator);
-    triangulation->copy_triangulation(coarse);
-    triangulation->refine_global(parameters.mesh.global_refinements);
-    coarse_level = parameters.mesh.global_refinements;
+    mesh_report   = std::make_unique<MeshReport>();
+    triangulation = create_continuum_triangulation(parameters.mesh,
+                                                   parameters.output.directory,
+                                                   communicator,
+                                                   *mesh_report);
+    coarse_level  = parameters.mesh.global_refinements;
 
     const unsigned int degree = parameters.heat_solver.degree;
     if (uses_quadrilaterals())
@@ -677,6 +665,8 @@ namespace tmfdem
   void
   HeatSolver::write_output(const double time)
   {
+    if (output_hook)
+      output_hook(time);
     monitors->write(time, *mapping, *dof_handler, solution);
     if (!parameters.output.write_vtu)
       return;

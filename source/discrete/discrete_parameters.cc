@@ -32,12 +32,6 @@ namespace tmfdem
   DiscreteMechanicsParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Discrete mechanics");
-    prm.declare_entry("Idealisation",
-                      "plane stress",
-                      Patterns::Selection("plane stress|plane strain"),
-                      "2D idealisation of the triangles: plane stress "
-                      "(lambda* = E nu/(1-nu^2)) or plane strain "
-                      "(lambda = E nu/((1+nu)(1-2nu))).");
     prm.declare_entry("Time step",
                       "0",
                       Patterns::Double(0.),
@@ -138,7 +132,6 @@ namespace tmfdem
   DiscreteMechanicsParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Discrete mechanics");
-    idealisation                    = prm.get("Idealisation");
     time_step                       = prm.get_double("Time step");
     safety_factor                   = prm.get_double("Safety factor");
     joint_normal_penalty_factor     = prm.get_double("Joint normal penalty factor");

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <iomanip>
 #include <random>
+#include <set>
+#include <cctype>
 #include <sstream>
 #include <thread>
 #include <tmfdem/base/exceptions.h>
@@ -99,7 +101,8 @@ namespace tmfdem
                          "threads (Discrete mechanics/Threads); run it "
                          "without mpirun -np > 1.");
       const auto &dm = parameters.discrete_mechanics;
-      idealisation   = dm.idealisation == "plane strain" ?
+      idealisation   = parameters.mechanics.idealisation ==
+                           MechanicsParameters::Idealisation::plane_strain ?
                          Idealisation::plane_strain :
                          Idealisation::plane_stress;
       for (const auto &[name, law] : softening_law_registry())
@@ -132,6 +135,7 @@ namespace tmfdem
 
       setup_materials();
       setup_bodies();
+      setup_boundary_conditions();
       setup_joints();
       compute_stable_time_step();
 
@@ -374,6 +378,163 @@ namespace tmfdem
         }
       gravity = {{parameters.discrete_mechanics.gravity[0],
                   parameters.discrete_mechanics.gravity[1]}};
+    }
+
+    void
+    ExplicitSolver::setup_boundary_conditions()
+    {
+      conditions.clear();
+      node_conditions.clear();
+      node_condition_slot.assign(model.n_nodes, -1);
+      std::set<types::boundary_id> mesh_ids;
+      for (const auto id : model.edge_boundary)
+        if (id != numbers::internal_face_boundary_id)
+          mesh_ids.insert(id);
+      using Type = MechanicalBoundaryCondition::Type;
+      std::vector<int> condition_of_id(256, -1);
+      for (const auto &c : parameters.mechanical_boundary.conditions)
+        {
+          ConditionFunctions f;
+          f.type = c.type;
+          const char *axis[2] = {" x", " y"};
+          for (unsigned int d = 0; d < 2; ++d)
+            {
+              const std::string expression =
+                c.type == Type::displacement ? c.displacement[d] :
+                c.type == Type::traction     ? c.traction[d] :
+                                               c.velocity[d];
+              const std::string entry =
+                c.name + (c.type == Type::displacement ? "/Displacement" :
+                          c.type == Type::traction     ? "/Traction" :
+                                                         "/Velocity") +
+                axis[d];
+              f.value[d] = make_expression_function(expression, entry);
+              // a function that names t is evaluated every step
+              for (std::size_t i = 0; i < expression.size(); ++i)
+                if (expression[i] == 't' &&
+                    (i == 0 || !std::isalnum(expression[i - 1])) &&
+                    (i + 1 == expression.size() ||
+                     !std::isalnum(expression[i + 1])))
+                  f.time_dependent[d] = true;
+            }
+          for (const auto id : c.boundary_ids)
+            {
+              if (mesh_ids.count(id) == 0)
+                {
+                  std::string ids;
+                  for (const auto m : mesh_ids)
+                    ids += " " + std::to_string(m);
+                  throw InputError(c.name + "/Boundary ids: boundary id " +
+                                   std::to_string(id) +
+                                   " is not on the mesh; the mesh has "
+                                   "boundary ids" +
+                                   ids + ".");
+                }
+              if (id < condition_of_id.size())
+                condition_of_id[id] = conditions.size();
+            }
+          conditions.push_back(std::move(f));
+        }
+      // nodes on boundary edges with a condition (free bodies only; fixed
+      // and driven bodies move as their body says)
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            const types::boundary_id id = model.edge_boundary[3 * e + k];
+            if (id == numbers::internal_face_boundary_id ||
+                id >= condition_of_id.size() || condition_of_id[id] < 0)
+              continue;
+            const unsigned int c = condition_of_id[id];
+            const unsigned int ends[2] = {3 * e + k, 3 * e + (k + 1) % 3};
+            const double length = std::hypot(model.x_ref[ends[1]] - model.x_ref[ends[0]],
+                                             model.y_ref[ends[1]] - model.y_ref[ends[0]]);
+            for (const unsigned int node : ends)
+              {
+                if (node_body[node] != 255 &&
+                    body_motion[node_body[node]] != DiscreteBody::Motion::free)
+                  continue;
+                if (node_condition_slot[node] < 0)
+                  {
+                    NodeCondition nc;
+                    nc.node            = node;
+                    nc.condition       = c;
+                    nc.prescribed[0]   = false;
+                    nc.prescribed[1]   = false;
+                    nc.velocity[0] = nc.velocity[1] = 0.;
+                    nc.force[0] = nc.force[1] = 0.;
+                    nc.traction_length = 0.;
+                    node_condition_slot[node] = node_conditions.size();
+                    node_conditions.push_back(nc);
+                  }
+                NodeCondition &nc = node_conditions[node_condition_slot[node]];
+                const Type     type = conditions[c].type;
+                if (type == Type::traction)
+                  nc.traction_length += 0.5 * length;
+                else
+                  {
+                    // a kinematic condition wins over a traction at corners
+                    nc.condition = c;
+                    nc.prescribed[0] = type != Type::roller_y;
+                    nc.prescribed[1] = type != Type::roller_x;
+                  }
+              }
+          }
+      boundary_conditions_change = false;
+      for (const ConditionFunctions &f : conditions)
+        boundary_conditions_change |=
+          f.type == Type::displacement || f.time_dependent[0] || f.time_dependent[1];
+      evaluate_boundary_conditions();
+    }
+
+    void
+    ExplicitSolver::evaluate_boundary_conditions()
+    {
+      using Type = MechanicalBoundaryCondition::Type;
+      const double t_mid = time + 0.5 * time_step, t_next = time + time_step;
+      for (ConditionFunctions &f : conditions)
+        for (unsigned int d = 0; d < 2; ++d)
+          f.value[d]->set_time(f.type == Type::displacement ? t_next :
+                               f.type == Type::velocity     ? t_mid :
+                                                              time);
+      for (NodeCondition &nc : node_conditions)
+        {
+          const unsigned int  n = nc.node;
+          const Point<2>      p(model.x_ref[n], model.y_ref[n]);
+          ConditionFunctions &f = conditions[nc.condition];
+          for (unsigned int d = 0; d < 2; ++d)
+            {
+              if (nc.prescribed[d])
+                {
+                  if (f.type == Type::velocity)
+                    nc.velocity[d] = f.value[d]->value(p);
+                  else if (f.type == Type::displacement)
+                    {
+                      // reach X + u(t + dt) at the end of the step
+                      const double target =
+                        (d == 0 ? model.x_ref[n] : model.y_ref[n]) +
+                        f.value[d]->value(p);
+                      const double now = d == 0 ? model.x[n] : model.y[n];
+                      nc.velocity[d] = time_step > 0. ? (target - now) / time_step : 0.;
+                    }
+                  else
+                    nc.velocity[d] = 0.;
+                }
+            }
+        }
+      // tractions: conditions of traction type, per node share of length
+      for (NodeCondition &nc : node_conditions)
+        if (nc.traction_length > 0.)
+          {
+            const unsigned int n = nc.node;
+            const Point<2>     p(model.x_ref[n], model.y_ref[n]);
+            // the traction condition of this node's boundary id
+            for (ConditionFunctions &f : conditions)
+              if (f.type == Type::traction)
+                {
+                  nc.force[0] = f.value[0]->value(p) * nc.traction_length;
+                  nc.force[1] = f.value[1]->value(p) * nc.traction_length;
+                }
+          }
     }
 
     void
@@ -702,7 +863,7 @@ namespace tmfdem
       DiscreteModel     &m  = model;
       const double       dt = time_step;
       const unsigned int n_bodies = body_motion.size();
-      const unsigned int stride   = n_sums + 2 * max_bodies;
+      const unsigned int stride   = n_sums + 2 * max_bodies + 2 * max_conditions;
       const std::size_t  n_chunks = (m.n_elements + chunk_size - 1) / chunk_size;
       chunk_sums.assign(n_chunks * stride, 0.);
       const bool have_contact = !pairs.empty();
@@ -782,7 +943,34 @@ namespace tmfdem
                   const double vx_old = m.vx[node], vy_old = m.vy[node];
                   double       vx_new, vy_new;
                   const unsigned char b = node_body[node];
-                  if (b == 255 || body_motion[b] == DiscreteBody::Motion::free)
+                  const int slot = node_condition_slot[node];
+                  if (slot >= 0)
+                    {
+                      // boundary conditions of boundary ids
+                      const NodeCondition &nc = node_conditions[slot];
+                      const double tx = nc.force[0], ty = nc.force[1];
+                      double       gx = fx + tx, gy = fy + ty;
+                      vx_new = vx_old + dt * gx / mass;
+                      vy_new = vy_old + dt * gy / mass;
+                      double rx = 0., ry = 0.;
+                      if (nc.prescribed[0])
+                        {
+                          vx_new = nc.velocity[0];
+                          rx     = mass * (vx_new - vx_old) / dt - gx;
+                        }
+                      if (nc.prescribed[1])
+                        {
+                          vy_new = nc.velocity[1];
+                          ry     = mass * (vy_new - vy_old) / dt - gy;
+                        }
+                      w_external += 0.5 * dt *
+                                    ((tx + rx) * (vx_old + vx_new) +
+                                     (ty + ry) * (vy_old + vy_new));
+                      double *r = sums + n_sums + 2 * max_bodies + 2 * nc.condition;
+                      r[0] += rx;
+                      r[1] += ry;
+                    }
+                  else if (b == 255 || body_motion[b] == DiscreteBody::Motion::free)
                     {
                       vx_new = vx_old + dt * fx / mass;
                       vy_new = vy_old + dt * fy / mass;
@@ -827,6 +1015,7 @@ namespace tmfdem
       double max_speed = 0.;
       for (auto &r : body_reaction)
         r = {{0., 0.}};
+      condition_reaction.assign(conditions.size(), {{0., 0.}});
       for (std::size_t c = 0; c < n_chunks; ++c)
         {
           const double *sums = &chunk_sums[c * stride];
@@ -840,6 +1029,11 @@ namespace tmfdem
             {
               body_reaction[b][0] += sums[n_sums + 2 * b];
               body_reaction[b][1] += sums[n_sums + 2 * b + 1];
+            }
+          for (unsigned int k = 0; k < conditions.size(); ++k)
+            {
+              condition_reaction[k][0] += sums[n_sums + 2 * max_bodies + 2 * k];
+              condition_reaction[k][1] += sums[n_sums + 2 * max_bodies + 2 * k + 1];
             }
         }
       travel_since_search += std::sqrt(max_speed) * dt;
@@ -860,6 +1054,8 @@ namespace tmfdem
             body_velocity_now[b] = {{body_velocity[2 * b]->value(mid_time),
                                      body_velocity[2 * b + 1]->value(mid_time)}};
           }
+      if (boundary_conditions_change)
+        evaluate_boundary_conditions();
       if (contact_enabled)
         {
           if (contact_search_needed)
@@ -938,6 +1134,8 @@ namespace tmfdem
           << balance.viscous_dissipation << ',' << balance.external_work
           << ',' << balance.balance_error() << ',' << model.n_broken_joints();
       for (const auto &r : body_reaction)
+        row << ',' << r[0] << ',' << r[1];
+      for (const auto &r : condition_reaction)
         row << ',' << r[0] << ',' << r[1];
       row << '\n';
       history_csv->append(row.str());
@@ -1057,6 +1255,10 @@ namespace tmfdem
       for (unsigned int b = 0; b < body_motion.size(); ++b)
         header += ",body" + std::to_string(b + 1) + "_fx,body" +
                   std::to_string(b + 1) + "_fy";
+      condition_reaction.assign(conditions.size(), {{0., 0.}});
+      for (unsigned int k = 0; k < conditions.size(); ++k)
+        header += ",condition" + std::to_string(k + 1) + "_fx,condition" +
+                  std::to_string(k + 1) + "_fy";
       history_csv = std::make_unique<CsvSeries>(folder + "/history.csv",
                                                 header + "\n",
                                                 communicator);

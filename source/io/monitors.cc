@@ -54,9 +54,9 @@ namespace tmfdem
   }
 
   std::vector<std::vector<double>>
-  Monitors::evaluate(const Mapping<2>                    &mapping,
-                     const DoFHandler<2>                 &dof_handler,
-                     const TrilinosWrappers::MPI::Vector *solution) const
+  Monitors::evaluate(const Mapping<2>     &mapping,
+                     const DoFHandler<2>  &dof_handler,
+                     const PointEvaluator *evaluator) const
   {
     const unsigned int  n_values = n_components + 1; // last: found count
     std::vector<double> local(points.size() * n_values, 0.);
@@ -108,21 +108,12 @@ namespace tmfdem
                 !inside_reference_cell(cell->reference_cell(), unit_point))
               continue;
             local[i * n_values + n_components] = 1.;
-            if (solution != nullptr)
+            if (evaluator != nullptr)
               {
-                const Quadrature<2> quadrature(
-                  std::vector<Point<2>>{unit_point});
-                FEValues<2> fe_values(mapping,
-                                      dof_handler.get_fe(),
-                                      quadrature,
-                                      update_values);
-                fe_values.reinit(cell);
-                std::vector<Vector<double>> values(1,
-                                                   Vector<double>(
-                                                     n_components));
-                fe_values.get_function_values(*solution, values);
+                const std::vector<double> values =
+                  (*evaluator)(cell, unit_point);
                 for (unsigned int c = 0; c < n_components; ++c)
-                  local[i * n_values + c] = values[0][c];
+                  local[i * n_values + c] = values[c];
               }
             break;
           }
@@ -171,9 +162,32 @@ namespace tmfdem
                   const DoFHandler<2>                 &dof_handler,
                   const TrilinosWrappers::MPI::Vector &solution)
   {
+    const unsigned int   n_fe_components = n_components;
+    const PointEvaluator field_values =
+      [&](const DoFHandler<2>::active_cell_iterator &cell,
+          const Point<2>                            &unit_point) {
+        const Quadrature<2> quadrature(std::vector<Point<2>>{unit_point});
+        FEValues<2>         fe_values(mapping,
+                              dof_handler.get_fe(),
+                              quadrature,
+                              update_values);
+        fe_values.reinit(cell);
+        std::vector<Vector<double>> values(1, Vector<double>(n_fe_components));
+        fe_values.get_function_values(solution, values);
+        return std::vector<double>(values[0].begin(), values[0].end());
+      };
+    write(time, mapping, dof_handler, field_values);
+  }
+
+  void
+  Monitors::write(const double          time,
+                  const Mapping<2>     &mapping,
+                  const DoFHandler<2>  &dof_handler,
+                  const PointEvaluator &evaluator)
+  {
     if (points.empty())
       return;
-    const auto         values = evaluate(mapping, dof_handler, &solution);
+    const auto         values = evaluate(mapping, dof_handler, &evaluator);
     std::ostringstream probe_rows, line_rows;
     for (unsigned int i = 0; i < points.size(); ++i)
       {

@@ -1,5 +1,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/distributed/shared_tria.h>
+#include <deal.II/distributed/tria.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/manifold_lib.h>
@@ -359,5 +361,40 @@ namespace tmfdem
         default:
           return p.expected_area;
       }
+  }
+
+  std::unique_ptr<parallel::TriangulationBase<2>>
+  create_continuum_triangulation(const MeshParameters &parameters,
+                                 const std::string    &work_folder,
+                                 MPI_Comm              communicator,
+                                 MeshReport           &report)
+  {
+    Triangulation<2> coarse;
+    create_coarse_mesh(parameters, work_folder, coarse, communicator);
+    const std::string source =
+      parameters.source == MeshParameters::Source::file ?
+        "mesh file '" + parameters.file_name + "'" :
+        "generated mesh";
+    report = check_mesh(coarse,
+                        source,
+                        domain_area(parameters),
+                        parameters.source == MeshParameters::Source::annulus ||
+                          parameters.source == MeshParameters::Source::disc);
+    if (report.n_triangles > 0 && report.n_quadrilaterals > 0)
+      throw InputError(source + " mixes triangles and quadrilaterals; "
+                                "allowed are meshes of one cell shape.");
+    std::unique_ptr<parallel::TriangulationBase<2>> triangulation;
+    if (report.n_quadrilaterals > 0)
+      triangulation = std::make_unique<parallel::distributed::Triangulation<2>>(
+        communicator,
+        Triangulation<2>::MeshSmoothing(
+          Triangulation<2>::smoothing_on_refinement |
+          Triangulation<2>::smoothing_on_coarsening));
+    else
+      triangulation =
+        std::make_unique<parallel::shared::Triangulation<2>>(communicator);
+    triangulation->copy_triangulation(coarse);
+    triangulation->refine_global(parameters.global_refinements);
+    return triangulation;
   }
 } // namespace tmfdem

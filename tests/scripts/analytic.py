@@ -52,3 +52,50 @@ def read_csv(path):
         for t, (xs, ys, cols) in by_time.items():
             out[name][t] = (np.array(xs), np.array(ys), {c: np.array(v) for c, v in cols.items()})
     return out
+
+
+def cylinder_stress(r, E=20e9, nu=0.2, alpha=1.8e-5, a=0.03, b=0.15, t_a=100.0, t_b=0.0,
+                    idealisation="plane strain"):
+    """Steady thermal stress in a hollow cylinder with traction-free walls,
+    TENSION POSITIVE: (sigma_r, sigma_theta) [Pa].
+
+    Plane strain (eps_zz = 0) is minus the paper's Eq. 49 (printed
+    compression positive; Noda 2018, Timoshenko & Goodier Sec. 151). Plane
+    stress follows from it by the substitution E -> E (1 + 2 nu)/(1 + nu)^2,
+    nu -> nu/(1 + nu), alpha -> alpha (1 + nu)/(1 + 2 nu) that maps the
+    plane-stress equations onto the plane-strain ones: the same bracket with
+    E alpha dT / 2 in place of E alpha dT / (2 (1 - nu))."""
+    r = np.asarray(r, dtype=float)
+    if idealisation == "plane strain":
+        C = E * alpha * (t_a - t_b) / (2 * (1 - nu))
+    elif idealisation == "plane stress":
+        C = E * alpha * (t_a - t_b) / 2
+    else:
+        raise ValueError(idealisation)
+    L = np.log(b / a)
+    k = b**2 / a**2 - 1
+    s_r = C * (np.log(b / r) / L - (b**2 / r**2 - 1) / k)
+    s_t = C * ((np.log(b / r) - 1) / L + (b**2 / r**2 + 1) / k)
+    return -s_r, -s_t
+
+
+def in_plane_constants(E, nu, idealisation):
+    """(lambda, mu, beta/alpha) of the 2D idealisation: plane-stress or
+    plane-strain Lame constants and the in-plane expansion factor."""
+    mu = E / (2 * (1 + nu))
+    if idealisation == "plane strain":
+        return E * nu / ((1 + nu) * (1 - 2 * nu)), mu, 1 + nu
+    return E * nu / (1 - nu**2), mu, 1.0
+
+
+def restrained_sheet_stress(E, nu, alpha, dT, idealisation, finite):
+    """sigma_xx = sigma_yy [Pa] of a sheet held at F = I and heated by dT.
+    Small strain: -2 (lambda + mu) beta dT, i.e. -E alpha dT/(1 - nu) in plane
+    stress and -E alpha dT/(1 - 2 nu) in plane strain. Finite strain: the
+    paper's Eq. 44 with F_e = I/(1 + s), s = beta dT:
+    mu (1 - (1 + s)^2) + lambda/2 ((1 + s)^-2 - (1 + s)^2)."""
+    lam, mu, factor = in_plane_constants(E, nu, idealisation)
+    s = factor * alpha * dT
+    if not finite:
+        return -2 * (lam + mu) * s
+    return mu * (1 - (1 + s)**2) + 0.5 * lam * ((1 + s)**-2 - (1 + s)**2)

@@ -4,7 +4,9 @@
              within 1 % (mu = 0.3) and does not slide for mu = 0.6 >= tan 30.
   collision: two blocks collide and fracture: momentum conserved to
              round-off, energy balance error below 1 %.
-  threads:   the collision with 1 and 2 threads gives identical outputs."""
+  threads:   the collision with 1 and 2 threads gives identical outputs.
+  brazilian: a disc between arc-seated jaws splits along the loaded
+             diameter; peak load within 15 % of pi D f_t / 2."""
 import filecmp
 import math
 import os
@@ -71,4 +73,35 @@ elif which == "threads":
                 f"{len(names)} output files identical with 1 and 2 threads")
     ok &= check(s1["energy"] == s2["energy"] and s1["broken_joints"] == s2["broken_joints"],
                 "summary energies and broken joints identical")
+elif which == "brazilian":
+    import glob
+    import re
+    folder = os.path.join(out, "brazilian")
+    run(binary, os.path.join(prm_dir, "brazilian_disc.prm"), folder)
+    d = np.genfromtxt(os.path.join(folder, "history.csv"), delimiter=",", names=True)
+    # load: mean of the two jaws' reactions (cancels the disc's inertia)
+    load = 0.5 * (-d["body1_fy"] + d["body2_fy"])
+    peak = load.max()
+    D, f_t = 0.05, 5e6
+    expected = math.pi * D * f_t / 2.0  # from f_t = 2 P / (pi D t), t = 1 m
+    error = abs(peak / expected - 1.0)
+    ok &= check(error < 0.15, f"peak load {peak / 1e3:.1f} kN/m vs pi D f_t / 2 = "
+                f"{expected / 1e3:.1f} kN/m, error {100 * error:.1f} % (< 15 %, h = 1.5 mm)")
+    text = open(sorted(glob.glob(os.path.join(folder, "cracks_*.vtu")))[-1]).read()
+    points = np.array(re.search(r"<Points>\s*<DataArray[^>]*>(.*?)</DataArray>", text,
+                                re.S).group(1).split(), float).reshape(-1, 3)
+    def array(name):
+        return np.array(re.search(f'Name="{name}"[^>]*>(.*?)</DataArray>', text,
+                                  re.S).group(1).split(), float)
+    mid = 0.5 * (points[0::2] + points[1::2])
+    order = np.argsort(array("break_time"))
+    first = mid[order[:10]]
+    mode = array("failure_mode")[order[:10]]
+    ok &= check(np.all(np.abs(first[:, 0]) < 0.1 * D) and np.all(np.abs(first[:, 1]) < 0.3 * D)
+                and np.all(mode == 1),
+                "the first 10 joints break in Mode I near the centre, on the loaded diameter")
+    on_axis = mid[np.abs(mid[:, 0]) < 0.05 * D]
+    span = on_axis[:, 1].max() - on_axis[:, 1].min() if len(on_axis) else 0.0
+    ok &= check(span > 0.7 * D, f"the split runs along the loaded diameter over "
+                f"{span / D:.2f} D (> 0.7 D)")
 sys.exit(0 if ok else 1)

@@ -216,6 +216,100 @@ namespace tmfdem
     parse_parameters(ParameterHandler &prm);
   };
 
+  /**
+   * Subsection `Mechanics`: the continuum thermoelastic model (and the 2D
+   * idealisation, which the discrete layer shares).
+   */
+  struct MechanicsParameters
+  {
+    /** Out-of-plane assumption of the 2D model. */
+    enum class Idealisation
+    {
+      plane_stress,
+      plane_strain
+    };
+    /** Small-strain linear or finite-strain (Eq. 44 on F_e) kinematics. */
+    enum class StrainMeasure
+    {
+      small,
+      finite
+    };
+    /** Where the temperature that loads the body comes from. */
+    enum class TemperatureSource
+    {
+      function,
+      heat_solver
+    };
+    /** One point whose displacement components are held at zero. */
+    struct PinnedPoint
+    {
+      Point<2>    location;      ///< a mesh vertex [m]
+      bool        fix_x = false; ///< u_x = 0
+      bool        fix_y = false; ///< u_y = 0
+      std::string text;          ///< as written, for messages
+    };
+
+    Idealisation      idealisation       = Idealisation::plane_stress;
+    StrainMeasure     strain_measure     = StrainMeasure::small;
+    TemperatureSource temperature_source = TemperatureSource::function;
+    /** T(x, y, t) for Temperature source = function [C]. */
+    std::string              temperature      = "0";
+    unsigned int             degree           = 2;     ///< polynomial degree
+    double                   newton_tolerance = 1e-10; ///< relative residual
+    unsigned int             newton_max_iterations = 25;
+    bool                     line_search           = true;
+    double                   linear_tolerance      = 1e-12; ///< relative, CG
+    unsigned int             linear_max_iterations = 5000;
+    bool                     polar_frame           = false;
+    Point<2>                 polar_centre; ///< [m]
+    std::vector<PinnedPoint> pinned_points;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+  /** One mechanical boundary condition on a set of boundary ids. */
+  struct MechanicalBoundaryCondition
+  {
+    enum class Type
+    {
+      fixed,
+      roller_x,
+      roller_y,
+      displacement,
+      traction,
+      velocity
+    };
+    /** `Mechanical boundary conditions/Condition <n>`, for messages. */
+    std::string                     name;
+    std::vector<types::boundary_id> boundary_ids;
+    Type                            type = Type::fixed;
+    /** u_x(x, y, t), u_y(x, y, t) for Type = displacement [m]. */
+    std::array<std::string, 2> displacement = {{"0", "0"}};
+    /** Nominal traction t_x, t_y (x, y, t) for Type = traction [Pa]. */
+    std::array<std::string, 2> traction = {{"0", "0"}};
+    /** v_x, v_y (x, y, t) for Type = velocity (discrete layer) [m/s]. */
+    std::array<std::string, 2> velocity = {{"0", "0"}};
+  };
+
+  /**
+   * Subsection `Mechanical boundary conditions`: up to max_conditions
+   * subsections `Condition <n>`; boundary ids named by no condition are
+   * traction free.
+   */
+  struct MechanicalBoundaryParameters
+  {
+    static constexpr unsigned int            max_conditions = 8;
+    std::vector<MechanicalBoundaryCondition> conditions;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
   /** Subsection `Output`. */
   struct OutputParameters
   {
@@ -257,19 +351,21 @@ namespace tmfdem
   /** All parameters of a run. */
   struct Parameters
   {
-    std::string                model;    ///< name from the model registry
-    std::string                prm_file; ///< file the parameters came from
-    MeshParameters             mesh;
-    MaterialParameters         materials;
-    ThermalBoundaryParameters  thermal_boundary;
-    InitialConditionParameters initial;
-    TimeSteppingParameters     time;
-    AdaptivityParameters       adaptivity;
-    HeatSolverParameters       heat_solver;
-    OutputParameters           output;
-    MonitorParameters          monitors;
-    DiscreteMechanicsParameters discrete_mechanics;
-    DiscreteBodyParameters      discrete_bodies;
+    std::string                  model;    ///< name from the model registry
+    std::string                  prm_file; ///< file the parameters came from
+    MeshParameters               mesh;
+    MaterialParameters           materials;
+    ThermalBoundaryParameters    thermal_boundary;
+    InitialConditionParameters   initial;
+    TimeSteppingParameters       time;
+    AdaptivityParameters         adaptivity;
+    HeatSolverParameters         heat_solver;
+    OutputParameters             output;
+    MonitorParameters            monitors;
+    MechanicsParameters          mechanics;
+    MechanicalBoundaryParameters mechanical_boundary;
+    DiscreteMechanicsParameters  discrete_mechanics;
+    DiscreteBodyParameters       discrete_bodies;
 
     static void
     declare_parameters(ParameterHandler &prm);

@@ -23,6 +23,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <tmfdem/base/parameters.h>
@@ -68,6 +69,17 @@ namespace tmfdem
     /** Current temperature, with ghost entries [C]. */
     const TrilinosWrappers::MPI::Vector &
     get_temperature() const;
+    /** The triangulation (after run or check_input); other solvers may
+     *  attach DoFHandlers to it. */
+    parallel::TriangulationBase<2> &
+    get_triangulation();
+    /**
+     * Calls @p hook(time [s]) at every output time, before this solver
+     * writes its own outputs, with the temperature of that time current.
+     * The thermoelastic solver solves for stress there.
+     */
+    void
+    set_output_hook(const std::function<void(const double time)> &hook);
 
   private:
     /** Heat that crossed each boundary id and came from sources [J/m]. */
@@ -178,9 +190,10 @@ namespace tmfdem
     std::unique_ptr<FunctionParser<2>> initial_temperature;
     bool                               any_heat_source = false;
 
-    std::unique_ptr<Monitors>       monitors;
-    std::unique_ptr<SolutionSeries> solution_series;
-    unsigned long                   total_linear_iterations = 0;
+    std::unique_ptr<Monitors>         monitors;
+    std::unique_ptr<SolutionSeries>   solution_series;
+    unsigned long                     total_linear_iterations = 0;
+    std::function<void(const double)> output_hook;
   };
 } // namespace tmfdem
 

@@ -26,8 +26,6 @@ namespace tmfdem
   /** Subsection `Discrete mechanics`. */
   struct DiscreteMechanicsParameters
   {
-    /** "plane stress" or "plane strain". */
-    std::string idealisation = "plane stress";
     double      time_step    = 0.;  ///< [s]; 0: safety factor x stable step
     double      safety_factor = 0.5; ///< fraction of the stable step [-]
     double joint_normal_penalty_factor     = 10.; ///< p_n / E [-]

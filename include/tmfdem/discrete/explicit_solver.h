@@ -125,6 +125,10 @@ namespace tmfdem
       void
       setup_bodies();
       void
+      setup_boundary_conditions();
+      void
+      evaluate_boundary_conditions();
+      void
       compute_stable_time_step();
       void
       update_contact_candidates();
@@ -163,6 +167,32 @@ namespace tmfdem
       std::vector<std::unique_ptr<FunctionParser<2>>> body_velocity;
       std::vector<std::array<double, 2>> body_velocity_now;
       std::array<double, 2>              gravity{{0., 0.}};
+
+      // mechanical boundary conditions on boundary ids, per node: slot into
+      // the compact arrays below, or -1
+      std::vector<int> node_condition_slot;
+      struct NodeCondition
+      {
+        unsigned int node;
+        unsigned int condition; ///< index into `conditions`
+        bool         prescribed[2]; ///< velocity component prescribed
+        double       velocity[2];   ///< prescribed velocity [m/s]
+        double       force[2];      ///< traction force [N/m]
+        double       traction_length; ///< reference length share [m]
+      };
+      std::vector<NodeCondition> node_conditions;
+      struct ConditionFunctions
+      {
+        MechanicalBoundaryCondition::Type             type;
+        std::array<std::unique_ptr<FunctionParser<2>>, 2> value;
+        std::array<bool, 2> time_dependent{{false, false}};
+      };
+      std::vector<ConditionFunctions> conditions;
+      bool                            boundary_conditions_change = false;
+      static constexpr unsigned int   max_conditions =
+        MechanicalBoundaryParameters::max_conditions;
+      /** Reaction of each condition's supports [N/m], last step. */
+      std::vector<std::array<double, 2>> condition_reaction;
 
       // contact
       bool                      contact_enabled = true;

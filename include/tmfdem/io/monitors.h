@@ -10,6 +10,7 @@
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <functional>
 #include <string>
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/io/output_files.h>
@@ -48,6 +49,25 @@ namespace tmfdem
           const DoFHandler<2>                 &dof_handler,
           const TrilinosWrappers::MPI::Vector &solution);
 
+    /**
+     * Computes the field values (one per column of field_names) at a point
+     * given by its cell and its coordinates in the reference cell.
+     */
+    using PointEvaluator = std::function<
+      std::vector<double>(const DoFHandler<2>::active_cell_iterator &cell,
+                          const Point<2> &unit_point)>;
+
+    /**
+     * Appends the rows of output time @p time [s], each value computed by
+     * @p evaluator (derived fields such as stress from gradients, evaluated
+     * at the point itself, not averaged over its cell).
+     */
+    void
+    write(const double          time,
+          const Mapping<2>     &mapping,
+          const DoFHandler<2>  &dof_handler,
+          const PointEvaluator &evaluator);
+
   private:
     struct SamplePoint
     {
@@ -58,9 +78,9 @@ namespace tmfdem
 
     /** Values at every sample point, summed over ranks; NaN if not found. */
     std::vector<std::vector<double>>
-    evaluate(const Mapping<2>                    &mapping,
-             const DoFHandler<2>                 &dof_handler,
-             const TrilinosWrappers::MPI::Vector *solution) const;
+    evaluate(const Mapping<2>     &mapping,
+             const DoFHandler<2>  &dof_handler,
+             const PointEvaluator *evaluator) const;
 
     std::vector<SamplePoint> points;
     unsigned int             n_components;

@@ -7,11 +7,14 @@
 #ifndef tmfdem_mesh_mesh_generator_h
 #define tmfdem_mesh_mesh_generator_h
 
+#include <deal.II/distributed/tria_base.h>
 #include <deal.II/grid/tria.h>
 
+#include <memory>
 #include <mpi.h>
 #include <string>
 #include <tmfdem/base/parameters.h>
+#include <tmfdem/mesh/mesh_checks.h>
 
 namespace tmfdem
 {
@@ -41,6 +44,19 @@ namespace tmfdem
    *  meshes (0: unknown) [m^2]. */
   double
   domain_area(const MeshParameters &parameters);
+
+  /**
+   * The continuum layer's triangulation: the coarse mesh of @p parameters
+   * (generated or read, work files in @p work_folder), checked with
+   * check_mesh (the result in @p report), distributed with p4est for
+   * quadrilaterals or shared for triangles, and refined Mesh/Global
+   * refinements times. Throws InputError for meshes that mix cell shapes.
+   */
+  std::unique_ptr<parallel::TriangulationBase<2>>
+  create_continuum_triangulation(const MeshParameters &parameters,
+                                 const std::string    &work_folder,
+                                 MPI_Comm              communicator,
+                                 MeshReport           &report);
 } // namespace tmfdem
 
 #endif

@@ -1,0 +1,126 @@
+/**
+ * @file
+ * The 2D thermoelastic constitutive law of tmfdem, small and finite strain,
+ * plane stress and plane strain: stresses and consistent tangents as
+ * functions of the displacement gradient and the temperature change. Shared
+ * by the continuum solver and (later) the discrete layer; derivation in
+ * doc/theory.md, chapter 3.
+ */
+#ifndef tmfdem_continuum_thermoelastic_material_h
+#define tmfdem_continuum_thermoelastic_material_h
+
+#include <deal.II/base/tensor.h>
+
+#include <tmfdem/base/parameters.h>
+
+namespace tmfdem
+{
+  /**
+   * Thermoelastic material of one material id in the 2D idealisation chosen
+   * in `Mechanics/Idealisation`.
+   *
+   * In-plane constants: mu = E / (2 (1 + nu)) always; lambda = E nu / ((1 +
+   * nu)(1 - 2 nu)) in plane strain, lambda = E nu / (1 - nu^2) in plane
+   * stress. In-plane thermal expansion coefficient beta = alpha (plane
+   * stress) or (1 + nu) alpha (plane strain, from eps_zz = 0).
+   *
+   * Small strain: sigma = lambda tr(eps - beta dT I) I + 2 mu (eps - beta dT
+   * I), eps = sym(grad u).
+   *
+   * Finite strain: F = I + grad u = F_T F_e with F_T = (1 + beta dT) I; the
+   * Cauchy stress is the paper's Eq. 44 on the elastic part,
+   * sigma = mu / J_e (B_e - I) + lambda / 2 (J_e - 1 / J_e) I, with J_e =
+   * det F_e and B_e = F_e F_e^T (2 x 2). Its first Piola-Kirchhoff stress is
+   * P = J sigma F^-T = (1 + beta dT) [mu (F_e - F_e^-T) + lambda / 2 (J_e^2 -
+   * 1) F_e^-T], hyperelastic with a symmetric tangent dP/dF.
+   *
+   * Units: stresses and moduli in Pa, temperatures in C, gradients
+   * dimensionless.
+   */
+  class ThermoelasticMaterial
+  {
+  public:
+    /** The constants of @p properties in the idealisation of @p mechanics. */
+    ThermoelasticMaterial(const MaterialProperties  &properties,
+                          const MechanicsParameters &mechanics);
+
+    /** Lame's first parameter of the 2D idealisation [Pa]. */
+    double
+    lambda() const
+    {
+      return lambda_2d;
+    }
+    /** Shear modulus [Pa]. */
+    double
+    mu() const
+    {
+      return shear_modulus;
+    }
+    /** In-plane thermal expansion coefficient beta [1/K]. */
+    double
+    in_plane_expansion() const
+    {
+      return beta;
+    }
+    /** Temperature change dT = T - T_ref for temperature @p T [C]. */
+    double
+    temperature_change(const double temperature) const
+    {
+      return temperature - reference_temperature;
+    }
+    /** Thermal stretch 1 + beta dT [-]. */
+    double
+    thermal_stretch(const double temperature) const
+    {
+      return 1. + beta * temperature_change(temperature);
+    }
+
+    /**
+     * First Piola-Kirchhoff stress P [Pa] (in small strain: the Cauchy
+     * stress) for displacement gradient @p grad_u and temperature @p T [C].
+     */
+    Tensor<2, 2>
+    first_piola(const Tensor<2, 2> &grad_u, const double temperature) const;
+
+    /** The tangent dP/d(grad u) [Pa], A_{iJkL} = dP_{iJ}/dF_{kL}. */
+    Tensor<4, 2>
+    tangent(const Tensor<2, 2> &grad_u, const double temperature) const;
+
+    /** In-plane Cauchy stress sigma [Pa], tension positive. */
+    Tensor<2, 2>
+    cauchy(const Tensor<2, 2> &grad_u, const double temperature) const;
+
+    /**
+     * Out-of-plane stress sigma_zz [Pa]: 0 in plane stress; in small-strain
+     * plane strain nu (sigma_xx + sigma_yy) - E alpha dT (eps_zz = 0). For
+     * finite-strain plane strain the 2D model of Eq. 44 does not define it:
+     * NaN.
+     */
+    double
+    out_of_plane_stress(const Tensor<2, 2> &in_plane_cauchy,
+                        const double        temperature) const;
+
+    /**
+     * Strain [-]: eps = sym(grad u) in small strain, the Green-Lagrange
+     * strain E = (F^T F - I) / 2 in finite strain.
+     */
+    Tensor<2, 2>
+    strain(const Tensor<2, 2> &grad_u) const;
+
+    /** Does @p grad_u with @p T give an admissible state (J_e > 0)? */
+    bool
+    admissible(const Tensor<2, 2> &grad_u, const double temperature) const;
+
+  private:
+    MechanicsParameters::StrainMeasure strain_measure;
+    MechanicsParameters::Idealisation  idealisation;
+    double youngs_modulus, poisson_ratio, alpha, reference_temperature;
+    double lambda_2d, shear_modulus, beta;
+  };
+
+  /** A : G, the double contraction (A : G)_{ij} = A_{ijkl} G_{kl}. */
+  Tensor<2, 2>
+  double_contract_right(const Tensor<4, 2> &A, const Tensor<2, 2> &G);
+} // namespace tmfdem
+
+#endif

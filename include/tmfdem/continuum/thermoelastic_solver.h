@@ -1,0 +1,219 @@
+/**
+ * @file
+ * The continuum thermoelastic solver: quasi-static small- or finite-strain
+ * thermoelasticity in 2D (plane stress or plane strain) driven by a
+ * temperature field, one-way coupled T -> u. Total Lagrangian, Newton's
+ * method with the consistent tangent and a backtracking line search, Trilinos
+ * CG with algebraic multigrid, Kelly adaptive refinement on quadrilaterals,
+ * MPI (p4est for quadrilaterals, a shared triangulation for triangles).
+ */
+#ifndef tmfdem_continuum_thermoelastic_solver_h
+#define tmfdem_continuum_thermoelastic_solver_h
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/distributed/tria_base.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <array>
+#include <boost/signals2/connection.hpp>
+#include <functional>
+#include <memory>
+#include <set>
+#include <tmfdem/base/parameters.h>
+#include <tmfdem/base/simulation.h>
+#include <tmfdem/continuum/thermoelastic_material.h>
+#include <vector>
+
+namespace tmfdem
+{
+  class HeatSolver;
+  class Monitors;
+  class SolutionSeries;
+
+  /**
+   * Quasi-static thermoelasticity: find u with div P(grad u, T) = 0 in the
+   * reference configuration, P from ThermoelasticMaterial (first
+   * Piola-Kirchhoff stress; in small strain the Cauchy stress), with
+   * displacement, roller and nominal traction boundary conditions. Units:
+   * u in m, stresses in Pa, T in C, t in s.
+   *
+   * The temperature comes from `Mechanics/Temperature` (a function of x, y,
+   * t), from a HeatSolver run on the same triangulation (stress solved at
+   * each of its output times), or from another layer through
+   * set_temperature().
+   */
+  class ThermoelasticSolver : public Simulation
+  {
+  public:
+    /**
+     * Temperature [C] at @p points (real coordinates [m]) of @p cell, which
+     * are @p unit_points in its reference cell, at the time of the current
+     * solve; written into @p temperatures (same size as the points).
+     */
+    using TemperatureField =
+      std::function<void(const Triangulation<2>::active_cell_iterator &cell,
+                         const std::vector<Point<2>> &unit_points,
+                         const std::vector<Point<2>> &points,
+                         std::vector<double>         &temperatures)>;
+
+    ThermoelasticSolver(const Parameters &parameters, MPI_Comm communicator);
+    ~ThermoelasticSolver() override;
+
+    void
+    check_input() override;
+    void
+    run() override;
+
+    /** Uses @p field for the temperature of the following solves. */
+    void
+    set_temperature(const TemperatureField &field);
+    /**
+     * Uses the finite element field @p temperature [C] (ghosted) on
+     * @p dof_handler, which must live on get_triangulation(), for the
+     * temperature of the following solves.
+     */
+    void
+    set_temperature(const DoFHandler<2>                 &dof_handler,
+                    const Mapping<2>                    &mapping,
+                    const TrilinosWrappers::MPI::Vector &temperature);
+
+    /**
+     * Builds mesh (Temperature source = function) or takes @p triangulation
+     * (non-null: another solver's, kept alive by the caller), the DoFs,
+     * boundary conditions and monitors, and checks the input.
+     */
+    void
+    setup(parallel::TriangulationBase<2> *triangulation = nullptr);
+    /** Quasi-static solve at @p time [s]: Newton to equilibrium. Throws
+     *  RunError if Newton or CG fails. */
+    void
+    solve(const double time);
+    /** Writes vtu, probes and lines for @p time [s]. */
+    void
+    write_output(const double time);
+
+    /** The displacement DoFHandler (two components, after setup()). */
+    const DoFHandler<2> &
+    get_dof_handler() const;
+    /** Current displacement, ghosted [m]. */
+    const TrilinosWrappers::MPI::Vector &
+    get_displacement() const;
+    /** The triangulation computed on (after setup()). */
+    parallel::TriangulationBase<2> &
+    get_triangulation();
+
+  private:
+    /** One Newton iteration, for summary.json and stderr. */
+    struct NewtonRecord
+    {
+      double       time;
+      unsigned int iteration;
+      double       residual;
+      double       step_length;
+      unsigned int linear_iterations;
+    };
+
+    void
+    check_boundary_conditions() const;
+    void
+    setup_dofs();
+    void
+    find_pinned_dofs();
+    /** Temperatures at the quadrature points of every owned cell. */
+    void
+    compute_quadrature_temperatures();
+    /**
+     * Newton constraints at the current time: hanging nodes, and on
+     * Dirichlet DoFs the increment (prescribed - current displacement).
+     * Returns the largest increment [m].
+     */
+    double
+    make_newton_constraints(const double time);
+    /**
+     * Assembles -R(u) (and the tangent if @p with_matrix) into system_rhs
+     * with @p constraints_used for @p displacement; returns false if some
+     * quadrature point has J_e <= 0.
+     */
+    bool
+    assemble(const TrilinosWrappers::MPI::Vector &displacement,
+             const AffineConstraints<double>     &constraints_used,
+             const bool                           with_matrix);
+    /** Norm of the residual at free DoFs for @p displacement; infinity if
+     *  inadmissible. */
+    double
+    residual_norm(const TrilinosWrappers::MPI::Vector &displacement);
+    unsigned int
+    solve_linear_system(TrilinosWrappers::MPI::Vector &update);
+    void
+    adapt_mesh();
+    void
+    write_summary(const double time) const;
+    /** Temperatures at arbitrary points of one cell. */
+    std::vector<double>
+    temperatures_at(const Triangulation<2>::active_cell_iterator &cell,
+                    const std::vector<Point<2>>                  &unit_points,
+                    const std::vector<Point<2>>                  &points) const;
+    /** The values written to probes.csv and lines.csv at one point. */
+    std::vector<double>
+    monitor_values(const DoFHandler<2>::active_cell_iterator &cell,
+                   const Point<2>                            &unit_point) const;
+    bool
+    uses_quadrilaterals() const;
+    void
+    run_with_temperature_function();
+    void
+    run_with_heat_solver();
+
+    const Parameters parameters;
+    MPI_Comm         communicator;
+
+    /** Owns the triangulation in heat-solver mode. */
+    std::unique_ptr<HeatSolver>                     heat_solver;
+    std::unique_ptr<parallel::TriangulationBase<2>> own_triangulation;
+    parallel::TriangulationBase<2>                 *triangulation = nullptr;
+    boost::signals2::connection                     mesh_change_connection;
+    bool                                            mesh_changed = false;
+    unsigned int                                    coarse_level = 0;
+    std::set<types::boundary_id>                    mesh_boundary_ids;
+    double                                          domain_area = 0.;
+
+    std::unique_ptr<FiniteElement<2>> fe;
+    std::unique_ptr<Mapping<2>>       mapping;
+    std::unique_ptr<DoFHandler<2>>    dof_handler;
+
+    IndexSet                       locally_owned_dofs, locally_relevant_dofs;
+    AffineConstraints<double>      hanging_node_constraints;
+    AffineConstraints<double>      newton_constraints;   ///< increments
+    AffineConstraints<double>      residual_constraints; ///< homogeneous
+    TrilinosWrappers::SparseMatrix system_matrix;
+    TrilinosWrappers::MPI::Vector  system_rhs;
+    TrilinosWrappers::MPI::Vector  solution; ///< ghosted displacement
+    std::vector<types::global_dof_index> pinned_dofs;
+
+    std::vector<ThermoelasticMaterial> materials;
+    std::unique_ptr<FunctionParser<2>> temperature_function;
+    TemperatureField                   temperature_field;
+    std::vector<std::vector<double>>   quadrature_temperatures;
+    /** Per mechanical condition: x and y functions of its values. */
+    std::vector<std::array<std::unique_ptr<FunctionParser<2>>, 2>>
+      displacement_functions, traction_functions;
+
+    std::unique_ptr<Monitors>       monitors;
+    std::unique_ptr<SolutionSeries> solution_series;
+    std::vector<NewtonRecord>       newton_history;
+    unsigned long                   solves                  = 0;
+    unsigned long                   total_newton_iterations = 0;
+    unsigned long                   total_linear_iterations = 0;
+    double                          wall_start              = 0.;
+    /** Extremes of the Cauchy stress at the last output [Pa]. */
+    std::array<double, 5> stress_extremes = {{0., 0., 0., 0., 0.}};
+  };
+} // namespace tmfdem
+
+#endif
