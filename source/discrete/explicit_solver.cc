@@ -10,6 +10,7 @@
 #include <iomanip>
 #include <random>
 #include <set>
+#include <sys/resource.h>
 #include <cctype>
 #include <sstream>
 #include <thread>
@@ -1234,6 +1235,12 @@ namespace tmfdem
         .add("cracks", model.n_cracks())
         .add("contact_searches", static_cast<long long>(n_contact_searches))
         .add("contact_pairs", static_cast<unsigned int>(pairs.size()))
+        .add("peak_resident_memory_bytes",
+             [] {
+               rusage usage;
+               getrusage(RUSAGE_SELF, &usage);
+               return static_cast<long long>(usage.ru_maxrss) * 1024;
+             }())
         .add("momentum_x", px)
         .add("momentum_y", py)
         .add("energy", energies)
@@ -1318,7 +1325,7 @@ namespace tmfdem
               wall_time = progress.elapsed();
               progress.update(step_number,
                               time,
-                              "broken joints " +
+                              " broken joints " +
                                 std::to_string(model.n_broken_joints()));
             }
         }

@@ -1,0 +1,159 @@
+#!/usr/bin/python3
+"""Throughput of the discrete layer's explicit loop, in triangle-steps per
+second, at 1 and 2 threads:
+  intact:     a 1 m square plate of 60 x 60 cells, two triangles each (7200
+              triangles, 10680 joints), bottom on rollers, top pulled at
+              0.1 m/s, strong joints (nothing breaks), contact on;
+  fragmented: the same plate with weak joints dropped at 20 m/s onto a fixed
+              floor: it shatters, and most of the run has thousands of
+              active contact pairs.
+Memory: bytes per triangle of the discrete state from the peak resident
+memory of two intact plates (200 x 200 and 100 x 100 cells), their
+difference divided by the difference in triangles (the libraries' fixed
+footprint cancels).
+usage: benchmarks/discrete_mechanics_throughput.py [path/to/tmfdem]"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+here = os.path.dirname(os.path.abspath(__file__))
+binary = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "build-release", "tmfdem")
+work = tempfile.mkdtemp(prefix="tmfdem-bench-")
+
+
+def plate_msh(n, with_floor):
+    """n x n cells on [0,1]^2, each cut into two triangles (counter-clockwise);
+    boundary ids 2 bottom, 3 top (physical lines); material 1. With a floor:
+    a fixed slab (material 2) 0.05 m below the plate."""
+    nodes, triangles, lines = [], [], []
+    def nid(i, j):
+        return j * (n + 1) + i + 1
+    for j in range(n + 1):
+        for i in range(n + 1):
+            nodes.append((i / n, j / n))
+    for j in range(n):
+        for i in range(n):
+            a, b, c, d = nid(i, j), nid(i + 1, j), nid(i + 1, j + 1), nid(i, j + 1)
+            triangles += [(1, a, b, c), (1, a, c, d)]
+    for i in range(n):
+        lines += [(2, nid(i, 0), nid(i + 1, 0)), (3, nid(i, n), nid(i + 1, n))]
+    if with_floor:
+        base = len(nodes)
+        fx = [-0.5 + 2.0 * k / 20 for k in range(21)]
+        for y in (-0.15, -0.05):
+            for x in fx:
+                nodes.append((x, y))
+        for k in range(20):
+            a, b = base + k + 1, base + k + 2
+            c, d = base + 21 + k + 2, base + 21 + k + 1
+            triangles += [(2, a, b, c), (2, a, c, d)]
+    name = os.path.join(work, f"plate_{n}{'_floor' if with_floor else ''}.msh")
+    with open(name, "w") as f:
+        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n" % len(nodes))
+        for k, (x, y) in enumerate(nodes):
+            f.write(f"{k + 1} {x!r} {y!r} 0\n")
+        f.write("$EndNodes\n$Elements\n%d\n" % (len(lines) + len(triangles)))
+        k = 0
+        for tag, a, b in lines:
+            k += 1
+            f.write(f"{k} 1 2 {tag} {tag} {a} {b}\n")
+        for tag, a, b, c in triangles:
+            k += 1
+            f.write(f"{k} 2 2 {tag} {tag} {a} {b} {c}\n")
+        f.write("$EndElements\n")
+    return name
+
+
+def prm(mesh, strong, floor):
+    text = f"""set Model = discrete mechanics
+subsection Mesh
+  set Source = file
+  set File name = {mesh}
+end
+subsection Materials
+"""
+    for m in (1, 2):
+        text += f"""  subsection Material {m}
+    set Density = 2500
+    set Young's modulus = 10e9
+    set Poisson's ratio = 0.25
+    set Tensile strength = {'1e9' if strong else '2e5'}
+    set Cohesion = {'1e9' if strong else '4e5'}
+    set Mode I fracture energy = {'1e6' if strong else '1'}
+    set Mode II fracture energy = {'1e6' if strong else '5'}
+  end
+"""
+    text += "end\n"
+    if floor:
+        text += """subsection Discrete bodies
+  subsection Body 1
+    set Material ids = 2
+    set Motion = fixed
+  end
+  subsection Body 2
+    set Material ids = 1
+    set Initial velocity y = -20
+  end
+end
+subsection Discrete mechanics
+  set Gravity = 0, -9.81
+end
+"""
+    else:
+        text += """subsection Mechanical boundary conditions
+  subsection Condition 1
+    set Boundary ids = 2
+    set Type = roller y
+  end
+  subsection Condition 2
+    set Boundary ids = 3
+    set Type = velocity
+    set Velocity x = 0
+    set Velocity y = 0.1
+  end
+end
+"""
+    text += """subsection Time stepping
+  set End time = 1
+end
+subsection Output
+  set Write vtu = false
+  set Progress interval = 0
+end
+"""
+    name = mesh.replace(".msh", ".prm")
+    with open(name, "w") as f:
+        f.write(text)
+    return name
+
+
+def run(prm_file, threads, steps, out):
+    cmd = [binary, prm_file, "--set", f"Output/Directory={out}",
+           "--set", f"Discrete mechanics/Threads={threads}",
+           "--set", f"Discrete mechanics/Maximum steps={steps}"]
+    subprocess.run(cmd, check=True, capture_output=True)
+    with open(os.path.join(out, "summary.json")) as f:
+        return json.load(f)
+
+
+print(f"{'case':>11} {'threads':>7} {'triangles':>9} {'steps':>6} {'wall [s]':>8} "
+      f"{'triangle-steps/s':>16} {'per thread':>10} {'pairs':>6} {'broken':>7}")
+intact = prm(plate_msh(60, False), True, False)
+fragmented = prm(plate_msh(60, True), False, True)
+for name, p, steps in (("intact", intact, 3000), ("fragmented", fragmented, 6000)):
+    for threads in (1, 2):
+        s = run(p, threads, steps, os.path.join(work, f"{name}_{threads}"))
+        rate = s["element_steps_per_second"]
+        print(f"{name:>11} {threads:>7} {s['elements']:>9} {s['steps']:>6} {s['wall_time']:>8.2f} "
+              f"{rate:>16.3e} {rate / threads:>10.3e} {s['contact_pairs']:>6} {s['broken_joints']:>7}")
+
+big = run(prm(plate_msh(200, False), True, False), 1, 20, os.path.join(work, "mem_200"))
+small = run(prm(plate_msh(100, False), True, False), 1, 20, os.path.join(work, "mem_100"))
+per_triangle = (big["peak_resident_memory_bytes"] - small["peak_resident_memory_bytes"]) / \
+               (big["elements"] - small["elements"])
+print(f"\nmemory: peak RSS {small['peak_resident_memory_bytes'] / 2**20:.1f} MiB at "
+      f"{small['elements']} triangles, {big['peak_resident_memory_bytes'] / 2**20:.1f} MiB at "
+      f"{big['elements']}: {per_triangle:.0f} bytes per triangle (all of the run: mesh, "
+      f"deal.II triangulation and DoFs, discrete state, joints, contact lists)")
