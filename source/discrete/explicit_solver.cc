@@ -299,21 +299,26 @@ namespace tmfdem
                                                softening_law,
                                                model.joint_constants[j]);
           if (!ok)
-            throw InputError(
-              "joint " + std::to_string(j) + " between materials " +
-              std::to_string(model.material[ea]) + " and " +
-              std::to_string(model.material[eb]) + " (length " +
-              Utilities::to_string(model.joint_length[j]) +
-              " m): the fracture energies G_I = " + Utilities::to_string(GI) +
-              ", G_II = " + Utilities::to_string(GII) +
-              " J/m^2 are below the work stored before the peak, 4 f^2 h / "
-              "(3 p) = " +
-              Utilities::to_string(4. / 3. * ft * ft * model.joint_length[j] /
-                                   (dm.joint_normal_penalty_factor * E)) +
-              " and " +
-              Utilities::to_string(4. / 3. * coh * coh * model.joint_length[j] /
-                                   (dm.joint_tangential_penalty_factor * E)) +
-              " J/m^2; allowed are larger G or larger joint penalty factors.");
+            {
+              const double h         = model.joint_length[j];
+              const double stored_I  = 4. / 3. * ft * ft * h /
+                                      (dm.joint_normal_penalty_factor * E);
+              const double stored_II = 4. / 3. * coh * coh * h /
+                                       (dm.joint_tangential_penalty_factor * E);
+              const bool   mode_I    = GI <= stored_I;
+              throw InputError(
+                "joint " + std::to_string(j) + " between materials " +
+                std::to_string(model.material[ea]) + " and " +
+                std::to_string(model.material[eb]) + " (length " +
+                Utilities::to_string(h) + " m): Mode " +
+                (mode_I ? "I" : "II") + " fracture energy " +
+                Utilities::to_string(mode_I ? GI : GII) +
+                " J/m^2 is below the work stored before the peak, 4 f^2 h / "
+                "(3 p) = " +
+                Utilities::to_string(mode_I ? stored_I : stored_II) +
+                " J/m^2; allowed are larger fracture energies or larger "
+                "joint penalty factors (Discrete mechanics).");
+            }
         }
       contact_penalty =
         0.; // set per pair from the stiffer material in compute_contact

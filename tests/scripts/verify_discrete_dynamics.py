@@ -5,6 +5,8 @@
   collision: two blocks collide and fracture: momentum conserved to
              round-off, energy balance error below 1 %.
   threads:   the collision with 1 and 2 threads gives identical outputs.
+  traction:  a jointed plate on rollers pulled by a traction carries the
+             applied stress uniformly; the rollers react with the load.
   brazilian: a disc between arc-seated jaws splits along the loaded
              diameter; peak load within 15 % of pi D f_t / 2."""
 import filecmp
@@ -104,4 +106,21 @@ elif which == "brazilian":
     span = on_axis[:, 1].max() - on_axis[:, 1].min() if len(on_axis) else 0.0
     ok &= check(span > 0.7 * D, f"the split runs along the loaded diameter over "
                 f"{span / D:.2f} D (> 0.7 D)")
+elif which == "traction":
+    folder = os.path.join(out, "traction")
+    run(binary, os.path.join(prm_dir, "plate_traction.prm"), folder)
+    d = np.genfromtxt(os.path.join(folder, "lines.csv"), delimiter=",", names=True,
+                      dtype=None, encoding=None)
+    last = d["time"] == d["time"].max()
+    sigma0 = 1e6
+    sxx, syy, sxy = d["sxx"][last], d["syy"][last], d["sxy"][last]
+    ok &= check(abs(sxx.mean() / sigma0 - 1) < 0.01 and np.abs(sxx / sigma0 - 1).max() < 0.02,
+                f"sxx along the midline: mean {sxx.mean() / 1e6:.5f} MPa, worst "
+                f"{np.abs(sxx / sigma0 - 1).max() * 100:.2f} % off the applied 1 MPa (< 1 %, < 2 %)")
+    ok &= check(np.abs(syy).max() < 0.01 * sigma0 and np.abs(sxy).max() < 0.01 * sigma0,
+                f"syy, sxy below 1 % of 1 MPa (max {np.abs(syy).max():.0f}, {np.abs(sxy).max():.0f} Pa)")
+    h = np.genfromtxt(os.path.join(folder, "history.csv"), delimiter=",", names=True)
+    reaction = h["condition1_fx"][-1]
+    ok &= check(abs(reaction / (-sigma0 * 0.1) - 1) < 0.01,
+                f"left rollers react with {reaction / 1e3:.3f} kN/m vs -100 kN/m (< 1 %)")
 sys.exit(0 if ok else 1)
