@@ -1,0 +1,349 @@
+#!/usr/bin/python3
+"""Plot a discrete-mechanics case against its reference.
+
+    plot_discrete_case.py CASE OUTPUT_FOLDER PNG
+
+CASE is one of joint_pull, block_on_incline, two_blocks_collision,
+brazilian_disc. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
+probes.csv, summary.json, solution_*.vtu, cracks_*.vtu). Cases that compare
+several runs read one sub-folder per run, the layout the verification
+scripts write:
+
+    joint_pull:        OUTPUT_FOLDER/{Munjiza,linear}_{I,II}/   (verify_discrete_joint.py)
+    block_on_incline:  OUTPUT_FOLDER/mu_0.3/, OUTPUT_FOLDER/mu_0.6/ (verify_discrete_dynamics.py incline)
+
+A missing run is made with the binary in $TMFDEM (default
+build-release/tmfdem), with the same --set overrides as those scripts.
+The numbers compared are printed.
+"""
+import glob
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+
+import numpy as np
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.collections import LineCollection  # noqa: E402
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+BINARY = os.environ.get("TMFDEM", os.path.join(ROOT, "build-release", "tmfdem"))
+
+
+# ------------------------------------------------------------------ reading
+def read_csv(path):
+    return np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding=None)
+
+
+def read_summary(folder):
+    with open(os.path.join(folder, "summary.json")) as f:
+        return json.load(f)
+
+
+def read_vtu(path):
+    """Points (n x 3), connectivity per cell (list of arrays) and the
+    DataArrays by name, from the ASCII vtu tmfdem writes."""
+    text = open(path).read()
+    points = np.array(re.search(r"<Points>\s*<DataArray[^>]*>(.*?)</DataArray>", text,
+                                re.S).group(1).split(), float).reshape(-1, 3)
+    arrays = {}
+    for name, body in re.findall(r'<DataArray[^>]*Name="([^"]+)"[^>]*>(.*?)</DataArray>',
+                                 text, re.S):
+        arrays[name] = np.array(body.split(), float)
+    conn = arrays.get("connectivity", np.zeros(0)).astype(int)
+    offsets = arrays.get("offsets", np.zeros(0)).astype(int)
+    cells = np.split(conn, offsets[:-1]) if len(offsets) else []
+    return points, cells, arrays
+
+
+def ensure_run(folder, prm, *settings):
+    """Runs tmfdem into folder unless it already holds a summary."""
+    if os.path.exists(os.path.join(folder, "summary.json")):
+        return
+    cmd = [BINARY, os.path.join(ROOT, "prm", prm), "--set", f"Output/Directory={folder}",
+           "--set", "Output/Progress interval=0"]
+    for s in settings:
+        cmd += ["--set", s]
+    print("$", " ".join(f"'{c}'" if " " in c else c for c in cmd), flush=True)
+    subprocess.run(cmd, check=True)
+
+
+# --------------------------------------------------- joint_pull: the law
+def munjiza_z(D):
+    a, b, c = 0.63, 1.8, 6.0
+    return (1 - (a + b - 1) / (a + b) * np.exp(D * (a + c * b) / ((a + b) * (1 - a - b)))) \
+        * (a * (1 - D) + b * (1 - D) ** 6)
+
+
+def cohesive_curve(f, G, k, law, n=4000):
+    """Exact traction-separation curve of one pure mode: returns
+    displacement, traction, work per unit area (the integral), and the
+    softening width w = (G - 4 f^2 / (3 k)) / (f int z)."""
+    z = munjiza_z if law == "Munjiza" else (lambda D: 1 - D)
+    Ds = np.linspace(0, 1, 20001)
+    zs = z(Ds)
+    integral = np.sum(0.5 * (zs[1:] + zs[:-1]) * np.diff(Ds))
+    op = 2 * f / k
+    w = (G - 4 * f * f / (3 * k)) / (f * integral)
+    d = np.linspace(0, op + w, n)
+    r = np.minimum(d / op, 1)
+    D = np.clip((d - op) / w, 0, 1)
+    t = f * r * (2 - r) * np.where(d > op, z(D), 1)
+    work = np.concatenate([[0], np.cumsum(0.5 * (t[1:] + t[:-1]) * np.diff(d))])
+    return d, t, work, op, w, integral
+
+
+def plot_joint_pull(folder, png):
+    # prm/joint_pull.prm: E = 1e9, penalty factors 10 -> p = 1e10 Pa, joint length 1 m
+    k = 1e10
+    modes = {"I": dict(f=1e6, G=1000.0, v=("0.01", "0"), end="0.3", name="opening o"),
+             "II": dict(f=2e6, G=5000.0, v=("0", "0.01"), end="0.7", name="slip s")}
+    speed = 0.01
+    fig, axes = plt.subplots(2, 2, figsize=(11, 7.5), dpi=150, sharex="col")
+    colours = {"Munjiza": "C0", "linear": "C3"}
+    print("joint_pull: work to break one 1 m joint")
+    print(f"{'law':>8} {'mode':>5} {'G L [J/m]':>10} {'work [J/m]':>12} {'error [%]':>10} "
+          f"{'break at [mm]':>14} {'o_p+w [mm]':>11}")
+    for col, (mode, m) in enumerate(modes.items()):
+        ax_t, ax_w = axes[0, col], axes[1, col]
+        for law in ("Munjiza", "linear"):
+            run = os.path.join(folder, f"{law}_{mode}")
+            ensure_run(run, "joint_pull.prm", f"Discrete mechanics/Softening law={law}",
+                       f"Discrete bodies/Body 2/Velocity x={m['v'][0]}",
+                       f"Discrete bodies/Body 2/Velocity y={m['v'][1]}",
+                       f"Time stepping/End time={m['end']}")
+            h = read_csv(os.path.join(run, "history.csv"))
+            h = h[np.unique(h["time"], return_index=True)[1]]  # the last row repeats
+            s = read_summary(run)
+            d = speed * h["time"]
+            W = h["joint_work"]
+            d_ex, t_ex, W_ex, op, w, integral = cohesive_curve(m["f"], m["G"], k, law)
+            # traction from the work: dW/dd (joint length 1 m)
+            tm = np.gradient(W, d)
+            broken = h["broken_joints"] > 0
+            d_break = d[np.argmax(broken)] if broken.any() else float("nan")
+            work = s["energy"]["joint_work"]
+            err = 100 * abs(work / m["G"] - 1)
+            print(f"{law:>8} {mode:>5} {m['G']:>10.0f} {work:>12.4f} {err:>10.4f} "
+                  f"{1e3 * d_break:>14.4f} {1e3 * (op + w):>11.4f}")
+            c = colours[law]
+            ax_t.plot(1e3 * d_ex, 1e-6 * t_ex, "-", color=c, lw=1.2,
+                      label=f"{law}: exact law (int z = {integral:.4f})")
+            keep = ~broken
+            ax_t.plot(1e3 * d[keep][::6], 1e-6 * tm[keep][::6], "o", color=c, ms=2.5,
+                      mfc="none", label=f"{law}: tmfdem, dW/d{m['name'][-1]}")
+            ax_w.plot(1e3 * d_ex, W_ex, "-", color=c, lw=1.2)
+            ax_w.plot(1e3 * d[::6], W[::6], "o", color=c, ms=2.5, mfc="none",
+                      label=f"{law}: {work:.3f} J/m at break (error {err:.4f} %)")
+        ax_w.axhline(m["G"], color="k", ls="--", lw=0.8, label=f"G L = {m['G']:.0f} J/m")
+        ax_t.set_title(f"Mode {mode}: f = {m['f'] / 1e6:g} MPa, G = {m['G']:g} J/m^2, "
+                       f"k = p / h = 1e10 Pa/m", fontsize=9)
+        ax_t.set_ylabel("traction [MPa]")
+        ax_w.set_ylabel("work done on the joint [J/m]")
+        ax_w.set_xlabel(f"{m['name']} [mm] (= 0.01 m/s x t)")
+        for ax in (ax_t, ax_w):
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=7)
+    fig.suptitle("One joint pulled (Mode I) and sheared (Mode II): lines exact, markers tmfdem")
+    fig.tight_layout()
+    fig.savefig(png)
+    print(f"wrote {png}")
+
+
+# ---------------------------------------------------- block_on_incline
+def plot_block_on_incline(folder, png):
+    g, theta = 9.81, math.radians(30)
+    fig, (ax_u, ax_e) = plt.subplots(2, 1, figsize=(7, 7), dpi=150, sharex=True,
+                                     gridspec_kw=dict(height_ratios=[3, 2]))
+    print("block_on_incline: probe 'centre' u_x against 1/2 a t^2")
+    print(f"{'mu':>5} {'a exact':>10} {'a fit (t>=0.02)':>16} {'error [%]':>10} "
+          f"{'max|ux - exact| [m]':>20}")
+    for mu, c in ((0.3, "C0"), (0.6, "C3")):
+        run = os.path.join(folder, f"mu_{mu}")
+        ensure_run(run, "block_on_incline.prm", f"Discrete mechanics/Friction coefficient={mu}")
+        p = read_csv(os.path.join(run, "probes.csv"))
+        t, ux = p["time"], p["ux"]
+        a = max(0.0, g * (math.sin(theta) - mu * math.cos(theta)))
+        exact = 0.5 * a * t ** 2
+        late = t >= 0.02
+        a_fit = 2 * np.polyfit(t[late], ux[late], 2)[0]
+        err = 100 * abs(a_fit / a - 1) if a > 0 else float("nan")
+        print(f"{mu:>5} {a:>10.6f} {a_fit:>16.6f} {err:>10.4f} {np.max(np.abs(ux - exact)):>20.3e}")
+        label = (f"mu = {mu}: a = g (sin 30 - mu cos 30) = {a:.4f} m/s^2" if a > 0 else
+                 f"mu = {mu} >= tan 30 = 0.577: sticks, u = 0")
+        ax_u.plot(t, 1e3 * exact, "-", color=c, lw=1.2, label=label)
+        ax_u.plot(t, 1e3 * ux, "o", color=c, ms=3, mfc="none",
+                  label=f"mu = {mu}: tmfdem" + (f" (fitted a {a_fit:.4f}, {err:.4f} %)" if a > 0 else ""))
+        ax_e.plot(t, 1e6 * (ux - exact), "o-", color=c, ms=2, lw=0.8, label=f"mu = {mu}")
+    ax_u.set_ylabel("u_x of the block centre [mm]")
+    ax_u.set_title("Block on a 30 degree incline: u_x against 1/2 a t^2")
+    ax_u.legend(fontsize=7)
+    ax_u.grid(alpha=0.3)
+    ax_e.axhline(0, color="k", lw=0.5)
+    ax_e.set_ylabel("u_x - 1/2 a t^2 [micrometre]")
+    ax_e.set_xlabel("t [s]")
+    ax_e.legend(fontsize=7)
+    ax_e.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(png)
+    print(f"wrote {png}")
+
+
+# ------------------------------------------------- two_blocks_collision
+def plot_two_blocks_collision(folder, png):
+    ensure_run(folder, "two_blocks_collision.prm")
+    h = read_csv(os.path.join(folder, "history.csv"))
+    s = read_summary(folder)
+    e = s["energy"]
+    t = 1e3 * h["time"]
+    E0 = e["initial_kinetic"] + e["initial_strain"]
+    fig, (ax_e, ax_b) = plt.subplots(2, 1, figsize=(7.5, 7.5), dpi=150, sharex=True,
+                                     gridspec_kw=dict(height_ratios=[3, 2]))
+    # contact_work already contains friction_dissipation: draw the penalty part
+    terms = [("kinetic", h["kinetic"], "C0"),
+             ("strain", h["strain"], "C1"),
+             ("joint work (stored + dissipated)", h["joint_work"], "C2"),
+             ("contact penalty work", h["contact_work"] - h["friction_dissipation"], "C4"),
+             ("friction dissipation", h["friction_dissipation"], "C5")]
+    total = sum(v for _, v, _ in terms) + h["viscous_dissipation"]
+    for name, v, c in terms:
+        ax_e.plot(t, v, "-", color=c, lw=1.2, label=f"{name}: {v[-1]:.3f} J/m at the end")
+    ax_e.plot(t, total, "k--", lw=1.0, label=f"sum: {total[-1]:.3f} J/m")
+    ax_e.axhline(E0, color="gray", lw=0.6, ls=":", label=f"initial kinetic {E0:.3f} J/m")
+    ax_e.set_ylabel("energy [J/m]")
+    p0x, p0y = 25.0 * 8.0 - 25.0 * 2.0, 25.0 * 0.5
+    dp = math.hypot(s["momentum_x"] - p0x, s["momentum_y"] - p0y)
+    ax_e.set_title("Two blocks colliding (8 m/s and -2 m/s): energy terms\n"
+                   f"momentum ({s['momentum_x']:.12g}, {s['momentum_y']:.12g}) kg m/s/m vs "
+                   f"({p0x:g}, {p0y:g}): change {dp:.1e}", fontsize=9)
+    ax_e.legend(fontsize=7, loc="center right")
+    ax_e.set_ylim(-20, 1.08 * E0)
+    ax_e.grid(alpha=0.3)
+    rel = h["balance_error"] / E0
+    ax_b.plot(t, 100 * rel, "-", color="k", lw=1.0)
+    ax_b.axhline(0, color="gray", lw=0.5)
+    ax_b.set_ylabel("balance error / initial kinetic [%]")
+    ax_b.set_xlabel("t [ms]")
+    ax_b.set_title(f"balance error at the end {100 * e['relative_balance_error']:.5f} % "
+                   f"({s['broken_joints']} broken joints, {s['cracks']} cracks)", fontsize=9)
+    ax_b.grid(alpha=0.3)
+    ax2 = ax_b.twinx()
+    ax2.plot(t, h["broken_joints"], "-", color="C3", lw=0.8)
+    ax2.set_ylabel("broken joints", color="C3")
+    fig.tight_layout()
+    fig.savefig(png)
+    print("two_blocks_collision: energies at the end [J/m]")
+    for k in ("initial_kinetic", "kinetic", "strain", "joint_work", "contact_work",
+              "friction_dissipation", "viscous_dissipation", "balance_error",
+              "relative_balance_error"):
+        print(f"  {k:>24}: {e[k]:.6g}")
+    print(f"  momentum change: {dp:.3e} kg m/s per m; max |balance error| / E0 over the "
+          f"run: {np.max(np.abs(rel)):.3e}")
+    print(f"wrote {png}")
+
+
+# ------------------------------------------------------- brazilian_disc
+def plot_brazilian_disc(folder, png, magnify=1.0):
+    ensure_run(folder, "brazilian_disc.prm")
+    D, f_t, alpha = 0.05, 5e6, math.radians(7.5)
+    P0 = math.pi * D * f_t / 2
+    h = read_csv(os.path.join(folder, "history.csv"))
+    load = 0.5 * (-h["body1_fy"] + h["body2_fy"])
+    t = 1e3 * h["time"]
+    i = int(np.argmax(load))
+    peak = load[i]
+    hondros = (math.sin(2 * alpha) - alpha) / math.sin(alpha)
+    fig, (ax_p, ax_c) = plt.subplots(1, 2, figsize=(12, 5.6), dpi=150,
+                                     gridspec_kw=dict(width_ratios=[1.1, 1]))
+    ax_p.plot(t, 1e-3 * load, "-", color="C0", lw=1.2,
+              label="tmfdem: (-P_top,y + P_bottom,y) / 2")
+    ax_p.axhline(1e-3 * P0, color="k", ls="--", lw=0.8,
+                 label=f"pi D f_t / 2 = {1e-3 * P0:.1f} kN/m")
+    ax_p.axhline(1e-3 * P0 / hondros, color="gray", ls=":", lw=0.8,
+                 label=f"with Hondros' arc factor {hondros:.4f}: {1e-3 * P0 / hondros:.1f} kN/m")
+    ax_p.plot(t[i], 1e-3 * peak, "o", color="C3",
+              label=f"peak {1e-3 * peak:.1f} kN/m at {t[i]:.3f} ms "
+                    f"({100 * (peak / P0 - 1):+.1f} %)")
+    ax2 = ax_p.twinx()
+    ax2.plot(t, h["broken_joints"], "-", color="C2", lw=0.8)
+    ax2.set_ylabel("broken joints", color="C2")
+    ax_p.set_xlabel("t [ms]")
+    ax_p.set_ylabel("load P per unit thickness [kN/m]")
+    ax_p.set_title("Brazilian disc, D = 50 mm, f_t = 5 MPa, G_I = 5 J/m^2", fontsize=10)
+    ax_p.legend(fontsize=7, loc="upper left")
+    ax_p.grid(alpha=0.3)
+
+    sol = sorted(glob.glob(os.path.join(folder, "solution_*.vtu")))[-1]
+    crk = sorted(glob.glob(os.path.join(folder, "cracks_*.vtu")))[-1]
+    pts, cells, arr = read_vtu(sol)
+    u = arr["displacement"].reshape(-1, 3)
+    X = pts[:, :2] + (magnify - 1) * u[:, :2]
+    tri = np.array([c for c in cells]).reshape(-1, 3)
+    mat = arr["material_id"].astype(int)
+    segs = [X[[a, b, c, a]] for a, b, c in tri]
+    colours = ["0.75" if m == 1 else "0.45" for m in mat]
+    ax_c.add_collection(LineCollection(segs, colors=colours, linewidths=0.3))
+    # cracks: midpoints of the joint faces; move them like the mesh
+    cp, ccells, carr = read_vtu(crk)
+    mode = carr.get("failure_mode", np.zeros(0)).astype(int)
+    # displacement of a crack point: that of the nearest node
+    names = {1: ("Mode I", "C3"), 2: ("Mode II", "C0"), 3: ("mixed", "C2")}
+    counts = {}
+    if len(mode):
+        from numpy.linalg import norm  # noqa: F401
+        ref = pts[:, :2]
+        for m_id, (name, c) in names.items():
+            sel = np.where(mode == m_id)[0]
+            counts[name] = len(sel)
+            if not len(sel):
+                continue
+            lines = []
+            for k in sel:
+                ends = cp[ccells[k], :2]
+                moved = []
+                for q in ends:
+                    n = np.argmin(np.sum((ref - q) ** 2, axis=1))
+                    moved.append(q + (magnify - 1) * u[n, :2])
+                lines.append(moved)
+            ax_c.add_collection(LineCollection(lines, colors=c, linewidths=1.6,
+                                               label=f"{name}: {len(sel)} joints"))
+    ax_c.set_aspect("equal")
+    ax_c.autoscale()
+    ax_c.set_xlim(-0.032, 0.032)
+    ax_c.set_xlabel("x [m]")
+    ax_c.set_ylabel("y [m]")
+    t_end = h["time"][-1]
+    ax_c.set_title(f"broken joints at t = {1e3 * t_end:.1f} ms by failure mode "
+                   ("(deformed, true scale)" if magnify == 1 else f"(displacement x {magnify:g})"), fontsize=10)
+    ax_c.legend(fontsize=7, loc="lower right")
+    fig.tight_layout()
+    fig.savefig(png)
+    print("brazilian_disc:")
+    print(f"  peak load {peak:.1f} N/m at t = {1e3 * h['time'][i]:.4f} ms; "
+          f"pi D f_t / 2 = {P0:.1f} N/m; ratio {peak / P0:.4f} (error {100 * abs(peak / P0 - 1):.2f} %)")
+    print(f"  f_t from the peak, 2 P / (pi D t) = {2 * peak / (math.pi * D) / 1e6:.3f} MPa; "
+          f"Hondros factor (sin 2a - a) / sin a = {hondros:.4f} at 2a = 15 degrees")
+    print(f"  broken joints at the end by mode: {counts}")
+    print(f"wrote {png}")
+
+
+CASES = {"joint_pull": plot_joint_pull,
+         "block_on_incline": plot_block_on_incline,
+         "two_blocks_collision": plot_two_blocks_collision,
+         "brazilian_disc": plot_brazilian_disc}
+
+
+def main():
+    if len(sys.argv) != 4 or sys.argv[1] not in CASES:
+        sys.exit(f"usage: {os.path.basename(sys.argv[0])} CASE OUTPUT_FOLDER PNG\n"
+                 f"  CASE: {', '.join(CASES)}")
+    case, folder, png = sys.argv[1:]
+    CASES[case](os.path.abspath(folder), png)
+
+
+if __name__ == "__main__":
+    main()
