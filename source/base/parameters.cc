@@ -915,6 +915,7 @@ namespace tmfdem
     MechanicalBoundaryParameters::declare_parameters(prm);
     DiscreteMechanicsParameters::declare_parameters(prm);
     DiscreteBodyParameters::declare_parameters(prm);
+    DiscreteHeatParameters::declare_parameters(prm);
   }
 
   void
@@ -935,5 +936,6 @@ namespace tmfdem
     mechanical_boundary.parse_parameters(prm);
     discrete_mechanics.parse_parameters(prm);
     discrete_bodies.parse_parameters(prm);
+    discrete_heat.parse_parameters(prm);
   }
 } // namespace tmfdem

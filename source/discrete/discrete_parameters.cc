@@ -163,6 +163,71 @@ namespace tmfdem
   }
 
   void
+  DiscreteHeatParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Discrete heat");
+    prm.declare_entry("Time integration",
+                      "implicit",
+                      Patterns::Selection("implicit|explicit"),
+                      "implicit: backward Euler (paper Eq. 22) with the "
+                      "consistent capacity matrix, joint exchange in the "
+                      "matrix, CG; explicit: forward Euler with the lumped "
+                      "capacity, the step limited to Safety factor x the "
+                      "stable step (a larger Time stepping/Time step is "
+                      "refused).");
+    prm.declare_entry("Joint conductance factor",
+                      "1000",
+                      Patterns::Double(0.),
+                      "beta in the joint heat-transfer coefficient "
+                      "k_i = beta k / h [W/(m^2 K)] of intact joints (paper "
+                      "Eqs. 25-27; k the harmonic mean conductivity of the "
+                      "two triangles, h the joint length) [-]. Large beta "
+                      "gives the continuum; the difference falls like "
+                      "1/beta.");
+    prm.declare_entry("Contact conductance",
+                      "1e4",
+                      Patterns::Double(0.),
+                      "h_c of the heat exchanged over contact overlaps, "
+                      "Q = h_c L_c (T_target - T_contactor) at the overlap "
+                      "centroid [W/(m^2 K)].");
+    prm.declare_entry("Safety factor",
+                      "0.9",
+                      Patterns::Double(1e-6, 1.),
+                      "Explicit: fraction of the stable thermal step used "
+                      "when Time stepping/Time step is larger [-].");
+    prm.declare_entry("Linear solver tolerance",
+                      "1e-12",
+                      Patterns::Double(1e-16, 1e-2),
+                      "Implicit: CG stops at this residual relative to the "
+                      "right-hand side [-].");
+    prm.declare_entry("Mechanical steps per thermal step",
+                      "0",
+                      Patterns::Integer(0),
+                      "Multi-rate coupling: one thermal step every n "
+                      "mechanical steps; 0: the largest n that keeps the "
+                      "thermal step stable (explicit) or 1000 (implicit).");
+    prm.leave_subsection();
+  }
+
+  void
+  DiscreteHeatParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Discrete heat");
+    time_integration         = prm.get("Time integration");
+    joint_conductance_factor = prm.get_double("Joint conductance factor");
+    contact_conductance      = prm.get_double("Contact conductance");
+    safety_factor            = prm.get_double("Safety factor");
+    solver_tolerance         = prm.get_double("Linear solver tolerance");
+    mechanical_steps_per_thermal_step =
+      prm.get_integer("Mechanical steps per thermal step");
+    prm.leave_subsection();
+    if (!(joint_conductance_factor > 0.))
+      throw InputError("Discrete heat/Joint conductance factor = " +
+                       Utilities::to_string(joint_conductance_factor) +
+                       ": must be > 0 (intact joints must conduct).");
+  }
+
+  void
   DiscreteBodyParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Discrete bodies");

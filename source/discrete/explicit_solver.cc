@@ -16,6 +16,7 @@
 #include <thread>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/function_expression.h>
+#include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/explicit_solver.h>
 #include <tmfdem/io/output_files.h>
@@ -97,10 +98,7 @@ namespace tmfdem
     {
       if (input_checked)
         return;
-      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
-        throw InputError("the discrete layer runs on one MPI process with "
-                         "threads (Discrete mechanics/Threads); run it "
-                         "without mpirun -np > 1.");
+
       const auto &dm = parameters.discrete_mechanics;
       idealisation   = parameters.mechanics.idealisation ==
                            MechanicsParameters::Idealisation::plane_strain ?
@@ -110,29 +108,8 @@ namespace tmfdem
         if (name == dm.softening_law)
           softening_law = law;
 
-      create_output_folder(parameters.output.directory, communicator);
-      create_coarse_mesh(parameters.mesh,
-                         parameters.output.directory,
-                         triangulation,
-                         communicator);
-      const std::string source =
-        parameters.mesh.source == MeshParameters::Source::file ?
-          "mesh file '" + parameters.mesh.file_name + "'" :
-          "generated mesh";
-      const MeshReport report =
-        check_mesh(triangulation,
-                   source,
-                   domain_area(parameters.mesh),
-                   parameters.mesh.source == MeshParameters::Source::annulus ||
-                     parameters.mesh.source == MeshParameters::Source::disc);
-      if (report.n_quadrilaterals > 0)
-        throw InputError(source +
-                         " has quadrilaterals; the discrete layer needs "
-                         "triangles (Mesh/Element type = triangles).");
-      triangulation.refine_global(parameters.mesh.global_refinements);
-      dof_handler.reinit(triangulation);
-      dof_handler.distribute_dofs(fe);
-      model.build(dof_handler);
+      build_discrete_mesh(
+        parameters, communicator, triangulation, dof_handler, fe, model);
 
       setup_materials();
       setup_bodies();
@@ -174,50 +151,7 @@ namespace tmfdem
       n_threads = dm.threads > 0 ? dm.threads :
                                    std::max(1u, std::thread::hardware_concurrency());
 
-      // monitors: reference points located in the reference mesh
-      auto locate = [&](const std::string &name, const Point<2> &p) {
-        Sample sample;
-        sample.name = name;
-        sample.x    = p[0];
-        sample.y    = p[1];
-        for (unsigned int e = 0; e < model.n_elements; ++e)
-          {
-            const double *xr = &model.x_ref[3 * e], *yr = &model.y_ref[3 * e];
-            const double det = (yr[1] - yr[2]) * (xr[0] - xr[2]) +
-                               (xr[2] - xr[1]) * (yr[0] - yr[2]);
-            const double l0 = ((yr[1] - yr[2]) * (p[0] - xr[2]) +
-                               (xr[2] - xr[1]) * (p[1] - yr[2])) /
-                              det;
-            const double l1 = ((yr[2] - yr[0]) * (p[0] - xr[2]) +
-                               (xr[0] - xr[2]) * (p[1] - yr[2])) /
-                              det;
-            const double l2  = 1. - l0 - l1;
-            const double tol = -1e-10;
-            if (l0 >= tol && l1 >= tol && l2 >= tol)
-              {
-                sample.element   = e;
-                sample.lambda[0] = l0;
-                sample.lambda[1] = l1;
-                sample.lambda[2] = l2;
-                return sample;
-              }
-          }
-        std::ostringstream where;
-        where << "(" << p[0] << ", " << p[1] << ")";
-        throw InputError("Monitors: point '" + name + "' at " + where.str() +
-                         " lies outside the mesh.");
-      };
-      probe_samples.clear();
-      line_samples.clear();
-      for (const auto &probe : parameters.monitors.probes)
-        probe_samples.push_back(locate(probe.name, probe.location));
-      for (const auto &line : parameters.monitors.lines)
-        for (unsigned int i = 0; i < line.n_points; ++i)
-          {
-            const double s = line.n_points > 1 ? double(i) / (line.n_points - 1) : 0.;
-            line_samples.push_back(
-              locate(line.name, line.start + s * (line.end - line.start)));
-          }
+      locate_monitors(parameters.monitors, model, probe_samples, line_samples);
       input_checked = true;
     }
 
@@ -1155,7 +1089,7 @@ namespace tmfdem
           solution_series->write(time, discrete_solution_vtu(model));
           crack_series->write(time, crack_vtu(model));
         }
-      auto rows = [&](const std::vector<Sample> &samples) {
+      auto rows = [&](const std::vector<ReferenceSample> &samples) {
         std::ostringstream out;
         out << std::setprecision(10);
         for (const auto &s : samples)
@@ -1272,9 +1206,9 @@ namespace tmfdem
         header += ",condition" + std::to_string(k + 1) + "_fx,condition" +
                   std::to_string(k + 1) + "_fy";
       history_csv = std::make_unique<CsvSeries>(folder + "/history.csv",
-                                                header + "\n",
+                                                header,
                                                 communicator);
-      const std::string monitor_header = "time,name,x,y,ux,uy,sxx,syy,sxy\n";
+      const std::string monitor_header = "time,name,x,y,ux,uy,sxx,syy,sxy";
       if (!probe_samples.empty())
         probes_csv = std::make_unique<CsvSeries>(folder + "/probes.csv",
                                                  monitor_header,

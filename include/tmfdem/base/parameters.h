@@ -366,6 +366,7 @@ namespace tmfdem
     MechanicalBoundaryParameters mechanical_boundary;
     DiscreteMechanicsParameters  discrete_mechanics;
     DiscreteBodyParameters       discrete_bodies;
+    DiscreteHeatParameters       discrete_heat;
 
     static void
     declare_parameters(ParameterHandler &prm);

@@ -51,6 +51,22 @@ namespace tmfdem
     parse_parameters(ParameterHandler &prm);
   };
 
+  /** Subsection `Discrete heat`. */
+  struct DiscreteHeatParameters
+  {
+    std::string time_integration = "implicit"; ///< implicit|explicit
+    double      joint_conductance_factor = 1000.; ///< beta [-]
+    double      contact_conductance      = 1e4;   ///< h_c [W/(m^2 K)]
+    double      safety_factor            = 0.9;   ///< explicit [-]
+    double      solver_tolerance         = 1e-12; ///< relative
+    unsigned int mechanical_steps_per_thermal_step = 0; ///< 0: automatic
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
   /** One body: the cells of some material ids and how they move. */
   struct DiscreteBody
   {

@@ -21,6 +21,7 @@
 #include <tmfdem/base/simulation.h>
 #include <tmfdem/discrete/cohesive_law.h>
 #include <tmfdem/discrete/contact.h>
+#include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_model.h>
 #include <tmfdem/discrete/solid.h>
 #include <vector>
@@ -237,14 +238,7 @@ namespace tmfdem
       double                     history_interval = 0.;
       double                     next_history     = 0.;
       double                     wall_time        = 0.;
-      struct Sample
-      {
-        std::string  name;
-        double       x, y;
-        unsigned int element;
-        double       lambda[3];
-      };
-      std::vector<Sample> probe_samples, line_samples;
+      std::vector<ReferenceSample> probe_samples, line_samples;
     };
   } // namespace discrete
 } // namespace tmfdem

@@ -1,0 +1,174 @@
+/**
+ * @file
+ * Heat in the discrete layer (paper Sec. 3, theory manual chapter "Heat in
+ * the discrete layer"): P1 conduction inside every triangle of the exploded
+ * mesh (Eqs. 18-20, current configuration), heat exchange across every
+ * intact joint k_i (T_B - T_A) with k_i = beta k / h (Eqs. 25-27; switched
+ * off when the joint breaks), thermal boundary conditions on boundary ids,
+ * explicit (lumped capacity, enforced stable step) or backward Euler
+ * (Eq. 22, consistent capacity, CG) time integration, and the heat balance.
+ *
+ * The nodal temperatures are a deal.II Vector indexed like the DoFs of
+ * FE_SimplexDGP(1) on the discrete layer's triangulation (node 3e+k).
+ */
+#ifndef tmfdem_discrete_discrete_heat_h
+#define tmfdem_discrete_discrete_heat_h
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <map>
+#include <memory>
+#include <tmfdem/base/parameters.h>
+#include <tmfdem/discrete/discrete_model.h>
+#include <vector>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    /** Heat that crossed each boundary id, joints and contacts, and the
+     *  stored heat [J/m] (per unit thickness). */
+    struct HeatBalance
+    {
+      std::map<types::boundary_id, double> boundary_heat_in;
+      double                               source_heat  = 0.;
+      double                               contact_heat = 0.; ///< sums to 0
+      double                               stored_heat  = 0.;
+      /** in - stored [J/m]. */
+      double
+      imbalance() const;
+      /** Largest of the terms [J/m]. */
+      double
+      scale() const;
+    };
+
+    /** The thermal state and operators of the discrete layer. */
+    class DiscreteHeat
+    {
+    public:
+      /**
+       * Sets up from the materials, `Discrete heat` and `Thermal boundary
+       * conditions` of @p parameters for the built @p model. Throws
+       * InputError for boundary ids not on the mesh.
+       */
+      DiscreteHeat(const Parameters &parameters, DiscreteModel &model);
+      ~DiscreteHeat();
+
+      /** Sets T(x, y, t0) from `Initial conditions` (reference positions)
+       *  and applies Dirichlet values. */
+      void
+      initialise(const double time);
+
+      /** Stable explicit step of the lumped system [s]. */
+      double
+      stable_time_step() const;
+
+      /** Advance from @p time by @p time_step with the method of `Discrete
+       *  heat/Time integration`. */
+      void
+      step(const double time, const double time_step);
+
+      /** Nodal temperatures [C]. */
+      Vector<double> &
+      temperature()
+      {
+        return T;
+      }
+      const Vector<double> &
+      temperature() const
+      {
+        return T;
+      }
+
+      /** Heat balance so far. */
+      const HeatBalance &
+      balance() const
+      {
+        return heat_balance;
+      }
+
+      /** True for the implicit (backward Euler) method. */
+      bool
+      implicit() const
+      {
+        return use_implicit;
+      }
+
+      /** CG iterations of the last implicit step. */
+      unsigned int
+      last_iterations() const
+      {
+        return iterations;
+      }
+
+      /**
+       * Sets the discrete temperatures from a continuous P1 field given at
+       * the mesh vertices (interpolation: every node takes its vertex's
+       * value). @p vertex_values is indexed by vertex index.
+       */
+      void
+      interpolate_from_vertices(const std::vector<double> &vertex_values);
+
+      /** Averages the nodes at each vertex: the continuous P1 field closest
+       *  to the discrete one [C], indexed by vertex index. */
+      std::vector<double>
+      average_to_vertices() const;
+
+    private:
+      /** Heat rates into each node from conduction, joints, boundary
+       *  conditions and sources at time @p time [W/m]; Dirichlet nodes
+       *  excluded. Also per boundary id rates. */
+      void
+      heat_rates(const double time, Vector<double> &rate, std::map<types::boundary_id, double> &boundary_rate, double &source_rate) const;
+      void
+      assemble_implicit(const double time_step);
+      void
+      set_dirichlet_values(const double time);
+      void
+      set_function_time(const double time) const;
+
+      const Parameters &parameters;
+      DiscreteModel    &model;
+      Vector<double>    T;
+      bool              use_implicit = true;
+      double            beta         = 100.;
+
+      std::vector<double> conductivity;   ///< per element [W/(m K)]
+      std::vector<double> volumetric_heat_capacity; ///< rho c per element
+      std::vector<double> lumped_capacity;  ///< per node [J/(m K)]
+      std::vector<double> joint_conductance; ///< k_i L / 2 per node pair [W/(m K)]
+
+      struct BoundaryEdge
+      {
+        unsigned int       element, edge;
+        unsigned int       condition;
+        types::boundary_id id;
+      };
+      std::vector<BoundaryEdge> boundary_edges;
+      std::vector<bool>         dirichlet_node;
+      std::vector<unsigned int> dirichlet_condition; ///< per node
+      struct ConditionFunctions
+      {
+        ThermalBoundaryCondition::Type     type;
+        std::unique_ptr<FunctionParser<2>> temperature, flux, coefficient, ambient;
+      };
+      std::vector<ConditionFunctions>                 conditions;
+      std::vector<std::unique_ptr<FunctionParser<2>>> sources; ///< by material
+
+      // implicit
+      SparsityPattern      sparsity;
+      SparseMatrix<double> matrix;
+      double               assembled_time_step = -1.;
+      std::vector<char>    assembled_joint_state;
+      unsigned int         iterations = 0;
+
+      HeatBalance heat_balance;
+      Vector<double> initial_T;
+    };
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif

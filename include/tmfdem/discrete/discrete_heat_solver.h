@@ -1,0 +1,55 @@
+/**
+ * @file
+ * Heat-only runs of the discrete layer (model `discrete heat`): the
+ * mechanics is off, the mesh stays in its reference configuration, and the
+ * run marches at the thermal step alone (Time stepping/Time step), so that
+ * the paper's 50 s of conduction (Sec. 5.1) take a thousand steps, not
+ * 5e8. Outputs: solution.pvd (exploded mesh with T), probes.csv and
+ * lines.csv (time,name,x,y,T), summary.json with the heat balance.
+ */
+#ifndef tmfdem_discrete_discrete_heat_solver_h
+#define tmfdem_discrete_discrete_heat_solver_h
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/grid/tria.h>
+
+#include <memory>
+#include <tmfdem/base/parameters.h>
+#include <tmfdem/base/simulation.h>
+#include <tmfdem/discrete/discrete_heat.h>
+#include <tmfdem/discrete/discrete_mesh.h>
+#include <tmfdem/discrete/discrete_model.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    /** Heat conduction in the discrete layer without mechanics. */
+    class DiscreteHeatSolver : public Simulation
+    {
+    public:
+      DiscreteHeatSolver(const Parameters &parameters, MPI_Comm communicator);
+      ~DiscreteHeatSolver() override;
+
+      void
+      check_input() override;
+      void
+      run() override;
+
+    private:
+      const Parameters             &parameters;
+      MPI_Comm                      communicator;
+      bool                          input_checked = false;
+      Triangulation<2>              triangulation;
+      FE_SimplexDGP<2>              fe;
+      DoFHandler<2>                 dof_handler;
+      DiscreteModel                 model;
+      std::unique_ptr<DiscreteHeat> heat;
+      std::vector<ReferenceSample>  probe_samples, line_samples;
+      double                        time_step = 0.;
+    };
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif

@@ -1,0 +1,520 @@
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/precondition.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/numerics/matrix_tools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/function_expression.h>
+#include <tmfdem/discrete/discrete_heat.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    double
+    HeatBalance::imbalance() const
+    {
+      double in = source_heat + contact_heat;
+      for (const auto &[id, q] : boundary_heat_in)
+        in += q;
+      return in - stored_heat;
+    }
+
+    double
+    HeatBalance::scale() const
+    {
+      double s = std::max({std::abs(source_heat),
+                           std::abs(contact_heat),
+                           std::abs(stored_heat),
+                           1e-30});
+      for (const auto &[id, q] : boundary_heat_in)
+        s = std::max(s, std::abs(q));
+      return s;
+    }
+
+    namespace
+    {
+      /** Gradients of the P1 shape functions times 2A (current geometry)
+       *  and the current area A [m^2]. */
+      inline double
+      shape_gradients(const DiscreteModel &m, const unsigned int e, double g[3][2])
+      {
+        const double *x = &m.x[3 * e], *y = &m.y[3 * e];
+        g[0][0] = y[1] - y[2];
+        g[0][1] = x[2] - x[1];
+        g[1][0] = y[2] - y[0];
+        g[1][1] = x[0] - x[2];
+        g[2][0] = y[0] - y[1];
+        g[2][1] = x[1] - x[0];
+        return 0.5 * ((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]));
+      }
+
+      /** Conductivity matrix K_ab = k A grad N_a . grad N_b of element e. */
+      inline void
+      conductivity_matrix(const DiscreteModel &m,
+                          const unsigned int   e,
+                          const double         k,
+                          double               K[3][3])
+      {
+        double       g[3][2];
+        const double area  = shape_gradients(m, e, g);
+        const double scale = k / (4. * area);
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int b = 0; b < 3; ++b)
+            K[a][b] = scale * (g[a][0] * g[b][0] + g[a][1] * g[b][1]);
+      }
+    } // namespace
+
+    DiscreteHeat::DiscreteHeat(const Parameters &parameters, DiscreteModel &model)
+      : parameters(parameters)
+      , model(model)
+    {
+      const auto &dh = parameters.discrete_heat;
+      use_implicit   = dh.time_integration == "implicit";
+      beta           = dh.joint_conductance_factor;
+      T.reinit(model.n_nodes);
+
+      conductivity.resize(model.n_elements);
+      volumetric_heat_capacity.resize(model.n_elements);
+      lumped_capacity.assign(model.n_nodes, 0.);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          const MaterialProperties &m = parameters.materials[model.material[e]];
+          conductivity[e]             = m.thermal_conductivity;
+          volumetric_heat_capacity[e] = m.density * m.specific_heat;
+          for (unsigned int k = 0; k < 3; ++k)
+            lumped_capacity[3 * e + k] =
+              volumetric_heat_capacity[e] * model.reference_area[e] / 3.;
+        }
+      // joints: k_i = beta k / h per unit area, half the edge to each node
+      // pair: G = k_i h / 2 = beta k / 2 with k the harmonic mean
+      joint_conductance.resize(model.n_joints);
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        {
+          const double ka = conductivity[model.joint_elements[2 * j]];
+          const double kb = conductivity[model.joint_elements[2 * j + 1]];
+          const double k  = 2. * ka * kb / (ka + kb);
+          joint_conductance[j] = 0.5 * beta * k;
+        }
+
+      // sources per material
+      sources.resize(256);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        if (!sources[model.material[e]])
+          sources[model.material[e]] = make_expression_function(
+            parameters.materials[model.material[e]].heat_source,
+            "Materials/Material " + std::to_string(model.material[e]) +
+              "/Volumetric heat source");
+
+      // boundary conditions
+      std::set<types::boundary_id> mesh_ids;
+      for (const auto id : model.edge_boundary)
+        if (id != numbers::internal_face_boundary_id)
+          mesh_ids.insert(id);
+      std::vector<int> condition_of_id(256, -1);
+      for (const auto &c : parameters.thermal_boundary.conditions)
+        {
+          ConditionFunctions f;
+          f.type        = c.type;
+          f.temperature = make_expression_function(c.temperature, c.name + "/Temperature");
+          f.flux        = make_expression_function(c.heat_flux, c.name + "/Heat flux");
+          f.coefficient = make_expression_function(c.heat_transfer_coefficient,
+                                                   c.name + "/Heat transfer coefficient");
+          f.ambient = make_expression_function(c.ambient_temperature,
+                                               c.name + "/Ambient temperature");
+          for (const auto id : c.boundary_ids)
+            {
+              if (mesh_ids.count(id) == 0)
+                {
+                  std::string ids;
+                  for (const auto m : mesh_ids)
+                    ids += " " + std::to_string(m);
+                  throw InputError(c.name + "/Boundary ids: boundary id " +
+                                   std::to_string(id) +
+                                   " is not on the mesh; the mesh has boundary "
+                                   "ids" +
+                                   ids + ".");
+                }
+              condition_of_id[id] = conditions.size();
+            }
+          conditions.push_back(std::move(f));
+        }
+      dirichlet_node.assign(model.n_nodes, false);
+      dirichlet_condition.assign(model.n_nodes, 0);
+      std::map<unsigned int, unsigned int> dirichlet_vertex;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            const types::boundary_id id = model.edge_boundary[3 * e + k];
+            heat_balance.boundary_heat_in[id] += 0.;
+            if (id == numbers::internal_face_boundary_id || condition_of_id[id] < 0)
+              continue;
+            const unsigned int c = condition_of_id[id];
+            boundary_edges.push_back({e, k, c, id});
+            if (conditions[c].type == ThermalBoundaryCondition::Type::dirichlet)
+              for (const unsigned int n : {3 * e + k, 3 * e + (k + 1) % 3})
+                dirichlet_vertex[model.node_vertex[n]] = c;
+          }
+      heat_balance.boundary_heat_in.erase(numbers::internal_face_boundary_id);
+      // every node on a Dirichlet vertex is held, not only those of the
+      // elements that own the boundary edge
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        {
+          const auto it = dirichlet_vertex.find(model.node_vertex[n]);
+          if (it != dirichlet_vertex.end())
+            {
+              dirichlet_node[n]      = true;
+              dirichlet_condition[n] = it->second;
+            }
+        }
+    }
+
+    DiscreteHeat::~DiscreteHeat() = default;
+
+    void
+    DiscreteHeat::set_function_time(const double time) const
+    {
+      for (const auto &f : conditions)
+        {
+          f.temperature->set_time(time);
+          f.flux->set_time(time);
+          f.coefficient->set_time(time);
+          f.ambient->set_time(time);
+        }
+      for (const auto &s : sources)
+        if (s)
+          s->set_time(time);
+    }
+
+    void
+    DiscreteHeat::initialise(const double time)
+    {
+      auto initial = make_expression_function(parameters.initial.temperature,
+                                              "Initial conditions/Temperature");
+      initial->set_time(time);
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        T[n] = initial->value(Point<2>(model.x_ref[n], model.y_ref[n]));
+      set_dirichlet_values(time);
+      initial_T = T;
+    }
+
+    void
+    DiscreteHeat::set_dirichlet_values(const double time)
+    {
+      set_function_time(time);
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        if (dirichlet_node[n])
+          T[n] = conditions[dirichlet_condition[n]].temperature->value(
+            Point<2>(model.x_ref[n], model.y_ref[n]));
+    }
+
+    double
+    DiscreteHeat::stable_time_step() const
+    {
+      // Gershgorin: lambda_max <= max_i (2 K_ii + 2 sum G + h L/2) / C_i
+      std::vector<double> row(model.n_nodes, 0.);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          double K[3][3];
+          conductivity_matrix(model, e, conductivity[e], K);
+          for (unsigned int a = 0; a < 3; ++a)
+            row[3 * e + a] += 2. * K[a][a];
+        }
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        for (unsigned int s = 0; s < 4; ++s)
+          row[model.joint_nodes[4 * j + s]] += 2. * joint_conductance[j];
+      set_function_time(0.);
+      for (const auto &b : boundary_edges)
+        if (conditions[b.condition].type == ThermalBoundaryCondition::Type::robin)
+          {
+            const unsigned int n0 = 3 * b.element + b.edge;
+            const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
+            const double L = std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
+            for (const unsigned int n : {n0, n1})
+              row[n] += 0.5 * L *
+                        conditions[b.condition].coefficient->value(
+                          Point<2>(model.x_ref[n], model.y_ref[n]));
+          }
+      double lambda = 0.;
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        if (!dirichlet_node[n])
+          lambda = std::max(lambda, row[n] / lumped_capacity[n]);
+      return lambda > 0. ? 2. / lambda : 1e300;
+    }
+
+    void
+    DiscreteHeat::heat_rates(const double                          time,
+                             Vector<double>                       &rate,
+                             std::map<types::boundary_id, double> &boundary_rate,
+                             double                               &source_rate) const
+    {
+      rate.reinit(model.n_nodes);
+      // conduction inside the triangles
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          double K[3][3];
+          conductivity_matrix(model, e, conductivity[e], K);
+          for (unsigned int a = 0; a < 3; ++a)
+            {
+              double q = 0.;
+              for (unsigned int b = 0; b < 3; ++b)
+                q -= K[a][b] * T[3 * e + b];
+              rate[3 * e + a] += q;
+            }
+        }
+      // intact joints
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        if (model.joint_status[j] == JointStatus::intact)
+          for (unsigned int end = 0; end < 2; ++end)
+            {
+              const unsigned int a = model.joint_nodes[4 * j + end];
+              const unsigned int b = model.joint_nodes[4 * j + 2 + end];
+              const double       q = joint_conductance[j] * (T[b] - T[a]);
+              rate[a] += q;
+              rate[b] -= q;
+            }
+      // sources
+      set_function_time(time);
+      source_rate = 0.;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          const double *x = &model.x_ref[3 * e], *y = &model.y_ref[3 * e];
+          const Point<2> centroid((x[0] + x[1] + x[2]) / 3., (y[0] + y[1] + y[2]) / 3.);
+          const double   s = sources[model.material[e]]->value(centroid);
+          if (s != 0.)
+            {
+              const double q = s * model.reference_area[e] / 3.;
+              for (unsigned int a = 0; a < 3; ++a)
+                rate[3 * e + a] += q;
+              source_rate += 3. * q;
+            }
+        }
+      // Neumann and Robin, lumped on the edge's two nodes
+      for (auto &[id, r] : boundary_rate)
+        r = 0.;
+      for (const auto &b : boundary_edges)
+        {
+          const auto &f = conditions[b.condition];
+          if (f.type == ThermalBoundaryCondition::Type::dirichlet)
+            continue;
+          const unsigned int n0 = 3 * b.element + b.edge;
+          const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
+          const double L = std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
+          for (const unsigned int n : {n0, n1})
+            {
+              const Point<2> p(model.x_ref[n], model.y_ref[n]);
+              const double   q =
+                f.type == ThermalBoundaryCondition::Type::neumann ?
+                    0.5 * L * f.flux->value(p) :
+                    0.5 * L * f.coefficient->value(p) * (f.ambient->value(p) - T[n]);
+              rate[n] += q;
+              boundary_rate[b.id] += q;
+            }
+        }
+    }
+
+    void
+    DiscreteHeat::step(const double time, const double time_step)
+    {
+      const Vector<double> T_old = T;
+      Vector<double>       rate;
+      std::map<types::boundary_id, double> boundary_rate = heat_balance.boundary_heat_in;
+      double                               source_rate   = 0.;
+      Vector<double>                       stored_change(model.n_nodes);
+      if (!use_implicit)
+        {
+          heat_rates(time, rate, boundary_rate, source_rate);
+          for (unsigned int n = 0; n < model.n_nodes; ++n)
+            if (!dirichlet_node[n])
+              T[n] += time_step * rate[n] / lumped_capacity[n];
+          set_dirichlet_values(time + time_step);
+          for (unsigned int n = 0; n < model.n_nodes; ++n)
+            stored_change[n] = lumped_capacity[n] * (T[n] - T_old[n]);
+        }
+      else
+        {
+          set_function_time(time + time_step);
+          assemble_implicit(time_step);
+          // right-hand side: M/dt T_old + loads at t + dt (T-independent
+          // parts); Robin's T part is in the matrix
+          Vector<double> rhs(model.n_nodes);
+          Vector<double> capacity_T(model.n_nodes);
+          for (unsigned int e = 0; e < model.n_elements; ++e)
+            {
+              const double c = volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
+              for (unsigned int a = 0; a < 3; ++a)
+                for (unsigned int b = 0; b < 3; ++b)
+                  capacity_T[3 * e + a] += c * (a == b ? 2. : 1.) * T_old[3 * e + b];
+            }
+          rhs.add(1. / time_step, capacity_T);
+          set_function_time(time + time_step);
+          for (unsigned int e = 0; e < model.n_elements; ++e)
+            {
+              const double *x = &model.x_ref[3 * e], *y = &model.y_ref[3 * e];
+              const double s = sources[model.material[e]]->value(
+                Point<2>((x[0] + x[1] + x[2]) / 3., (y[0] + y[1] + y[2]) / 3.));
+              for (unsigned int a = 0; a < 3; ++a)
+                rhs[3 * e + a] += s * model.reference_area[e] / 3.;
+            }
+          for (const auto &b : boundary_edges)
+            {
+              const auto &f = conditions[b.condition];
+              if (f.type == ThermalBoundaryCondition::Type::dirichlet)
+                continue;
+              const unsigned int n0 = 3 * b.element + b.edge;
+              const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
+              const double L = std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
+              for (const unsigned int n : {n0, n1})
+                {
+                  const Point<2> p(model.x_ref[n], model.y_ref[n]);
+                  rhs[n] += f.type == ThermalBoundaryCondition::Type::neumann ?
+                              0.5 * L * f.flux->value(p) :
+                              0.5 * L * f.coefficient->value(p) * f.ambient->value(p);
+                }
+            }
+          set_dirichlet_values(time + time_step);
+          std::map<types::global_dof_index, double> boundary_values;
+          for (unsigned int n = 0; n < model.n_nodes; ++n)
+            if (dirichlet_node[n])
+              boundary_values[n] = T[n];
+          Vector<double> solution = T_old;
+          for (const auto &[n, v] : boundary_values)
+            solution[n] = v;
+          MatrixTools::apply_boundary_values(boundary_values, matrix, solution, rhs, true);
+          SolverControl control(std::max<unsigned int>(1000, model.n_nodes),
+                                parameters.discrete_heat.solver_tolerance *
+                                  std::max(1e-300, rhs.l2_norm()));
+          SolverCG<Vector<double>> cg(control);
+          PreconditionSSOR<SparseMatrix<double>> ssor;
+          ssor.initialize(matrix, 1.2);
+          try
+            {
+              cg.solve(matrix, solution, rhs, ssor);
+            }
+          catch (const SolverControl::NoConvergence &e)
+            {
+              throw RunError("discrete heat: CG did not converge in " +
+                             std::to_string(e.last_step) +
+                             " iterations at t = " + std::to_string(time + time_step) +
+                             " s (residual " + std::to_string(e.last_residual) +
+                             "); Discrete heat/Linear solver tolerance may be too "
+                             "strict.");
+            }
+          iterations = control.last_step();
+          T          = solution;
+          heat_rates(time + time_step, rate, boundary_rate, source_rate);
+          for (unsigned int e = 0; e < model.n_elements; ++e)
+            {
+              const double c = volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
+              for (unsigned int a = 0; a < 3; ++a)
+                for (unsigned int b = 0; b < 3; ++b)
+                  stored_change[3 * e + a] +=
+                    c * (a == b ? 2. : 1.) * (T[3 * e + b] - T_old[3 * e + b]);
+            }
+        }
+      // the balance: Neumann/Robin/source at the rates used, Dirichlet heat
+      // from the residual of the held nodes
+      for (const auto &[id, r] : boundary_rate)
+        heat_balance.boundary_heat_in[id] += time_step * r;
+      heat_balance.source_heat += time_step * source_rate;
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        {
+          heat_balance.stored_heat += stored_change[n];
+          if (dirichlet_node[n])
+            {
+              // which boundary id: the first of its condition
+              const auto &ids =
+                parameters.thermal_boundary.conditions[dirichlet_condition[n]].boundary_ids;
+              heat_balance.boundary_heat_in[ids.front()] +=
+                stored_change[n] - time_step * rate[n];
+            }
+        }
+    }
+
+    void
+    DiscreteHeat::assemble_implicit(const double time_step)
+    {
+      if (sparsity.n_rows() != model.n_nodes)
+        {
+          DynamicSparsityPattern dsp(model.n_nodes);
+          for (unsigned int e = 0; e < model.n_elements; ++e)
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int b = 0; b < 3; ++b)
+                dsp.add(3 * e + a, 3 * e + b);
+          for (unsigned int j = 0; j < model.n_joints; ++j)
+            for (unsigned int end = 0; end < 2; ++end)
+              {
+                const unsigned int a = model.joint_nodes[4 * j + end];
+                const unsigned int b = model.joint_nodes[4 * j + 2 + end];
+                dsp.add(a, b);
+                dsp.add(b, a);
+              }
+          sparsity.copy_from(dsp);
+          matrix.reinit(sparsity);
+        }
+      matrix = 0.;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          double K[3][3];
+          conductivity_matrix(model, e, conductivity[e], K);
+          const double c = volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int b = 0; b < 3; ++b)
+              matrix.add(3 * e + a, 3 * e + b, K[a][b] + c * (a == b ? 2. : 1.) / time_step);
+        }
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        if (model.joint_status[j] == JointStatus::intact)
+          for (unsigned int end = 0; end < 2; ++end)
+            {
+              const unsigned int a = model.joint_nodes[4 * j + end];
+              const unsigned int b = model.joint_nodes[4 * j + 2 + end];
+              const double       G = joint_conductance[j];
+              matrix.add(a, a, G);
+              matrix.add(b, b, G);
+              matrix.add(a, b, -G);
+              matrix.add(b, a, -G);
+            }
+      for (const auto &b : boundary_edges)
+        {
+          const auto &f = conditions[b.condition];
+          if (f.type != ThermalBoundaryCondition::Type::robin)
+            continue;
+          const unsigned int n0 = 3 * b.element + b.edge;
+          const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
+          const double L = std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
+          for (const unsigned int n : {n0, n1})
+            matrix.add(n, n, 0.5 * L * f.coefficient->value(Point<2>(model.x_ref[n], model.y_ref[n])));
+        }
+    }
+
+    void
+    DiscreteHeat::interpolate_from_vertices(const std::vector<double> &vertex_values)
+    {
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        T[n] = vertex_values[model.node_vertex[n]];
+    }
+
+    std::vector<double>
+    DiscreteHeat::average_to_vertices() const
+    {
+      unsigned int n_vertices = 0;
+      for (const auto v : model.node_vertex)
+        n_vertices = std::max(n_vertices, v + 1);
+      std::vector<double>       sum(n_vertices, 0.);
+      std::vector<unsigned int> count(n_vertices, 0);
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        {
+          sum[model.node_vertex[n]] += T[n];
+          ++count[model.node_vertex[n]];
+        }
+      for (unsigned int v = 0; v < n_vertices; ++v)
+        if (count[v] > 0)
+          sum[v] /= count[v];
+      return sum;
+    }
+  } // namespace discrete
+} // namespace tmfdem

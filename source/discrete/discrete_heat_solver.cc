@@ -1,0 +1,178 @@
+#include <iomanip>
+#include <sstream>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/discrete/discrete_heat_solver.h>
+#include <tmfdem/discrete/discrete_output.h>
+#include <tmfdem/io/output_files.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    namespace
+    {
+      const bool registered = register_simulation(
+        "discrete heat",
+        "heat conduction in the discrete layer (exploded triangles, joint "
+        "exchange), mechanics off, marching at the thermal step",
+        [](const Parameters &parameters, MPI_Comm communicator) {
+          return std::make_unique<DiscreteHeatSolver>(parameters, communicator);
+        });
+    } // namespace
+
+    DiscreteHeatSolver::DiscreteHeatSolver(const Parameters &parameters,
+                                           MPI_Comm          communicator)
+      : parameters(parameters)
+      , communicator(communicator)
+      , fe(1)
+    {}
+
+    DiscreteHeatSolver::~DiscreteHeatSolver() = default;
+
+    void
+    DiscreteHeatSolver::check_input()
+    {
+      if (input_checked)
+        return;
+      build_discrete_mesh(
+        parameters, communicator, triangulation, dof_handler, fe, model);
+      heat = std::make_unique<DiscreteHeat>(parameters, model);
+      locate_monitors(parameters.monitors, model, probe_samples, line_samples);
+      const auto &ts = parameters.time;
+      if (ts.mode != TimeSteppingParameters::Mode::transient)
+        throw InputError("Time stepping/Mode = steady: the discrete heat "
+                         "model is transient only; allowed is transient.");
+      time_step = ts.time_step;
+      if (!heat->implicit())
+        {
+          const double stable = heat->stable_time_step();
+          if (time_step > stable)
+            throw InputError(
+              "Time stepping/Time step = " + Utilities::to_string(time_step) +
+              " s exceeds the stable explicit thermal step " +
+              Utilities::to_string(stable) +
+              " s of this mesh (lumped capacity, joint conductance, Robin "
+              "coefficients); allowed is at most the stable step, or "
+              "Discrete heat/Time integration = implicit.");
+        }
+      input_checked = true;
+    }
+
+    void
+    DiscreteHeatSolver::run()
+    {
+      check_input();
+      const std::string &folder = parameters.output.directory;
+      VtuSeries          series(folder, "solution");
+      const std::string  header = "time,name,x,y,T";
+      CsvSeries          probes_csv, lines_csv;
+      if (!probe_samples.empty())
+        probes_csv = CsvSeries(folder + "/probes.csv", header, communicator);
+      if (!line_samples.empty())
+        lines_csv = CsvSeries(folder + "/lines.csv", header, communicator);
+
+      double       time = parameters.time.start_time;
+      const double end  = parameters.time.end_time;
+      heat->initialise(time);
+      std::vector<double> output_times;
+      for (const double t : parameters.output.times)
+        if (t > time && t < end + 0.5 * time_step)
+          output_times.push_back(t);
+      if (parameters.output.interval > 0.)
+        for (double t = time + parameters.output.interval; t < end;
+             t += parameters.output.interval)
+          output_times.push_back(t);
+      output_times.push_back(end);
+      std::sort(output_times.begin(), output_times.end());
+      output_times.erase(std::unique(output_times.begin(), output_times.end(),
+                                     [&](double a, double b) {
+                                       return std::abs(a - b) < 0.5 * time_step;
+                                     }),
+                         output_times.end());
+
+      auto write_output = [&]() {
+        if (parameters.output.write_vtu)
+          {
+            std::vector<double> T(heat->temperature().begin(),
+                                  heat->temperature().end());
+            series.write(time, discrete_solution_vtu(model, {{"T", &T}}));
+          }
+        auto rows = [&](const std::vector<ReferenceSample> &samples) {
+          std::ostringstream out;
+          out << std::setprecision(12);
+          for (const auto &s : samples)
+            {
+              double T = 0.;
+              for (unsigned int k = 0; k < 3; ++k)
+                T += s.lambda[k] * heat->temperature()[3 * s.element + k];
+              out << time << ',' << s.name << ',' << s.x << ',' << s.y << ','
+                  << T << '\n';
+            }
+          return out.str();
+        };
+        if (!probe_samples.empty())
+          probes_csv.append(rows(probe_samples));
+        if (!line_samples.empty())
+          lines_csv.append(rows(line_samples));
+      };
+      write_output();
+
+      ProgressReporter progress(parameters.output.progress_interval, time, end, true);
+      unsigned long    steps          = 0;
+      unsigned long    cg_iterations  = 0;
+      unsigned int     next_output    = 0;
+      while (time < end - 1e-9 * time_step)
+        {
+          // land exactly on output times
+          double dt = std::min(time_step, end - time);
+          if (next_output < output_times.size() &&
+              output_times[next_output] - time < dt + 1e-9 * time_step)
+            dt = output_times[next_output] - time;
+          heat->step(time, dt);
+          cg_iterations += heat->last_iterations();
+          time += dt;
+          ++steps;
+          while (next_output < output_times.size() &&
+                 time >= output_times[next_output] - 1e-9 * time_step)
+            {
+              write_output();
+              ++next_output;
+            }
+          progress.update(steps, time);
+        }
+
+      const HeatBalance &b = heat->balance();
+      JsonObject         boundary;
+      for (const auto &[id, q] : b.boundary_heat_in)
+        boundary.add(std::to_string(id), q);
+      JsonObject balance;
+      balance.add("boundary_heat_in", boundary)
+        .add("source_heat", b.source_heat)
+        .add("contact_heat", b.contact_heat)
+        .add("stored_heat", b.stored_heat)
+        .add("imbalance", b.imbalance())
+        .add("relative_imbalance", std::abs(b.imbalance()) / b.scale());
+      JsonObject summary;
+      summary.add("model", std::string("discrete heat"))
+        .add("elements", model.n_elements)
+        .add("nodes", model.n_nodes)
+        .add("joints", model.n_joints)
+        .add("time_integration", parameters.discrete_heat.time_integration)
+        .add("steps", static_cast<long long>(steps))
+        .add("end_time", time)
+        .add("time_step", time_step)
+        .add("stable_explicit_time_step", heat->stable_time_step())
+        .add("cg_iterations", static_cast<long long>(cg_iterations))
+        .add("wall_time", progress.elapsed())
+        .add("element_steps_per_second",
+             progress.elapsed() > 0. ?
+               model.n_elements * double(steps) / progress.elapsed() :
+               0.)
+        .add("heat_balance", balance);
+      write_file_atomically(folder + "/summary.json", summary.str() + "\n");
+      std::cerr << "[tmfdem] discrete heat: " << steps << " steps to t = " << time
+                << " s, heat imbalance " << std::abs(b.imbalance()) / b.scale()
+                << " (relative)\n";
+    }
+  } // namespace discrete
+} // namespace tmfdem
