@@ -1,0 +1,764 @@
+/**
+ * @file
+ * Contact heat transfer between two triangles of the discrete layer (paper
+ * Sec. 3.4, Eqs. 28-36, with the driving term of
+ * `shared/design/physics-notes.md`, section "Heat"; theory manual "Contact
+ * heat over the overlap").
+ *
+ * For a contact pair (contactor c, target t) the kernel
+ *  1. clips c by the three half-planes of t (Sutherland-Hodgman) to get the
+ *     overlap polygon S (at most 6 vertices), its area, its centroid G and
+ *     its contact length L_c, the chord of the interpenetration (see
+ *     OverlapPolygon);
+ *  2. evaluates the area coordinates of G in both triangles (Eqs. 34-35);
+ *  3. transfers Q = h_c L_c (T_t(G) - T_c(G)) [W/m, per unit thickness]
+ *     from t to c and distributes +Q to c's nodes and -Q to t's nodes with
+ *     those area coordinates (Eq. 36). The six nodal heats sum to exactly
+ *     0.0 in floating point, in any order of summation (see
+ *     split_heat_exactly()).
+ *
+ * The paper's own driving term (Eqs. 29-33: an element temperature gradient
+ * averaged over the overlap, times h_c) is offered only as the named
+ * alternative paper_literal_contact_heat(); it transfers nothing between
+ * two isothermal bodies at different temperatures and so fails the simplest
+ * contact benchmark.
+ *
+ * Everything here is header-only, inline and allocation-free.
+ */
+#ifndef tmfdem_discrete_contact_heat_h
+#define tmfdem_discrete_contact_heat_h
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    /** Which triangle's boundary an edge of the overlap polygon lies on. */
+    enum class OverlapEdgeOwner : unsigned char
+    {
+      /** the boundary of the first triangle (the contactor) only */
+      first,
+      /** the boundary of the second triangle (the target) only */
+      second,
+      /** both: collinear edges of the two triangles (e.g. the aligned side
+       * faces of neighbouring elements) */
+      both
+    };
+
+    /**
+     * The overlap polygon of two triangles and its geometric properties.
+     *
+     * Contact length L_c [m]: the chord of the interpenetration. The
+     * polygon's boundary consists of runs of edges on the first triangle's
+     * boundary (inside the second) and runs on the second's boundary (inside
+     * the first); consecutive runs meet at the crossing points of the two
+     * boundaries (where a run of collinear edges, on both boundaries,
+     * separates a run of the first from one of the second, the crossing is
+     * the midpoint of that collinear run). L_c is half the perimeter of the
+     * polygon of the crossing points: with the usual two crossings, the
+     * straight distance between them. With no crossing (one triangle inside
+     * the other, identical triangles) L_c = 0, the limit of the chord as a
+     * small triangle sinks into a larger one.
+     *
+     * Why the chord:
+     *  - a flat face-to-face contact with penetration delta over a segment
+     *    of length s gives L_c = s (exactly when the ends are cut by aligned
+     *    edges, sqrt(s^2 + delta^2) when by edges of different triangles),
+     *    so Q = h_c L_c dT is a flux h_c dT per unit contact length;
+     *  - in a meshed face-to-face contact, neighbouring pairs share their
+     *    crossing points (a mesh edge crossing the contact layer is the end
+     *    of the two slivers on either side, a small wedge cut off at a face
+     *    vertex included), so the chords of all pairs add up to the touching
+     *    length to second order in delta / (element size), up to O(delta)
+     *    at the two ends of the contact;
+     *  - it is symmetric in the pair and invariant under rigid motions.
+     * Polygon-only measures cannot do this: half the perimeter adds about
+     * delta per sliver end, and the equivalent-rectangle length
+     * sqrt(12 I_max / A) gives a small wedge its height delta instead of its
+     * width along the face (both kept as diagnostics: perimeter and the
+     * second moments). The chord jumps where the number of crossings
+     * changes (a vertex of one triangle passing through the other), like any
+     * switch-on of contact conduction.
+     */
+    struct OverlapPolygon
+    {
+      /** Room for the vertices: 6 in exact arithmetic; 3 more so that
+       * vertices created by round-off in degenerate configurations can never
+       * overflow the arrays. */
+      static constexpr unsigned int max_vertices = 9;
+
+      /** Number of vertices (counter-clockwise), 0 if there is no overlap. */
+      unsigned int n_vertices = 0;
+
+      /** Vertex coordinates [m]. */
+      std::array<double, max_vertices> x{}, y{};
+
+      /** Owner of edge i, from vertex i to vertex i + 1 (mod n_vertices). */
+      std::array<OverlapEdgeOwner, max_vertices> edge_owner{};
+
+      /** Area [m^2] (0 if there is no overlap). */
+      double area = 0.;
+
+      /** Centroid G [m]. */
+      double centroid_x = 0., centroid_y = 0.;
+
+      /** Central second moments of area [m^4]: int (x - G_x)^2 dA,
+       * int (y - G_y)^2 dA and int (x - G_x)(y - G_y) dA (diagnostic). */
+      double second_moment_xx = 0., second_moment_yy = 0.,
+             second_moment_xy = 0.;
+
+      /** Contact length L_c [m]: chord of the interpenetration, see above. */
+      double contact_length = 0.;
+
+      /** Perimeter [m] (diagnostic only). */
+      double perimeter = 0.;
+    };
+
+    /**
+     * Twice the signed area [m^2] of the triangle (a, b, p): positive if
+     * p lies to the left of the directed line a->b.
+     */
+    inline double
+    twice_signed_area(const double ax,
+                      const double ay,
+                      const double bx,
+                      const double by,
+                      const double px,
+                      const double py)
+    {
+      return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
+    }
+
+    namespace contact_heat_internal
+    {
+      /**
+       * Sutherland-Hodgman step: clips the polygon (@p px, @p py [m],
+       * @p owner of each edge, @p n vertices) by the closed half-plane to
+       * the left of the directed line (ex0, ey0)->(ex1, ey1) [m], an edge of
+       * the second triangle, and writes the result to (@p qx, @p qy,
+       * @p q_owner). Points on the line count as inside; an intersection
+       * point is inserted only where an edge crosses the line strictly.
+       * Edges created along the line belong to the second triangle, edges
+       * of the first triangle lying on the line to both. Exactly repeated
+       * vertices are merged. Returns the number of vertices written (at
+       * most @p capacity).
+       */
+      inline unsigned int
+      clip_by_half_plane(const double           *px,
+                         const double           *py,
+                         const OverlapEdgeOwner *owner,
+                         const unsigned int      n,
+                         const double            ex0,
+                         const double            ey0,
+                         const double            ex1,
+                         const double            ey1,
+                         double                 *qx,
+                         double                 *qy,
+                         OverlapEdgeOwner       *q_owner,
+                         const unsigned int      capacity)
+      {
+        double side[OverlapPolygon::max_vertices];
+        for (unsigned int i = 0; i < n; ++i)
+          side[i] = twice_signed_area(ex0, ey0, ex1, ey1, px[i], py[i]);
+
+        unsigned int m = 0;
+        auto         emit =
+          [&](const double x, const double y, const OverlapEdgeOwner edge) {
+            if (m > 0 && qx[m - 1] == x && qy[m - 1] == y)
+              {
+                // zero-length edge: the merged vertex starts the new edge
+                q_owner[m - 1] = edge;
+                return;
+              }
+            if (m < capacity)
+              {
+                qx[m]      = x;
+                qy[m]      = y;
+                q_owner[m] = edge;
+                ++m;
+              }
+          };
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const unsigned int j = (i + 1 == n) ? 0 : i + 1;
+            if (side[i] >= 0.)
+              {
+                if (side[j] < 0.)
+                  {
+                    // leaving: the boundary continues along the line
+                    if (side[i] > 0.)
+                      {
+                        emit(px[i], py[i], owner[i]);
+                        const double s = side[i] / (side[i] - side[j]);
+                        emit(px[i] + s * (px[j] - px[i]),
+                             py[i] + s * (py[j] - py[i]),
+                             OverlapEdgeOwner::second);
+                      }
+                    else
+                      emit(px[i], py[i], OverlapEdgeOwner::second);
+                  }
+                else if (side[i] == 0. && side[j] == 0. &&
+                         owner[i] != OverlapEdgeOwner::second)
+                  emit(px[i], py[i], OverlapEdgeOwner::both);
+                else
+                  emit(px[i], py[i], owner[i]);
+              }
+            else if (side[j] > 0.)
+              {
+                // entering: the rest of the edge keeps its owner
+                const double s = side[i] / (side[i] - side[j]);
+                emit(px[i] + s * (px[j] - px[i]),
+                     py[i] + s * (py[j] - py[i]),
+                     owner[i]);
+              }
+          }
+        if (m > 1 && qx[m - 1] == qx[0] && qy[m - 1] == qy[0])
+          --m;
+        return m;
+      }
+
+      /**
+       * Contact length [m] of the closed polygon (@p x, @p y [m], @p owner
+       * of each edge, @p n vertices): half the perimeter of the polygon of
+       * its crossing points, i.e. the chord between the two crossings in the
+       * usual case. A crossing is a vertex where the owner changes from one
+       * triangle to the other, or, where the change happens across a run of
+       * edges owned by both (collinear edges), the midpoint (by arc length)
+       * of that run. No crossing (one triangle inside the other, identical
+       * triangles) gives 0.
+       */
+      inline double
+      chord_of_crossings(const double           *x,
+                         const double           *y,
+                         const OverlapEdgeOwner *edge_owner,
+                         const unsigned int      n)
+      {
+        auto edge_length = [&](const unsigned int i) {
+          const unsigned int j = (i + 1 == n) ? 0 : i + 1;
+          return std::hypot(x[j] - x[i], y[j] - y[i]);
+        };
+        // Runs of one owner shorter than the round-off of the intersection
+        // points (e.g. a vertex of one triangle computed 1e-17 off the edge
+        // of the other) would add a spurious pair of crossings: they count
+        // as owned by both.
+        OverlapEdgeOwner owner[OverlapPolygon::max_vertices];
+        double           scale = 0.;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            owner[i] = edge_owner[i];
+            scale += edge_length(i);
+            scale = std::max({scale, std::abs(x[i]), std::abs(y[i])});
+          }
+        const double negligible_length = 1e-9 * scale;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const unsigned int previous = (i == 0) ? n - 1 : i - 1;
+            if (owner[i] == OverlapEdgeOwner::both ||
+                owner[previous] == owner[i])
+              continue;
+            // edge i starts a run: measure it
+            unsigned int end        = i;
+            double       run_length = 0.;
+            unsigned int count      = 0;
+            while (count < n && owner[end] == owner[i])
+              {
+                run_length += edge_length(end);
+                end = (end + 1) % n;
+                ++count;
+              }
+            if (count < n && run_length <= negligible_length)
+              for (unsigned int k = i, c = 0; c < count; k = (k + 1) % n, ++c)
+                owner[k] = OverlapEdgeOwner::both;
+          }
+
+        unsigned int start = n;
+        for (unsigned int i = 0; i < n; ++i)
+          if (owner[i] != OverlapEdgeOwner::both)
+            {
+              start = i;
+              break;
+            }
+        if (start == n)
+          return 0.;
+
+        double           crossing_x[OverlapPolygon::max_vertices];
+        double           crossing_y[OverlapPolygon::max_vertices];
+        unsigned int     n_crossings    = 0;
+        OverlapEdgeOwner previous_owner = owner[start];
+        bool             in_shared_run  = false;
+        unsigned int     shared_begin   = 0;
+        for (unsigned int step = 1; step <= n; ++step)
+          {
+            const unsigned int i = (start + step) % n;
+            if (owner[i] == OverlapEdgeOwner::both)
+              {
+                if (!in_shared_run)
+                  {
+                    in_shared_run = true;
+                    shared_begin  = i;
+                  }
+                continue;
+              }
+            if (owner[i] != previous_owner &&
+                n_crossings < OverlapPolygon::max_vertices)
+              {
+                if (in_shared_run)
+                  {
+                    // midpoint of the shared run from vertex shared_begin
+                    // to vertex i
+                    double run_length = 0.;
+                    for (unsigned int k = shared_begin; k != i; k = (k + 1) % n)
+                      run_length += edge_length(k);
+                    double       remaining = 0.5 * run_length;
+                    unsigned int k         = shared_begin;
+                    while (edge_length(k) < remaining && (k + 1) % n != i)
+                      {
+                        remaining -= edge_length(k);
+                        k = (k + 1) % n;
+                      }
+                    const unsigned int k_next = (k + 1) % n;
+                    const double       length = edge_length(k);
+                    const double       s =
+                      length > 0. ? std::min(remaining / length, 1.) : 0.;
+                    crossing_x[n_crossings] = x[k] + s * (x[k_next] - x[k]);
+                    crossing_y[n_crossings] = y[k] + s * (y[k_next] - y[k]);
+                  }
+                else
+                  {
+                    crossing_x[n_crossings] = x[i];
+                    crossing_y[n_crossings] = y[i];
+                  }
+                ++n_crossings;
+              }
+            in_shared_run  = false;
+            previous_owner = owner[i];
+          }
+        if (n_crossings < 2)
+          return 0.;
+        double perimeter = 0.;
+        for (unsigned int k = 0; k < n_crossings; ++k)
+          {
+            const unsigned int l = (k + 1 == n_crossings) ? 0 : k + 1;
+            perimeter += std::hypot(crossing_x[l] - crossing_x[k],
+                                    crossing_y[l] - crossing_y[k]);
+          }
+        return 0.5 * perimeter;
+      }
+    } // namespace contact_heat_internal
+
+    /**
+     * Overlap of two triangles with counter-clockwise nodes (@p ax, @p ay)
+     * and (@p bx, @p by) [m]: clips A by the three half-planes of B and
+     * fills @p overlap with the polygon, the owners of its edges, its area
+     * [m^2], centroid [m], central second moments [m^4], contact length [m]
+     * and perimeter [m].
+     *
+     * Returns false, with @p overlap reset to an empty polygon of zero area,
+     * if the triangles do not overlap with positive area: disjoint, touching
+     * along an edge or at a point (e.g. the coincident faces of two
+     * neighbours of the exploded mesh), an overlap area below 1e-12 of the
+     * smaller triangle's area (round-off level), or a triangle that is not
+     * counter-clockwise with positive area.
+     */
+    inline bool
+    triangle_overlap(const double   *ax,
+                     const double   *ay,
+                     const double   *bx,
+                     const double   *by,
+                     OverlapPolygon &overlap)
+    {
+      overlap = OverlapPolygon();
+      const double twice_area_a =
+        twice_signed_area(ax[0], ay[0], ax[1], ay[1], ax[2], ay[2]);
+      const double twice_area_b =
+        twice_signed_area(bx[0], by[0], bx[1], by[1], bx[2], by[2]);
+      if (!(twice_area_a > 0.) || !(twice_area_b > 0.))
+        return false;
+
+      // bounding-box rejection
+      const double a_xmin = std::min({ax[0], ax[1], ax[2]});
+      const double a_xmax = std::max({ax[0], ax[1], ax[2]});
+      const double a_ymin = std::min({ay[0], ay[1], ay[2]});
+      const double a_ymax = std::max({ay[0], ay[1], ay[2]});
+      if (std::max({bx[0], bx[1], bx[2]}) <= a_xmin ||
+          std::min({bx[0], bx[1], bx[2]}) >= a_xmax ||
+          std::max({by[0], by[1], by[2]}) <= a_ymin ||
+          std::min({by[0], by[1], by[2]}) >= a_ymax)
+        return false;
+
+      constexpr unsigned int capacity = OverlapPolygon::max_vertices;
+      double                 buffer_x[2][capacity], buffer_y[2][capacity];
+      OverlapEdgeOwner       buffer_owner[2][capacity];
+      double                *from_x = buffer_x[0], *from_y = buffer_y[0];
+      double                *to_x = buffer_x[1], *to_y = buffer_y[1];
+      OverlapEdgeOwner      *from_owner = buffer_owner[0],
+                       *to_owner        = buffer_owner[1];
+      unsigned int n                    = 3;
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          from_x[k]     = ax[k];
+          from_y[k]     = ay[k];
+          from_owner[k] = OverlapEdgeOwner::first;
+        }
+      for (unsigned int edge = 0; edge < 3 && n > 0; ++edge)
+        {
+          const unsigned int next = (edge + 1) % 3;
+          n = contact_heat_internal::clip_by_half_plane(from_x,
+                                                        from_y,
+                                                        from_owner,
+                                                        n,
+                                                        bx[edge],
+                                                        by[edge],
+                                                        bx[next],
+                                                        by[next],
+                                                        to_x,
+                                                        to_y,
+                                                        to_owner,
+                                                        capacity);
+          std::swap(from_x, to_x);
+          std::swap(from_y, to_y);
+          std::swap(from_owner, to_owner);
+        }
+      if (n < 3)
+        return false;
+
+      // area and centroid relative to the first vertex (less cancellation)
+      const double x0 = from_x[0], y0 = from_y[0];
+      double       twice_area = 0., moment_x = 0., moment_y = 0.;
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          const unsigned int j  = (i + 1 == n) ? 0 : i + 1;
+          const double       xi = from_x[i] - x0, yi = from_y[i] - y0;
+          const double       xj = from_x[j] - x0, yj = from_y[j] - y0;
+          const double       cross = xi * yj - xj * yi;
+          twice_area += cross;
+          moment_x += (xi + xj) * cross;
+          moment_y += (yi + yj) * cross;
+        }
+      const double area = 0.5 * twice_area;
+      if (!(area > 0.5e-12 * std::min(twice_area_a, twice_area_b)))
+        return false;
+      const double gx = moment_x / (3. * twice_area);
+      const double gy = moment_y / (3. * twice_area);
+
+      // central second moments and perimeter, relative to G
+      double ixx = 0., iyy = 0., ixy = 0., perimeter = 0.;
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          const unsigned int j  = (i + 1 == n) ? 0 : i + 1;
+          const double       xi = from_x[i] - x0 - gx, yi = from_y[i] - y0 - gy;
+          const double       xj = from_x[j] - x0 - gx, yj = from_y[j] - y0 - gy;
+          const double       cross = xi * yj - xj * yi;
+          ixx += (xi * xi + xi * xj + xj * xj) * cross;
+          iyy += (yi * yi + yi * yj + yj * yj) * cross;
+          ixy += (xi * yj + 2. * xi * yi + 2. * xj * yj + xj * yi) * cross;
+          perimeter += std::hypot(xj - xi, yj - yi);
+        }
+
+      overlap.n_vertices = n;
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          overlap.x[i]          = from_x[i];
+          overlap.y[i]          = from_y[i];
+          overlap.edge_owner[i] = from_owner[i];
+        }
+      overlap.area             = area;
+      overlap.centroid_x       = x0 + gx;
+      overlap.centroid_y       = y0 + gy;
+      overlap.second_moment_xx = ixx / 12.;
+      overlap.second_moment_yy = iyy / 12.;
+      overlap.second_moment_xy = ixy / 24.;
+      overlap.contact_length =
+        contact_heat_internal::chord_of_crossings(from_x,
+                                                  from_y,
+                                                  from_owner,
+                                                  n);
+      overlap.perimeter = perimeter;
+      return true;
+    }
+
+    /**
+     * Area coordinates [-] of the point (@p px, @p py) [m] in the triangle
+     * with counter-clockwise nodes (@p x, @p y) [m] (paper Eq. 35:
+     * N_A = S_BCG / S_ABC, ...). Round-off negatives (the point lies in the
+     * triangle, e.g. the centroid of an overlap) are clamped to 0 and the
+     * coordinates renormalised to sum to 1 (Eq. 34). The triangle must have
+     * positive area.
+     */
+    inline std::array<double, 3>
+    area_coordinates(const double *x,
+                     const double *y,
+                     const double  px,
+                     const double  py)
+    {
+      std::array<double, 3> coordinates;
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          const unsigned int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+          coordinates[k] =
+            std::max(twice_signed_area(x[k1], y[k1], x[k2], y[k2], px, py), 0.);
+        }
+      const double sum = coordinates[0] + coordinates[1] + coordinates[2];
+      for (double &c : coordinates)
+        c /= sum;
+      return coordinates;
+    }
+
+    /**
+     * Temperature [K] interpolated with area coordinates @p N [-] from the
+     * nodal temperatures @p T [K], written as T_0 + N_1 (T_1 - T_0) +
+     * N_2 (T_2 - T_0) so that an isothermal triangle returns its temperature
+     * exactly.
+     */
+    inline double
+    interpolate_temperature(const double *T, const std::array<double, 3> &N)
+    {
+      return T[0] + N[1] * (T[1] - T[0]) + N[2] * (T[2] - T[0]);
+    }
+
+    /**
+     * Heat exchanged by one contact pair and its linearisation.
+     * Nodal heats are positive into the node, in W per unit thickness
+     * [W/m]. With T = (T_c0, T_c1, T_c2, T_t0, T_t1, T_t2) and
+     * w = (N_c, -N_t), the nodal heats are q = -(h_c L_c) w w^T T, so the
+     * conductance matrix K = h_c L_c w w^T (symmetric positive
+     * semi-definite, rows summing to zero) enters an implicit scheme's
+     * matrix with a plus sign: C dT/dt + (... + K) T = ...
+     */
+    struct ContactHeatTransfer
+    {
+      /** Pair conductance h_c L_c [W/(m K)] (0 without overlap). */
+      double conductance = 0.;
+
+      /** Contactor's and target's temperatures at G [K]. */
+      double contactor_temperature = 0., target_temperature = 0.;
+
+      /** Q = h_c L_c (T_t(G) - T_c(G)): heat flowing from the target into
+       * the contactor [W/m]. */
+      double heat_flow = 0.;
+
+      /** Area coordinates of G in the contactor and in the target [-]. */
+      std::array<double, 3> contactor_shape{{0., 0., 0.}},
+        target_shape{{0., 0., 0.}};
+
+      /** Nodal heats into the contactor's and the target's nodes [W/m];
+       * all six sum to exactly 0.0. */
+      std::array<double, 3> contactor_nodal_heat{{0., 0., 0.}},
+        target_nodal_heat{{0., 0., 0.}};
+
+      /**
+       * d(nodal heat i)/d(nodal temperature j) [W/(m K)], i and j running
+       * over contactor nodes 0-2 then target nodes 0-2: -K, with
+       * K = conductance * w w^T, w = (N_c, -N_t).
+       */
+      std::array<std::array<double, 6>, 6>
+      heat_jacobian() const
+      {
+        const std::array<double, 6>          w{{contactor_shape[0],
+                                                contactor_shape[1],
+                                                contactor_shape[2],
+                                                -target_shape[0],
+                                                -target_shape[1],
+                                                -target_shape[2]}};
+        std::array<std::array<double, 6>, 6> jacobian;
+        for (unsigned int i = 0; i < 6; ++i)
+          for (unsigned int j = 0; j < 6; ++j)
+            jacobian[i][j] = -conductance * (w[i] * w[j]);
+        return jacobian;
+      }
+    };
+
+    /**
+     * Splits the pair's heat @p heat_flow [W/m] into +Q N_c to the
+     * contactor's nodes and -Q N_t to the target's nodes (Eq. 36) so that
+     * the six nodal heats [W/m] sum to exactly 0.0 in any order of
+     * summation: every share is rounded to a multiple of the power of two
+     * u = 2^(e - 50), |Q| < 2^e, and the last target share is the exact
+     * remainder. All partial sums are then multiples of u below 2^53 u and
+     * are computed without rounding. Each share is off Q N by at most
+     * 2^-50 |Q| (about 1e-15 relative).
+     */
+    inline void
+    split_heat_exactly(const double                 heat_flow,
+                       const std::array<double, 3> &contactor_shape,
+                       const std::array<double, 3> &target_shape,
+                       std::array<double, 3>       &contactor_nodal_heat,
+                       std::array<double, 3>       &target_nodal_heat)
+    {
+      int exponent = 0;
+      std::frexp(heat_flow, &exponent);
+      if (heat_flow == 0. || !std::isfinite(heat_flow) || exponent < -960)
+        {
+          // nothing to transfer (or non-finite input: let it propagate)
+          const double q       = std::isfinite(heat_flow) ? 0. : heat_flow;
+          contactor_nodal_heat = {{q, q, q}};
+          target_nodal_heat    = {{-q, -q, -q}};
+          return;
+        }
+      const double quantum          = std::ldexp(1., exponent - 50);
+      auto         round_to_quantum = [quantum](const double value) {
+        return std::nearbyint(value / quantum) * quantum;
+      };
+      for (unsigned int k = 0; k < 3; ++k)
+        contactor_nodal_heat[k] =
+          round_to_quantum(heat_flow * contactor_shape[k]);
+      target_nodal_heat[0] = -round_to_quantum(heat_flow * target_shape[0]);
+      target_nodal_heat[1] = -round_to_quantum(heat_flow * target_shape[1]);
+      target_nodal_heat[2] = -(
+        contactor_nodal_heat[0] + contactor_nodal_heat[1] +
+        contactor_nodal_heat[2] + target_nodal_heat[0] + target_nodal_heat[1]);
+    }
+
+    /**
+     * Contact heat of a pair whose overlap (@p overlap, from
+     * triangle_overlap(), contactor first) is known: contactor nodes
+     * (@p cx, @p cy) [m] at temperatures @p Tc [K], target nodes
+     * (@p tx, @p ty) [m] at @p Tt [K], contact conductance @p h_c
+     * [W/(m^2 K)]. Fills @p transfer with Q = h_c L_c (T_t(G) - T_c(G))
+     * [W/m], its distribution to the six nodes and the linearisation data.
+     * An empty overlap gives a zero transfer.
+     */
+    inline void
+    contact_heat_from_overlap(const OverlapPolygon &overlap,
+                              const double         *cx,
+                              const double         *cy,
+                              const double         *Tc,
+                              const double         *tx,
+                              const double         *ty,
+                              const double         *Tt,
+                              const double          h_c,
+                              ContactHeatTransfer  &transfer)
+    {
+      transfer = ContactHeatTransfer();
+      if (overlap.n_vertices == 0 || !(overlap.area > 0.))
+        return;
+      transfer.contactor_shape =
+        area_coordinates(cx, cy, overlap.centroid_x, overlap.centroid_y);
+      transfer.target_shape =
+        area_coordinates(tx, ty, overlap.centroid_x, overlap.centroid_y);
+      transfer.contactor_temperature =
+        interpolate_temperature(Tc, transfer.contactor_shape);
+      transfer.target_temperature =
+        interpolate_temperature(Tt, transfer.target_shape);
+      transfer.conductance = h_c * overlap.contact_length;
+      transfer.heat_flow =
+        transfer.conductance *
+        (transfer.target_temperature - transfer.contactor_temperature);
+      split_heat_exactly(transfer.heat_flow,
+                         transfer.contactor_shape,
+                         transfer.target_shape,
+                         transfer.contactor_nodal_heat,
+                         transfer.target_nodal_heat);
+    }
+
+    /**
+     * Contact heat between contactor (@p cx, @p cy) [m] at nodal
+     * temperatures @p Tc [K] and target (@p tx, @p ty) [m] at @p Tt [K],
+     * both counter-clockwise, with contact conductance @p h_c [W/(m^2 K)]:
+     * the driving term of physics-notes.md,
+     *   Q = h_c L_c (T_t(G) - T_c(G)) [W/m],
+     * distributed with the area coordinates of the overlap's centroid G
+     * (Eqs. 34-36). Fills @p overlap and @p transfer; returns false (zero
+     * transfer) if the triangles do not overlap with positive area.
+     */
+    inline bool
+    contact_heat(const double        *cx,
+                 const double        *cy,
+                 const double        *Tc,
+                 const double        *tx,
+                 const double        *ty,
+                 const double        *Tt,
+                 const double         h_c,
+                 OverlapPolygon      &overlap,
+                 ContactHeatTransfer &transfer)
+    {
+      const bool overlapping = triangle_overlap(cx, cy, tx, ty, overlap);
+      contact_heat_from_overlap(overlap, cx, cy, Tc, tx, ty, Tt, h_c, transfer);
+      return overlapping;
+    }
+
+    /**
+     * Temperature gradient [K/m] of the P1 field @p T [K] on the triangle
+     * (@p x, @p y) [m] (constant over the triangle, so also its average over
+     * any overlap, paper Eqs. 30-31).
+     */
+    inline std::array<double, 2>
+    temperature_gradient(const double *x, const double *y, const double *T)
+    {
+      const double twice_area =
+        twice_signed_area(x[0], y[0], x[1], y[1], x[2], y[2]);
+      // differences, so that an isothermal triangle has exactly zero gradient
+      const double dT1 = T[1] - T[0], dT2 = T[2] - T[0];
+      return {{(dT1 * (y[2] - y[0]) - dT2 * (y[1] - y[0])) / twice_area,
+               (dT2 * (x[1] - x[0]) - dT1 * (x[2] - x[0])) / twice_area}};
+    }
+
+    /**
+     * NAMED ALTERNATIVE, NOT THE DEFAULT: the paper's literal driving term
+     * (Eqs. 29-33), kept for comparison only. Our reading of it: the flux of
+     * each element is its P1 temperature gradient (Eq. 29 with k_ij = 1,
+     * which is what makes Eq. 33 dimensionally a heat [W/m] at all), its
+     * average over the overlap is the element gradient itself (Eqs. 30-31),
+     * the "outward normals" of Eq. 32 are n_c = unit vector from the
+     * contactor's centroid to the target's and n_t = -n_c, and Eq. 33 gives
+     *   Q = h_c A (grad T_t - grad T_c) . n_c [W/m]
+     * into the contactor, distributed like contact_heat() (Eq. 36).
+     *
+     * Why it is not used: Q depends only on temperature GRADIENTS. Two
+     * isothermal bodies at T1 != T2 pressed together have zero gradients
+     * and exchange nothing, forever; the simplest contact benchmark (two
+     * small isothermal bodies equilibrating as exp(-t/tau)) fails, and so
+     * does the steady series-resistance benchmark (no temperature jump
+     * q / h_c across the contact can drive a flux). The default form
+     * Q = h_c L_c (T_t(G) - T_c(G)) is driven by the temperature jump.
+     */
+    inline bool
+    paper_literal_contact_heat(const double        *cx,
+                               const double        *cy,
+                               const double        *Tc,
+                               const double        *tx,
+                               const double        *ty,
+                               const double        *Tt,
+                               const double         h_c,
+                               OverlapPolygon      &overlap,
+                               ContactHeatTransfer &transfer)
+    {
+      transfer = ContactHeatTransfer();
+      if (!triangle_overlap(cx, cy, tx, ty, overlap))
+        return false;
+      const std::array<double, 2> gradient_c = temperature_gradient(cx, cy, Tc);
+      const std::array<double, 2> gradient_t = temperature_gradient(tx, ty, Tt);
+      double       nx   = (tx[0] + tx[1] + tx[2] - cx[0] - cx[1] - cx[2]) / 3.;
+      double       ny   = (ty[0] + ty[1] + ty[2] - cy[0] - cy[1] - cy[2]) / 3.;
+      const double norm = std::hypot(nx, ny);
+      if (norm > 0.)
+        {
+          nx /= norm;
+          ny /= norm;
+        }
+      transfer.contactor_shape =
+        area_coordinates(cx, cy, overlap.centroid_x, overlap.centroid_y);
+      transfer.target_shape =
+        area_coordinates(tx, ty, overlap.centroid_x, overlap.centroid_y);
+      transfer.contactor_temperature =
+        interpolate_temperature(Tc, transfer.contactor_shape);
+      transfer.target_temperature =
+        interpolate_temperature(Tt, transfer.target_shape);
+      transfer.conductance = 0.; // not a conductance-type law
+      transfer.heat_flow   = h_c * overlap.area *
+                           ((gradient_t[0] - gradient_c[0]) * nx +
+                            (gradient_t[1] - gradient_c[1]) * ny);
+      split_heat_exactly(transfer.heat_flow,
+                         transfer.contactor_shape,
+                         transfer.target_shape,
+                         transfer.contactor_nodal_heat,
+                         transfer.target_nodal_heat);
+      return true;
+    }
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif
