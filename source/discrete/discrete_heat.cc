@@ -9,6 +9,8 @@
 #include <set>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/function_expression.h>
+#include <tmfdem/discrete/contact.h>
+#include <tmfdem/discrete/contact_heat.h>
 #include <tmfdem/discrete/discrete_heat.h>
 
 namespace tmfdem
@@ -29,6 +31,7 @@ namespace tmfdem
     {
       double s = std::max({std::abs(source_heat),
                            std::abs(contact_heat),
+                           contact_exchange,
                            std::abs(stored_heat),
                            1e-30});
       for (const auto &[id, q] : boundary_heat_in)
@@ -76,6 +79,7 @@ namespace tmfdem
       const auto &dh = parameters.discrete_heat;
       use_implicit   = dh.time_integration == "implicit";
       beta           = dh.joint_conductance_factor;
+      contact_conductance = dh.contact_conductance;
       T.reinit(model.n_nodes);
 
       conductivity.resize(model.n_elements);
@@ -200,6 +204,71 @@ namespace tmfdem
         T[n] = initial->value(Point<2>(model.x_ref[n], model.y_ref[n]));
       set_dirichlet_values(time);
       initial_T = T;
+      update_contact_pairs();
+    }
+
+    void
+    DiscreteHeat::update_contact_pairs()
+    {
+      contact_pairs.clear();
+      sparsity.reinit(0, 0, 0); // couplings change: rebuild the pattern
+      if (contact_conductance <= 0.)
+        return;
+      std::vector<unsigned char> active(model.n_elements, 0);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        for (unsigned int k = 0; k < 3; ++k)
+          if (model.intact_neighbour(e, k) < 0)
+            active[e] = 1;
+      std::vector<unsigned char> with_neighbours = active;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        if (active[e])
+          for (unsigned int k = 0; k < 3; ++k)
+            if (model.intact_neighbour(e, k) >= 0)
+              with_neighbours[model.intact_neighbour(e, k)] = 1;
+      std::vector<unsigned int> elements;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        if (with_neighbours[e])
+          elements.push_back(e);
+      LinkedCellSearch         search;
+      std::vector<ContactPair> candidates;
+      search.rebuild(model.x, model.y, elements, 0.,
+                     [&](const unsigned int a, const unsigned int b) {
+                       return model.joined(a, b);
+                     },
+                     candidates);
+      for (const ContactPair &c : candidates)
+        {
+          OverlapPolygon overlap;
+          if (triangle_overlap(&model.x[3 * c.first], &model.y[3 * c.first],
+                               &model.x[3 * c.second], &model.y[3 * c.second],
+                               overlap) &&
+              overlap.contact_length > 0.)
+            contact_pairs.emplace_back(c.first, c.second);
+        }
+    }
+
+    double
+    DiscreteHeat::add_contact_heat(Vector<double> &rate) const
+    {
+      double total          = 0.;
+      last_contact_exchange = 0.;
+      for (const auto &[c, t] : contact_pairs)
+        {
+          OverlapPolygon      overlap;
+          ContactHeatTransfer transfer;
+          if (!contact_heat(&model.x[3 * c], &model.y[3 * c], T.begin() + 3 * c,
+                            &model.x[3 * t], &model.y[3 * t], T.begin() + 3 * t,
+                            contact_conductance, overlap, transfer))
+            continue;
+          last_contact_exchange += std::abs(transfer.heat_flow);
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              rate[3 * c + k] += transfer.contactor_nodal_heat[k];
+              rate[3 * t + k] += transfer.target_nodal_heat[k];
+              total += transfer.contactor_nodal_heat[k] + transfer.target_nodal_heat[k];
+            }
+        }
+      return total;
     }
 
     void
@@ -227,6 +296,20 @@ namespace tmfdem
       for (unsigned int j = 0; j < model.n_joints; ++j)
         for (unsigned int s = 0; s < 4; ++s)
           row[model.joint_nodes[4 * j + s]] += 2. * joint_conductance[j];
+      for (const auto &[c, t] : contact_pairs)
+        {
+          OverlapPolygon      overlap;
+          ContactHeatTransfer transfer;
+          if (!contact_heat(&model.x[3 * c], &model.y[3 * c], T.begin() + 3 * c,
+                            &model.x[3 * t], &model.y[3 * t], T.begin() + 3 * t,
+                            contact_conductance, overlap, transfer))
+            continue;
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              row[3 * c + k] += 2. * transfer.conductance * transfer.contactor_shape[k];
+              row[3 * t + k] += 2. * transfer.conductance * transfer.target_shape[k];
+            }
+        }
       set_function_time(0.);
       for (const auto &b : boundary_edges)
         if (conditions[b.condition].type == ThermalBoundaryCondition::Type::robin)
@@ -277,6 +360,8 @@ namespace tmfdem
               rate[a] += q;
               rate[b] -= q;
             }
+      // contact heat over overlaps (nodal heats of a pair sum to zero)
+      add_contact_heat(rate);
       // sources
       set_function_time(time);
       source_rate = 0.;
@@ -418,6 +503,8 @@ namespace tmfdem
         }
       // the balance: Neumann/Robin/source at the rates used, Dirichlet heat
       // from the residual of the held nodes
+      last_rate = boundary_rate;
+      heat_balance.contact_exchange += time_step * last_contact_exchange;
       for (const auto &[id, r] : boundary_rate)
         heat_balance.boundary_heat_in[id] += time_step * r;
       heat_balance.source_heat += time_step * source_rate;
@@ -431,6 +518,7 @@ namespace tmfdem
                 parameters.thermal_boundary.conditions[dirichlet_condition[n]].boundary_ids;
               heat_balance.boundary_heat_in[ids.front()] +=
                 stored_change[n] - time_step * rate[n];
+              last_rate[ids.front()] += stored_change[n] / time_step - rate[n];
             }
         }
     }
@@ -453,6 +541,13 @@ namespace tmfdem
                 dsp.add(a, b);
                 dsp.add(b, a);
               }
+          for (const auto &[c, t] : contact_pairs)
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int b = 0; b < 3; ++b)
+                {
+                  dsp.add(3 * c + a, 3 * t + b);
+                  dsp.add(3 * t + b, 3 * c + a);
+                }
           sparsity.copy_from(dsp);
           matrix.reinit(sparsity);
         }
@@ -478,6 +573,22 @@ namespace tmfdem
               matrix.add(a, b, -G);
               matrix.add(b, a, -G);
             }
+      // contact conductance: +K = h_c L_c w w^T, w = (N_c, -N_t)
+      for (const auto &[c, t] : contact_pairs)
+        {
+          OverlapPolygon      overlap;
+          ContactHeatTransfer transfer;
+          if (!contact_heat(&model.x[3 * c], &model.y[3 * c], T.begin() + 3 * c,
+                            &model.x[3 * t], &model.y[3 * t], T.begin() + 3 * t,
+                            contact_conductance, overlap, transfer))
+            continue;
+          const auto         J = transfer.heat_jacobian();
+          const unsigned int nodes[6] = {3 * c, 3 * c + 1, 3 * c + 2,
+                                         3 * t, 3 * t + 1, 3 * t + 2};
+          for (unsigned int a = 0; a < 6; ++a)
+            for (unsigned int b = 0; b < 6; ++b)
+              matrix.add(nodes[a], nodes[b], -J[a][b]);
+        }
       for (const auto &b : boundary_edges)
         {
           const auto &f = conditions[b.condition];

@@ -37,6 +37,7 @@ namespace tmfdem
       build_discrete_mesh(
         parameters, communicator, triangulation, dof_handler, fe, model);
       heat = std::make_unique<DiscreteHeat>(parameters, model);
+      heat->initialise(parameters.time.start_time); // T0, contact pairs
       locate_monitors(parameters.monitors, model, probe_samples, line_samples);
       const auto &ts = parameters.time;
       if (ts.mode != TimeSteppingParameters::Mode::transient)
@@ -145,11 +146,16 @@ namespace tmfdem
       JsonObject         boundary;
       for (const auto &[id, q] : b.boundary_heat_in)
         boundary.add(std::to_string(id), q);
+      JsonObject rates;
+      for (const auto &[id, q] : heat->last_boundary_rate())
+        rates.add(std::to_string(id), q);
       JsonObject balance;
       balance.add("boundary_heat_in", boundary)
         .add("source_heat", b.source_heat)
         .add("contact_heat", b.contact_heat)
+        .add("contact_exchange", b.contact_exchange)
         .add("stored_heat", b.stored_heat)
+        .add("boundary_heat_rate_last_step", rates)
         .add("imbalance", b.imbalance())
         .add("relative_imbalance", std::abs(b.imbalance()) / b.scale());
       JsonObject summary;
@@ -163,6 +169,7 @@ namespace tmfdem
         .add("time_step", time_step)
         .add("stable_explicit_time_step", heat->stable_time_step())
         .add("cg_iterations", static_cast<long long>(cg_iterations))
+        .add("contact_pairs", heat->n_contact_pairs())
         .add("wall_time", progress.elapsed())
         .add("element_steps_per_second",
              progress.elapsed() > 0. ?

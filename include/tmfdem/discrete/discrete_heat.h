@@ -36,6 +36,8 @@ namespace tmfdem
       std::map<types::boundary_id, double> boundary_heat_in;
       double                               source_heat  = 0.;
       double                               contact_heat = 0.; ///< sums to 0
+      /** Heat that crossed contacts, sum over pairs of |Q| dt [J/m]. */
+      double contact_exchange = 0.;
       double                               stored_heat  = 0.;
       /** in - stored [J/m]. */
       double
@@ -105,6 +107,29 @@ namespace tmfdem
       }
 
       /**
+       * Finds the pairs of triangles that overlap (candidates from a
+       * linked-cell search over triangles with a free edge and their
+       * neighbours; pairs joined by an intact joint excluded). Call after
+       * the geometry or the joints changed; done once by initialise().
+       */
+      void
+      update_contact_pairs();
+
+      /** Number of overlapping (conducting) contact pairs. */
+      unsigned int
+      n_contact_pairs() const
+      {
+        return contact_pairs.size();
+      }
+
+      /** Heat rate through each boundary id in the last step [W/m]. */
+      const std::map<types::boundary_id, double> &
+      last_boundary_rate() const
+      {
+        return last_rate;
+      }
+
+      /**
        * Sets the discrete temperatures from a continuous P1 field given at
        * the mesh vertices (interpolation: every node takes its vertex's
        * value). @p vertex_values is indexed by vertex index.
@@ -164,6 +189,16 @@ namespace tmfdem
       double               assembled_time_step = -1.;
       std::vector<char>    assembled_joint_state;
       unsigned int         iterations = 0;
+
+      /** Conducting pairs: (contactor, target) triangles. */
+      std::vector<std::pair<unsigned int, unsigned int>> contact_pairs;
+      double contact_conductance = 0.;
+      /** Adds the contact heats of T to @p rate; returns their sum. */
+      double
+      add_contact_heat(Vector<double> &rate) const;
+      /** Sum of |Q| over the pairs in the last add_contact_heat() [W/m]. */
+      mutable double last_contact_exchange = 0.;
+      std::map<types::boundary_id, double> last_rate;
 
       HeatBalance heat_balance;
       Vector<double> initial_T;
