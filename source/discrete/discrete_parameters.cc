@@ -80,6 +80,14 @@ namespace tmfdem
                       "Viscosity eta of the solid as a fraction of "
                       "2 h sqrt(E rho), the critical damping of the "
                       "highest element mode [-]; 0: undamped.");
+    prm.declare_entry("Mass damping",
+                      "0",
+                      Patterns::Double(0.),
+                      "Mass-proportional damping c of a force -c m v on "
+                      "every free node [1/s]: damps the low modes, for "
+                      "quasi-static loading (dynamic relaxation; about "
+                      "2 pi c_p / L for the lowest mode of a body of size "
+                      "L); 0: none. Counted with the viscous dissipation.");
     prm.declare_entry("Gravity",
                       "0, 0",
                       Patterns::List(Patterns::Double(), 2, 2, ","),
@@ -143,6 +151,7 @@ namespace tmfdem
     friction_coefficient = prm.get_double("Friction coefficient");
     softening_law        = prm.get("Softening law");
     damping_ratio        = prm.get_double("Damping ratio");
+    mass_damping         = prm.get_double("Mass damping");
     gravity              = Utilities::string_to_double(
       Utilities::split_string_list(prm.get("Gravity"), ','));
     contact_buffer           = prm.get_double("Contact buffer");

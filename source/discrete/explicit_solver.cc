@@ -36,6 +36,14 @@ namespace tmfdem
         [](const Parameters &parameters, MPI_Comm communicator) {
           return std::make_unique<ExplicitSolver>(parameters, communicator);
         });
+      const bool registered_thermal = register_simulation(
+        "discrete thermo-mechanics",
+        "the discrete layer with heat: conduction, joint exchange and contact "
+        "heat drive F = F_T F_e; fracture and contact reshape the heat flow "
+        "(multi-rate: one thermal step every n mechanical steps)",
+        [](const Parameters &parameters, MPI_Comm communicator) {
+          return std::make_unique<ExplicitSolver>(parameters, communicator, true);
+        });
 
       /** Runs @p body(chunk_begin, chunk_end, chunk_index) over fixed chunks
        *  of @p n items on @p threads threads. */
@@ -84,10 +92,12 @@ namespace tmfdem
     }
 
     ExplicitSolver::ExplicitSolver(const Parameters &parameters,
-                                   MPI_Comm          communicator)
+                                   MPI_Comm          communicator,
+                                   const bool        with_heat)
       : parameters(parameters)
       , communicator(communicator)
       , fe(1)
+      , with_heat(with_heat)
     {}
 
     ExplicitSolver::~ExplicitSolver() = default;
@@ -127,6 +137,36 @@ namespace tmfdem
           "stable step (or 0 for Safety factor x stable step).");
       time_step = requested > 0. ? requested : dm.safety_factor * stable_time_step;
       time      = parameters.time.start_time;
+      if (with_heat)
+        {
+          heat = std::make_unique<DiscreteHeat>(parameters, model);
+          heat->initialise(time);
+          const unsigned int n =
+            parameters.discrete_heat.mechanical_steps_per_thermal_step;
+          if (n > 0)
+            steps_per_thermal_step = n;
+          else if (heat->implicit())
+            steps_per_thermal_step = std::max(
+              1., std::floor(parameters.time.time_step / time_step + 0.5));
+          else
+            steps_per_thermal_step =
+              std::max(1., std::floor(parameters.discrete_heat.safety_factor *
+                                      heat->stable_time_step() / time_step));
+          const double thermal_step = steps_per_thermal_step * time_step;
+          if (!heat->implicit() && thermal_step > heat->stable_time_step())
+            throw InputError(
+              "Discrete heat/Mechanical steps per thermal step = " +
+              std::to_string(steps_per_thermal_step) + " makes the thermal step " +
+              Utilities::to_string(thermal_step) +
+              " s, above the stable explicit thermal step " +
+              Utilities::to_string(heat->stable_time_step()) +
+              " s; allowed is at most " +
+              std::to_string(static_cast<unsigned int>(
+                heat->stable_time_step() / time_step)) +
+              ", or 0 (automatic), or implicit heat.");
+          thermal_time = time;
+          update_thermal_stretch();
+        }
       if (!(parameters.time.end_time > time))
         throw InputError("Time stepping/End time must be later than Start "
                          "time for the discrete layer.");
@@ -478,6 +518,41 @@ namespace tmfdem
     }
 
     void
+    ExplicitSolver::update_thermal_stretch()
+    {
+      const Vector<double> &T = heat->temperature();
+      double                before = 0., after = 0.;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          const MaterialProperties &m = parameters.materials[model.material[e]];
+          const double dT = (T[3 * e] + T[3 * e + 1] + T[3 * e + 2]) / 3. -
+                            m.reference_temperature;
+          const double s_new = thermal_stretch(m.thermal_expansion,
+                                               m.poisson_ratio,
+                                               dT,
+                                               idealisation);
+          const double s_old = model.thermal_stretch[e];
+          if (s_new == s_old)
+            continue;
+          const unsigned int n0 = 3 * e;
+          const double      *ib = &model.inverse_basis[4 * e];
+          const Matrix2      F =
+            multiply(element_basis(model.x[n0], model.y[n0], model.x[n0 + 1],
+                                   model.y[n0 + 1], model.x[n0 + 2], model.y[n0 + 2]),
+                     Matrix2{ib[0], ib[1], ib[2], ib[3]});
+          const auto energy = [&](const double s) {
+            return model.reference_area[e] * s * s *
+                   strain_energy_density({F.a00 / s, F.a01 / s, F.a10 / s, F.a11 / s},
+                                         solid[model.material[e]].lame);
+          };
+          before += energy(s_old);
+          after += energy(s_new);
+          model.thermal_stretch[e] = s_new;
+        }
+      balance.thermal_work += after - before;
+    }
+
+    void
     ExplicitSolver::compute_stable_time_step()
     {
       const auto &dm = parameters.discrete_mechanics;
@@ -807,6 +882,11 @@ namespace tmfdem
       const std::size_t  n_chunks = (m.n_elements + chunk_size - 1) / chunk_size;
       chunk_sums.assign(n_chunks * stride, 0.);
       const bool have_contact = !pairs.empty();
+      // mass-proportional damping f_d = -c m v_avg, integrated exactly:
+      // v_new = (a v_old + dt f / m) with a = (1 - c dt/2) / (1 + c dt/2)
+      const double c_damp  = parameters.discrete_mechanics.mass_damping;
+      const double damp_a  = (1. - 0.5 * c_damp * dt) / (1. + 0.5 * c_damp * dt);
+      const double damp_b  = dt / (1. + 0.5 * c_damp * dt);
       for_each_chunk(
         arena_for(n_threads),
         m.n_elements,
@@ -890,8 +970,8 @@ namespace tmfdem
                       const NodeCondition &nc = node_conditions[slot];
                       const double tx = nc.force[0], ty = nc.force[1];
                       double       gx = fx + tx, gy = fy + ty;
-                      vx_new = vx_old + dt * gx / mass;
-                      vy_new = vy_old + dt * gy / mass;
+                      vx_new = damp_a * vx_old + damp_b * gx / mass;
+                      vy_new = damp_a * vy_old + damp_b * gy / mass;
                       double rx = 0., ry = 0.;
                       if (nc.prescribed[0])
                         {
@@ -912,8 +992,8 @@ namespace tmfdem
                     }
                   else if (b == 255 || body_motion[b] == DiscreteBody::Motion::free)
                     {
-                      vx_new = vx_old + dt * fx / mass;
-                      vy_new = vy_old + dt * fy / mass;
+                      vx_new = damp_a * vx_old + damp_b * fx / mass;
+                      vy_new = damp_a * vy_old + damp_b * fy / mass;
                     }
                   else
                     {
@@ -935,6 +1015,15 @@ namespace tmfdem
                   const double ay = 0.5 * dt * (vy_old + vy_new);
                   w_elastic += f_el[2 * k] * ax + f_el[2 * k + 1] * ay;
                   w_viscous += f_v[2 * k] * ax + f_v[2 * k + 1] * ay;
+                  if (c_damp > 0. &&
+                      (b == 255 || body_motion[b] == DiscreteBody::Motion::free))
+                    {
+                      // work of -c m v_avg on the components not prescribed
+                      const bool px = slot >= 0 && node_conditions[slot].prescribed[0];
+                      const bool py = slot >= 0 && node_conditions[slot].prescribed[1];
+                      w_viscous -= c_damp * mass / dt *
+                                   ((px ? 0. : ax * ax) + (py ? 0. : ay * ay));
+                    }
                   w_joint += fjx * ax + fjy * ay;
                   w_contact += f_contact[2 * k] * ax + f_contact[2 * k + 1] * ay;
                   w_external += fgx * ax + fgy * ay;
@@ -1006,6 +1095,15 @@ namespace tmfdem
       update_nodes();
       time += time_step;
       ++step_number;
+      if (with_heat && step_number % steps_per_thermal_step == 0)
+        {
+          // M -> T: current geometry, broken joints, contacts
+          heat->update_contact_pairs();
+          heat->step(thermal_time, time - thermal_time);
+          thermal_time = time;
+          // T -> M
+          update_thermal_stretch();
+        }
     }
 
     EnergyBalance
@@ -1086,7 +1184,14 @@ namespace tmfdem
     {
       if (parameters.output.write_vtu)
         {
-          solution_series->write(time, discrete_solution_vtu(model));
+          if (with_heat)
+            {
+              std::vector<double> T(heat->temperature().begin(),
+                                    heat->temperature().end());
+              solution_series->write(time, discrete_solution_vtu(model, {{"T", &T}}));
+            }
+          else
+            solution_series->write(time, discrete_solution_vtu(model));
           crack_series->write(time, crack_vtu(model));
         }
       auto rows = [&](const std::vector<ReferenceSample> &samples) {
@@ -1101,8 +1206,15 @@ namespace tmfdem
                 ux += s.lambda[k] * (model.x[n] - model.x_ref[n]);
                 uy += s.lambda[k] * (model.y[n] - model.y_ref[n]);
               }
-            out << time << ',' << s.name << ',' << s.x << ',' << s.y << ','
-                << ux << ',' << uy << ',' << model.stress[3 * s.element] << ','
+            out << time << ',' << s.name << ',' << s.x << ',' << s.y << ',';
+            if (with_heat)
+              {
+                double T = 0.;
+                for (unsigned int k = 0; k < 3; ++k)
+                  T += s.lambda[k] * heat->temperature()[3 * s.element + k];
+                out << T << ',';
+              }
+            out << ux << ',' << uy << ',' << model.stress[3 * s.element] << ','
                 << model.stress[3 * s.element + 1] << ','
                 << model.stress[3 * s.element + 2] << '\n';
           }
@@ -1130,6 +1242,7 @@ namespace tmfdem
         .add("friction_dissipation", balance.friction_dissipation)
         .add("viscous_dissipation", balance.viscous_dissipation)
         .add("external_work", balance.external_work)
+        .add("thermal_work", balance.thermal_work)
         .add("elastic_work", balance.elastic_work)
         .add("balance_error", balance.balance_error())
         .add("relative_balance_error",
@@ -1153,7 +1266,8 @@ namespace tmfdem
           reactions.push_back(r);
         }
       JsonObject summary;
-      summary.add("model", std::string("discrete mechanics"))
+      summary.add("model", std::string(with_heat ? "discrete thermo-mechanics" :
+                                                   "discrete mechanics"))
         .add("finished", finished)
         .add("elements", model.n_elements)
         .add("nodes", model.n_nodes)
@@ -1184,6 +1298,23 @@ namespace tmfdem
         .add("momentum_y", py)
         .add("energy", energies)
         .add("body_reactions", reactions);
+      if (with_heat)
+        {
+          const HeatBalance &b = heat->balance();
+          JsonObject         boundary;
+          for (const auto &[id, q] : b.boundary_heat_in)
+            boundary.add(std::to_string(id), q);
+          JsonObject hb;
+          hb.add("boundary_heat_in", boundary)
+            .add("source_heat", b.source_heat)
+            .add("contact_exchange", b.contact_exchange)
+            .add("stored_heat", b.stored_heat)
+            .add("imbalance", b.imbalance())
+            .add("relative_imbalance", std::abs(b.imbalance()) / b.scale());
+          summary.add("mechanical_steps_per_thermal_step", steps_per_thermal_step)
+            .add("thermal_time_step", steps_per_thermal_step * time_step)
+            .add("heat_balance", hb);
+        }
       write_file_atomically(parameters.output.directory + "/summary.json",
                             summary.str() + "\n");
     }
@@ -1208,7 +1339,9 @@ namespace tmfdem
       history_csv = std::make_unique<CsvSeries>(folder + "/history.csv",
                                                 header,
                                                 communicator);
-      const std::string monitor_header = "time,name,x,y,ux,uy,sxx,syy,sxy";
+      const std::string monitor_header =
+        with_heat ? "time,name,x,y,T,ux,uy,sxx,syy,sxy" :
+                    "time,name,x,y,ux,uy,sxx,syy,sxy";
       if (!probe_samples.empty())
         probes_csv = std::make_unique<CsvSeries>(folder + "/probes.csv",
                                                  monitor_header,
@@ -1235,6 +1368,7 @@ namespace tmfdem
       energy();
       balance.initial_kinetic = balance.kinetic;
       balance.initial_strain  = balance.strain;
+      balance.thermal_work    = 0.; // the initial stretch is in initial_strain
       write_output();
       write_history_row();
 
@@ -1274,7 +1408,7 @@ namespace tmfdem
       if (next_output < output_times.size())
         write_output();
       write_summary(true);
-      std::cerr << "[tmfdem] discrete mechanics: " << step_number
+      std::cerr << "[tmfdem] " << (with_heat ? "discrete thermo-mechanics: " : "discrete mechanics: ") << step_number
                 << " steps of " << time_step << " s to t = " << time << " s, "
                 << model.n_broken_joints() << " broken joints, "
                 << model.n_cracks() << " cracks, energy balance error "

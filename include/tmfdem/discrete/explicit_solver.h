@@ -21,6 +21,7 @@
 #include <tmfdem/base/simulation.h>
 #include <tmfdem/discrete/cohesive_law.h>
 #include <tmfdem/discrete/contact.h>
+#include <tmfdem/discrete/discrete_heat.h>
 #include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_model.h>
 #include <tmfdem/discrete/solid.h>
@@ -53,13 +54,17 @@ namespace tmfdem
       double friction_dissipation = 0.;
       double viscous_dissipation  = 0.;
       double external_work = 0.; ///< gravity and driven/fixed bodies
+      /** Strain energy put in by changes of the thermal stretch at fixed
+       *  geometry (thermo-mechanical runs) [J/m]. */
+      double thermal_work = 0.;
       double elastic_work  = 0.; ///< done on the solid's elastic stress
 
       /** Energy in minus energy accounted for [J/m]. */
       double
       balance_error() const
       {
-        return (initial_kinetic + initial_strain + external_work) -
+        return (initial_kinetic + initial_strain + external_work +
+                thermal_work) -
                (kinetic + strain + joint_work + contact_work +
                 viscous_dissipation);
       }
@@ -72,7 +77,12 @@ namespace tmfdem
     class ExplicitSolver : public Simulation
     {
     public:
-      ExplicitSolver(const Parameters &parameters, MPI_Comm communicator);
+      /** With @p with_heat, the model `discrete thermo-mechanics`: heat in
+       *  the same exploded mesh, one thermal step every n mechanical steps,
+       *  and F_T = s I from the element temperatures. */
+      ExplicitSolver(const Parameters &parameters,
+                     MPI_Comm          communicator,
+                     const bool        with_heat = false);
       ~ExplicitSolver() override;
 
       void
@@ -127,6 +137,10 @@ namespace tmfdem
       setup_bodies();
       void
       setup_boundary_conditions();
+      /** F_T = s I per element from its mean nodal temperature; the strain
+       *  energy this changes at fixed geometry is booked as thermal work. */
+      void
+      update_thermal_stretch();
       void
       evaluate_boundary_conditions();
       void
@@ -161,6 +175,12 @@ namespace tmfdem
       SofteningLaw       softening_law = SofteningLaw::munjiza;
       std::vector<SolidMaterial> solid;    ///< by material id
       std::vector<double>        viscosity; ///< eta per element [Pa s]
+
+      // heat (thermo-mechanical runs)
+      bool                          with_heat = false;
+      std::unique_ptr<DiscreteHeat> heat;
+      unsigned int                  steps_per_thermal_step = 1;
+      double                        thermal_time           = 0.;
 
       // bodies: motion per node, driven velocities
       std::vector<unsigned char> node_body; ///< body index or 255 (free)
