@@ -318,7 +318,7 @@ def plot_brazilian_disc(folder, png, magnify=1.0):
     ax_c.set_ylabel("y [m]")
     t_end = h["time"][-1]
     ax_c.set_title(f"broken joints at t = {1e3 * t_end:.1f} ms by failure mode "
-                   ("(deformed, true scale)" if magnify == 1 else f"(displacement x {magnify:g})"), fontsize=10)
+                   + ("(deformed, true scale)" if magnify == 1 else f"(displacement x {magnify:g})"), fontsize=10)
     ax_c.legend(fontsize=7, loc="lower right")
     fig.tight_layout()
     fig.savefig(png)
@@ -331,10 +331,64 @@ def plot_brazilian_disc(folder, png, magnify=1.0):
     print(f"wrote {png}")
 
 
+# ------------------------------------------------------- plate_traction
+def plot_plate_traction(folder, png):
+    """OUTPUT_FOLDER is the run itself (verify_discrete_dynamics.py traction
+    writes it to OUT/traction)."""
+    ensure_run(folder, "plate_traction.prm")
+    sigma0, height = 1e6, 0.1
+    d = read_csv(os.path.join(folder, "lines.csv"))
+    last = d["time"] == d["time"].max()
+    x, sxx, syy, sxy = d["x"][last], d["sxx"][last], d["syy"][last], d["sxy"][last]
+    h = read_csv(os.path.join(folder, "history.csv"))
+    h = h[np.unique(h["time"], return_index=True)[1]]
+    t = h["time"]
+    ramp = np.where(t < 1e-3, 0.5 * (1 - np.cos(np.pi * t / 1e-3)), 1.0)
+    fig, (ax_s, ax_r) = plt.subplots(1, 2, figsize=(12, 4.8), dpi=150)
+    ax_s.axhline(sigma0 / 1e6, color="k", ls="--", lw=0.8, label="applied traction 1 MPa")
+    ax_s.plot(x, sxx / 1e6, "o-", color="C0", ms=3.5, lw=0.8,
+              label=f"tmfdem sxx: mean {sxx.mean() / 1e6:.5f} MPa, worst "
+                    f"{100 * np.abs(sxx / sigma0 - 1).max():.2f} % off")
+    ax_s.plot(x, syy / 1e6, "s-", color="C1", ms=3, lw=0.8, mfc="none",
+              label=f"syy (max |syy| {np.abs(syy).max():.0f} Pa)")
+    ax_s.plot(x, sxy / 1e6, "^-", color="C2", ms=3, lw=0.8, mfc="none",
+              label=f"sxy (max |sxy| {np.abs(sxy).max():.0f} Pa)")
+    ax_s.set_xlabel("x along 'midline' (y = 0.05 m) [m]")
+    ax_s.set_ylabel("stress [MPa]")
+    ax_s.set_ylim(-0.1, 1.1)
+    ax_s.set_title(f"stress along the midline at t = {1e3 * d['time'].max():.1f} ms", fontsize=10)
+    ax_s.legend(fontsize=7, loc="center right")
+    ax_s.grid(alpha=0.3)
+    R = h["condition1_fx"]
+    ax_r.plot(1e3 * t, -sigma0 * height * ramp / 1e3, "k--", lw=0.8,
+              label="- traction(t) x 0.1 m (the static reaction)")
+    ax_r.axhline(-sigma0 * height / 1e3, color="gray", ls=":", lw=0.8, label="-100 kN/m")
+    ax_r.plot(1e3 * t, R / 1e3, "-", color="C3", lw=1.0,
+              label=f"tmfdem condition1_fx (left rollers): {R[-1] / 1e3:.3f} kN/m at the end")
+    ax_r.set_xlabel("t [ms]")
+    ax_r.set_ylabel("reaction [kN/m]")
+    ax_r.set_title("reaction of the left rollers", fontsize=10)
+    ax_r.legend(fontsize=7, loc="upper right")
+    ax_r.grid(alpha=0.3)
+    fig.suptitle("Jointed plate 0.2 x 0.1 m on rollers pulled by 1 MPa (ramped over 1 ms)",
+                 fontsize=11)
+    fig.tight_layout()
+    fig.savefig(png)
+    print("plate_traction: along 'midline' at the last output")
+    print(f"  sxx mean {sxx.mean():.1f} Pa, min {sxx.min():.1f}, max {sxx.max():.1f}, worst "
+          f"{100 * np.abs(sxx / sigma0 - 1).max():.3f} % off 1 MPa; max |syy| "
+          f"{np.abs(syy).max():.0f} Pa, max |sxy| {np.abs(sxy).max():.0f} Pa")
+    print(f"  left-roller reaction at t = {1e3 * t[-1]:.3f} ms: {R[-1]:.1f} N/m vs -100000 N/m "
+          f"({100 * (R[-1] / (-sigma0 * height) - 1):+.3f} %); min over the run "
+          f"{R.min():.1f} N/m at {1e3 * t[np.argmin(R)]:.3f} ms")
+    print(f"wrote {png}")
+
+
 CASES = {"joint_pull": plot_joint_pull,
          "block_on_incline": plot_block_on_incline,
          "two_blocks_collision": plot_two_blocks_collision,
-         "brazilian_disc": plot_brazilian_disc}
+         "brazilian_disc": plot_brazilian_disc,
+         "plate_traction": plot_plate_traction}
 
 
 def main():
