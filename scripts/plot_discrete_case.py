@@ -384,11 +384,91 @@ def plot_plate_traction(folder, png):
     print(f"wrote {png}")
 
 
+# ------------------------------------------------------ plate_transient
+def _analytic():
+    """tests/scripts/analytic.py (the series and its lines.csv reader)."""
+    sys.path.insert(0, os.path.join(ROOT, "tests", "scripts"))
+    import analytic
+    return analytic
+
+
+def plot_plate_transient(folder, png):
+    """OUTPUT_FOLDER as written by verify_discrete_plate.py: h0.05/,
+    h0.025/, continuum_P1/, beta{100,1000,10000}/, explicit/."""
+    an = _analytic()
+    prm = "plate_transient.prm"
+    ensure_run(os.path.join(folder, "h0.05"), prm)
+    ensure_run(os.path.join(folder, "continuum_P1"), prm, "Model=continuum heat",
+               "Heat solver/Polynomial degree=1", "Time stepping/Method=backward Euler",
+               "Output/Write vtu=false")
+    times = (2.0, 10.0, 20.0, 50.0)
+    fig, (ax_t, ax_b) = plt.subplots(1, 2, figsize=(12.5, 5), dpi=150,
+                                     gridspec_kw=dict(width_ratios=[1.35, 1]))
+    lines = an.read_csv(os.path.join(folder, "h0.05", "lines.csv"))["midline"]
+    xs = np.linspace(0, 1, 401)
+    print("plate_transient (discrete, h = 0.05 m, beta = 1000): max |T - series| along 'midline'")
+    for i, t in enumerate(times):
+        x, _, f = lines[t]
+        err = np.abs(f["T"] - an.plate_transient(x, t)).max()
+        print(f"  t = {t:4.0f} s: {err:.4f} C")
+        c = f"C{i}"
+        ax_t.plot(xs, an.plate_transient(xs, t), "-", color=c, lw=1.0)
+        ax_t.plot(x[::2], f["T"][::2], "o", color=c, ms=3, mfc="none",
+                  label=f"t = {t:g} s: max error {err:.3f} C")
+    ax_t.plot([], [], "k-", lw=1.0, label="corrected series (lines)")
+    ax_t.set_xlabel("x along 'midline' (y = 0.125 m) [m]")
+    ax_t.set_ylabel("T [C]")
+    ax_t.set_title("discrete P1 triangles + joints, h = 0.05 m, beta = 1000, backward Euler "
+                   "dt = 0.05 s", fontsize=9)
+    ax_t.legend(fontsize=7, loc="upper left")
+    ax_t.grid(alpha=0.3)
+
+    ref = an.read_csv(os.path.join(folder, "continuum_P1", "lines.csv"))["midline"]
+    betas = (100, 1000, 10000)
+    diffs = []
+    for beta in betas:
+        run = os.path.join(folder, f"beta{beta}")
+        ensure_run(run, prm, f"Discrete heat/Joint conductance factor={beta}",
+                   "Output/Write vtu=false")
+        d = an.read_csv(os.path.join(run, "lines.csv"))["midline"]
+        diffs.append(max(np.abs(d[t][2]["T"] - ref[t][2]["T"]).max() for t in (2.0, 10.0, 50.0)))
+    diffs = np.array(diffs)
+    print("  max |T_discrete - T_continuum P1| over t = 2, 10, 50 s:")
+    for beta, dd in zip(betas, diffs):
+        print(f"    beta = {beta:6d}: {dd:.4e} C")
+    b = np.array(betas, float)
+    ax_b.loglog(b, diffs, "o", color="C3", ms=6, label="tmfdem: max over t = 2, 10, 50 s")
+    for beta, dd in zip(betas, diffs):
+        ax_b.annotate(f"{dd:.3g} C", (beta, dd), textcoords="offset points", xytext=(6, 4),
+                      fontsize=7)
+    bb = np.logspace(1.8, 4.2, 20)
+    ax_b.loglog(bb, diffs[1] * 1000 / bb, "k--", lw=0.8, label="1 / beta (through beta = 1000)")
+    ax_b.set_xlabel("joint conductance factor beta (k_i = beta k / h)")
+    ax_b.set_ylabel("max |T_discrete - T_continuum P1| [C]")
+    ax_b.set_title("difference to the continuum P1 solver on the same mesh and steps",
+                   fontsize=9)
+    ax_b.legend(fontsize=7)
+    ax_b.grid(alpha=0.3, which="both")
+    fig.suptitle("Paper Sec. 5.1 in the discrete layer: 1 m x 0.25 m plate, 0 C / 100 C edges, "
+                 "kappa = 0.005 m^2/s", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(png)
+    for sub, label in (("h0.025", "h = 0.025 m"), ("explicit", "explicit lumped, beta = 100")):
+        path = os.path.join(folder, sub, "lines.csv")
+        if os.path.exists(path):
+            d = an.read_csv(path)["midline"]
+            errs = ", ".join(f"{np.abs(d[t][2]['T'] - an.plate_transient(d[t][0], t)).max():.4f} C"
+                             f" at {t:g} s" for t in times if t in d)
+            print(f"  {label}: {errs}")
+    print(f"wrote {png}")
+
+
 CASES = {"joint_pull": plot_joint_pull,
          "block_on_incline": plot_block_on_incline,
          "two_blocks_collision": plot_two_blocks_collision,
          "brazilian_disc": plot_brazilian_disc,
-         "plate_traction": plot_plate_traction}
+         "plate_traction": plot_plate_traction,
+         "plate_transient": plot_plate_transient}
 
 
 def main():
