@@ -463,12 +463,98 @@ def plot_plate_transient(folder, png):
     print(f"wrote {png}")
 
 
+# --------------------------------------------------- contact_conduction
+def plot_contact_conduction(folder, png):
+    """OUTPUT_FOLDER as written by verify_discrete_contact_heat.py: steady/
+    and equilibrate/."""
+    an = _analytic()
+    prm = "contact_conduction.prm"
+    width, delta, h_c = 0.05, 1e-5, 50.0
+    k1, k2, L1, L2 = 2.0, 5.0, 0.1, 0.1 - delta
+    steady, equil = os.path.join(folder, "steady"), os.path.join(folder, "equilibrate")
+    ensure_run(steady, prm)
+    ensure_run(equil, prm, "Thermal boundary conditions/Condition 1/Boundary ids=",
+               "Thermal boundary conditions/Condition 2/Boundary ids=",
+               "Materials/Material 1/Thermal conductivity=1000",
+               "Materials/Material 2/Thermal conductivity=1000",
+               "Initial conditions/Temperature=y < 0.1 - 1e-5 ? 100 : 0",
+               "Time stepping/End time=6000", "Time stepping/Time step=5",
+               "Output/Interval=500", "Output/Write vtu=false",
+               "Monitors/Lines=", "Monitors/Probes=lower: 0.025, 0.05; upper: 0.025, 0.15")
+    q = 100.0 / (L1 / k1 + 1.0 / h_c + L2 / k2)
+    lines = an.read_csv(os.path.join(steady, "lines.csv"))["axis"]
+    _, y, f = lines[max(lines)]
+    T = f["T"]
+    ym = 0.1 - delta / 2
+    exact = np.where(y < ym, 100 - q * y / k1, q * (0.2 - delta - y) / k2)
+    below, above = y < 0.1 - delta, y > 0.1      # leave out the 10 um overlap
+    err = np.abs(T - exact)[below | above].max()
+    Q = read_summary(steady)["heat_balance"]["boundary_heat_rate_last_step"]["1"]
+    fig, (ax_s, ax_e) = plt.subplots(1, 2, figsize=(12, 5), dpi=150)
+    yy = np.linspace(0, 0.2 - delta, 2001)
+    ax_s.plot(100 * yy, np.where(yy < ym, 100 - q * yy / k1, q * (0.2 - delta - yy) / k2),
+              "k-", lw=1.0, label=f"exact: q = dT / (L1/k1 + 1/h_c + L2/k2) = {q:.2f} W/m^2, "
+                                  f"jump q / h_c = {q / h_c:.3f} C")
+    ax_s.plot(100 * y[::4], T[::4], "o", color="C0", ms=3, mfc="none",
+              label=f"tmfdem, t = 1e7 s (max error {err:.3f} C)")
+    ax_s.axvline(100 * ym, color="gray", lw=0.5, ls=":")
+    ax_s.set_xlabel("y along 'axis' (x = 0.025 m) [cm]")
+    ax_s.set_ylabel("T [C]")
+    ax_s.set_title(f"steady: k1 = {k1:g} | h_c = {h_c:g} W/(m^2 K) | k2 = {k2:g} W/(m K); "
+                   f"heat flow {Q:.4f} W/m vs q w = {q * width:.4f} W/m", fontsize=8.5)
+    ax_s.legend(fontsize=7, loc="upper right")
+    ax_s.grid(alpha=0.3)
+
+    probes = an.read_csv(os.path.join(equil, "probes.csv"))
+    times = np.array(sorted(probes["lower"]))
+    diff = np.array([probes["lower"][t][2]["T"][0] - probes["upper"][t][2]["T"][0]
+                     for t in times])
+    C1 = 2500.0 * 800.0 * width * 0.1
+    C2 = 2500.0 * 800.0 * width * (0.1 - delta)
+    tau = C1 * C2 / ((C1 + C2) * h_c * width)
+    pos = times > 0
+    fit = np.polyfit(times[pos], np.log(diff[pos]), 1)
+    tau_fit, amp = -1.0 / fit[0], np.exp(fit[1])
+    tt = np.linspace(0, times.max(), 400)
+    ax_e.semilogy(tt, 100 * np.exp(-tt / tau), "k-", lw=1.0,
+                  label=f"100 exp(-t / tau), tau = C1 C2 / ((C1 + C2) h_c w) = {tau:.2f} s")
+    # the initial condition is a function of y and the blocks overlap, so
+    # the nodes on the lower block's top face (y = 0.1) start at 0 C too:
+    # the lower block holds ~96 C after its fast internal equilibration
+    ax_e.semilogy(tt, amp * np.exp(-tt / tau), "k:", lw=1.0,
+                  label=f"{amp:.2f} exp(-t / tau) (amplitude fitted)")
+    ax_e.semilogy(times, diff, "o", color="C3", ms=4, mfc="none",
+                  label=f"tmfdem T(lower probe) - T(upper probe): fitted tau {tau_fit:.2f} s")
+    ax_e.set_xlabel("t [s]")
+    ax_e.set_ylabel("T_lower - T_upper [C]")
+    ax_e.set_title("equilibration of two insulated blocks (k = 1000 W/(m K)), 100 C and 0 C "
+                   "at t = 0", fontsize=8.5)
+    ax_e.legend(fontsize=7)
+    ax_e.grid(alpha=0.3, which="both")
+    fig.suptitle("Heat across a contact: two blocks pressed together (overlap 10 um)",
+                 fontsize=11)
+    fig.tight_layout()
+    fig.savefig(png)
+    print("contact_conduction:")
+    print(f"  steady: heat flow {Q:.5f} W/m vs q w = {q * width:.5f} W/m "
+          f"({100 * (Q / (q * width) - 1):+.3f} %); max |T - exact| on 'axis' "
+          f"{err:.4f} C (below the contact {np.abs(T - exact)[below].max():.4f}, "
+          f"above {np.abs(T - exact)[above].max():.4f})")
+    print(f"  equilibrate: tau fitted {tau_fit:.2f} s vs {tau:.2f} s "
+          f"({100 * (tau_fit / tau - 1):+.3f} %), fitted amplitude {amp:.3f} C; difference at t = {times[-1]:g} s: "
+          f"{diff[-1]:.4f} C vs {100 * np.exp(-times[-1] / tau):.4f} C")
+    for t, d in zip(times, diff):
+        print(f"    t = {t:6g} s: {d:9.4f} C   exact {100 * np.exp(-t / tau):9.4f} C")
+    print(f"wrote {png}")
+
+
 CASES = {"joint_pull": plot_joint_pull,
          "block_on_incline": plot_block_on_incline,
          "two_blocks_collision": plot_two_blocks_collision,
          "brazilian_disc": plot_brazilian_disc,
          "plate_traction": plot_plate_traction,
-         "plate_transient": plot_plate_transient}
+         "plate_transient": plot_plate_transient,
+         "contact_conduction": plot_contact_conduction}
 
 
 def main():
