@@ -548,13 +548,118 @@ def plot_contact_conduction(folder, png):
     print(f"wrote {png}")
 
 
+# ------------------------------- sheet_free_expansion, sheet_restrained_expansion
+SHEET = dict(E=75.1e9, nu=0.311, alpha=3e-6)   # Table 3
+
+
+def _sheet_run(folder, kind, dT, idealisation="plane stress"):
+    """The runs of verify_discrete_sheets.py: free_{+100,-100}/,
+    restrained_{plane_stress,plane_strain}_{+100,-100}/."""
+    if kind == "free":
+        run = os.path.join(folder, f"free_{dT:+.0f}")
+        ensure_run(run, "sheet_free_expansion.prm", f"Initial conditions/Temperature={dT}",
+                   "Output/Write vtu=false")
+    else:
+        run = os.path.join(folder, f"restrained_{idealisation.replace(' ', '_')}_{dT:+.0f}")
+        ensure_run(run, "sheet_restrained_expansion.prm", f"Initial conditions/Temperature={dT}",
+                   f"Mechanics/Idealisation={idealisation}", "Output/Write vtu=false")
+    an = _analytic()
+    lines = an.read_csv(os.path.join(run, "lines.csv"))["diagonal"]
+    return lines[max(lines)], read_summary(run)
+
+
+def plot_sheet_free_expansion(folder, png):
+    E, alpha = SHEET["E"], SHEET["alpha"]
+    fig, (ax_u, ax_e) = plt.subplots(1, 2, figsize=(12, 5), dpi=150)
+    print("sheet_free_expansion (plane stress): along 'diagonal' at the end")
+    for dT, c in ((100.0, "C3"), (-100.0, "C0")):
+        (x, y, f), s = _sheet_run(folder, "free", dT)
+        ex, ey = alpha * dT * x, alpha * dT * y
+        xs = np.linspace(0, 2, 50)
+        ax_u.plot(xs, 1e3 * alpha * dT * xs, "-", color=c, lw=1.0,
+                  label=f"dT = {dT:+.0f} C: alpha dT x (= alpha dT y)")
+        ax_u.plot(x, 1e3 * f["ux"], "o", color=c, ms=4, mfc="none", label=f"dT = {dT:+.0f} C: ux")
+        ax_u.plot(y, 1e3 * f["uy"], "x", color=c, ms=4, label=f"dT = {dT:+.0f} C: uy")
+        rx, ry = f["ux"] / ex - 1, f["uy"] / ey - 1
+        ax_e.plot(x, 100 * rx, "o-", color=c, ms=3, lw=0.7, mfc="none",
+                  label=f"dT = {dT:+.0f} C: ux / (alpha dT x) - 1")
+        ax_e.plot(y, 100 * ry, "x--", color=c, ms=3, lw=0.7,
+                  label=f"dT = {dT:+.0f} C: uy / (alpha dT y) - 1")
+        smax = max(np.abs(f[k]).max() for k in ("sxx", "syy", "sxy"))
+        print(f"  dT = {dT:+.0f} C: u / (alpha dT X) - 1 in [{100 * min(rx.min(), ry.min()):.4f}, "
+              f"{100 * max(rx.max(), ry.max()):.4f}] %; max |stress| {smax:.0f} Pa = "
+              f"{smax / (E * alpha * abs(dT)):.1e} E alpha |dT|; corner u = ({f['ux'][-1]:.6e}, "
+              f"{f['uy'][-1]:.6e}) m vs {alpha * dT * x[-1]:.6e}; energy balance "
+              f"{s['energy']['relative_balance_error']:.1e}, steps {s['steps']}")
+    ax_u.set_xlabel("x (for ux), y (for uy) along 'diagonal' [m]")
+    ax_u.set_ylabel("displacement [mm]")
+    ax_u.set_title("displacement along the diagonal at t = 4 ms", fontsize=10)
+    ax_u.legend(fontsize=7)
+    ax_u.grid(alpha=0.3)
+    ax_e.axhline(0, color="k", lw=0.5)
+    ax_e.set_xlabel("x (for ux), y (for uy) along 'diagonal' [m]")
+    ax_e.set_ylabel("relative error [%]")
+    ax_e.set_title("strain error u / (alpha dT X) - 1", fontsize=10)
+    ax_e.legend(fontsize=7)
+    ax_e.grid(alpha=0.3)
+    fig.suptitle("Free 2 m sheet of jointed triangles at a uniform dT (discrete thermo-mechanics, "
+                 "plane stress)", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(png)
+    print(f"wrote {png}")
+
+
+def plot_sheet_restrained_expansion(folder, png):
+    E, nu, alpha = SHEET["E"], SHEET["nu"], SHEET["alpha"]
+    fig, (ax_s, ax_e) = plt.subplots(1, 2, figsize=(12, 5), dpi=150)
+    print("sheet_restrained_expansion: along 'diagonal' at the end")
+    runs = ((100.0, "plane stress", E / (1 - nu), "C3"),
+            (-100.0, "plane stress", E / (1 - nu), "C0"),
+            (100.0, "plane strain", E / (1 - 2 * nu), "C2"))
+    for dT, ideal, modulus, c in runs:
+        (x, y, f), s = _sheet_run(folder, "restrained", dT, ideal)
+        exact = -modulus * alpha * dT
+        d = np.hypot(x, y)
+        tag = f"{ideal}, dT = {dT:+.0f} C"
+        ax_s.axhline(exact / 1e6, color=c, lw=1.0,
+                     label=f"{tag}: -E alpha dT / (1 - {'nu' if ideal == 'plane stress' else '2 nu'})"
+                           f" = {exact / 1e6:.4f} MPa")
+        ax_s.plot(d, f["sxx"] / 1e6, "o", color=c, ms=4, mfc="none", label=f"{tag}: sxx")
+        ax_s.plot(d, f["syy"] / 1e6, "x", color=c, ms=4, label=f"{tag}: syy")
+        rx, ry = f["sxx"] / exact - 1, f["syy"] / exact - 1
+        ax_e.plot(d, 100 * rx, "o-", color=c, ms=3, lw=0.7, mfc="none", label=f"{tag}: sxx")
+        ax_e.plot(d, 100 * ry, "x--", color=c, ms=3, lw=0.7, label=f"{tag}: syy")
+        print(f"  {tag}: exact {exact / 1e6:.4f} MPa; sxx/exact - 1 in [{100 * rx.min():.3f}, "
+              f"{100 * rx.max():.3f}] %, syy/exact - 1 in [{100 * ry.min():.3f}, {100 * ry.max():.3f}] %,"
+              f" mean {100 * np.mean(np.r_[rx, ry]):.3f} %; max |sxy| {np.abs(f['sxy']).max():.0f} Pa;"
+              f" energy balance {s['energy']['relative_balance_error']:.1e}, steps {s['steps']}")
+    ax_s.set_xlabel("distance along 'diagonal' from (0, 0) [m]")
+    ax_s.set_ylabel("stress [MPa]")
+    ax_s.set_title("sxx, syy along the diagonal at t = 4 ms", fontsize=10)
+    ax_s.legend(fontsize=6.5, loc="center right")
+    ax_s.grid(alpha=0.3)
+    ax_e.axhline(0, color="k", lw=0.5)
+    ax_e.set_xlabel("distance along 'diagonal' from (0, 0) [m]")
+    ax_e.set_ylabel("sigma / exact - 1 [%]")
+    ax_e.set_title("relative error (penalty 1000 E)", fontsize=10)
+    ax_e.legend(fontsize=6.5)
+    ax_e.grid(alpha=0.3)
+    fig.suptitle("2 m sheet of jointed triangles on rollers at a uniform dT (discrete "
+                 "thermo-mechanics)", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(png)
+    print(f"wrote {png}")
+
+
 CASES = {"joint_pull": plot_joint_pull,
          "block_on_incline": plot_block_on_incline,
          "two_blocks_collision": plot_two_blocks_collision,
          "brazilian_disc": plot_brazilian_disc,
          "plate_traction": plot_plate_traction,
          "plate_transient": plot_plate_transient,
-         "contact_conduction": plot_contact_conduction}
+         "contact_conduction": plot_contact_conduction,
+         "sheet_free_expansion": plot_sheet_free_expansion,
+         "sheet_restrained_expansion": plot_sheet_restrained_expansion}
 
 
 def main():
