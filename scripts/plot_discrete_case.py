@@ -4,13 +4,20 @@
     plot_discrete_case.py CASE OUTPUT_FOLDER PNG
 
 CASE is one of joint_pull, block_on_incline, two_blocks_collision,
-brazilian_disc. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
+brazilian_disc, plate_traction, plate_transient, contact_conduction,
+sheet_free_expansion, sheet_restrained_expansion. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
 probes.csv, summary.json, solution_*.vtu, cracks_*.vtu). Cases that compare
 several runs read one sub-folder per run, the layout the verification
 scripts write:
 
     joint_pull:        OUTPUT_FOLDER/{Munjiza,linear}_{I,II}/   (verify_discrete_joint.py)
     block_on_incline:  OUTPUT_FOLDER/mu_0.3/, OUTPUT_FOLDER/mu_0.6/ (verify_discrete_dynamics.py incline)
+    plate_transient:   OUTPUT_FOLDER/{h0.05,continuum_P1,beta100,beta1000,beta10000}/
+                       (verify_discrete_plate.py)
+    contact_conduction: OUTPUT_FOLDER/{steady,equilibrate}/  (verify_discrete_contact_heat.py)
+    sheet_*_expansion: OUTPUT_FOLDER/free_{+100,-100}/,
+                       OUTPUT_FOLDER/restrained_plane_{stress,strain}_{+100,-100}/
+                       (verify_discrete_sheets.py)
 
 A missing run is made with the binary in $TMFDEM (default
 build-release/tmfdem), with the same --set overrides as those scripts.
