@@ -39,6 +39,21 @@ namespace tmfdem
       return s;
     }
 
+    template <typename Function>
+    void
+    DiscreteHeat::for_each_contact_transfer(const Function &f) const
+    {
+      for (const auto &[c, t] : contact_pairs)
+        {
+          OverlapPolygon      overlap;
+          ContactHeatTransfer transfer;
+          if (contact_heat(&model.x[3 * c], &model.y[3 * c], T.begin() + 3 * c,
+                           &model.x[3 * t], &model.y[3 * t], T.begin() + 3 * t,
+                           contact_conductance, overlap, transfer))
+            f(c, t, transfer);
+        }
+    }
+
     namespace
     {
       /** Gradients of the P1 shape functions times 2A (current geometry)
@@ -115,10 +130,6 @@ namespace tmfdem
               "/Volumetric heat source");
 
       // boundary conditions
-      std::set<types::boundary_id> mesh_ids;
-      for (const auto id : model.edge_boundary)
-        if (id != numbers::internal_face_boundary_id)
-          mesh_ids.insert(id);
       std::vector<int> condition_of_id(256, -1);
       for (const auto &c : parameters.thermal_boundary.conditions)
         {
@@ -130,21 +141,9 @@ namespace tmfdem
                                                    c.name + "/Heat transfer coefficient");
           f.ambient = make_expression_function(c.ambient_temperature,
                                                c.name + "/Ambient temperature");
+          model.check_boundary_ids(c.name + "/Boundary ids", c.boundary_ids);
           for (const auto id : c.boundary_ids)
-            {
-              if (mesh_ids.count(id) == 0)
-                {
-                  std::string ids;
-                  for (const auto m : mesh_ids)
-                    ids += " " + std::to_string(m);
-                  throw InputError(c.name + "/Boundary ids: boundary id " +
-                                   std::to_string(id) +
-                                   " is not on the mesh; the mesh has boundary "
-                                   "ids" +
-                                   ids + ".");
-                }
-              condition_of_id[id] = conditions.size();
-            }
+            condition_of_id[id] = conditions.size();
           conditions.push_back(std::move(f));
         }
       dirichlet_node.assign(model.n_nodes, false);
@@ -252,22 +251,16 @@ namespace tmfdem
     {
       double total          = 0.;
       last_contact_exchange = 0.;
-      for (const auto &[c, t] : contact_pairs)
-        {
-          OverlapPolygon      overlap;
-          ContactHeatTransfer transfer;
-          if (!contact_heat(&model.x[3 * c], &model.y[3 * c], T.begin() + 3 * c,
-                            &model.x[3 * t], &model.y[3 * t], T.begin() + 3 * t,
-                            contact_conductance, overlap, transfer))
-            continue;
-          last_contact_exchange += std::abs(transfer.heat_flow);
-          for (unsigned int k = 0; k < 3; ++k)
-            {
-              rate[3 * c + k] += transfer.contactor_nodal_heat[k];
-              rate[3 * t + k] += transfer.target_nodal_heat[k];
-              total += transfer.contactor_nodal_heat[k] + transfer.target_nodal_heat[k];
-            }
-        }
+      for_each_contact_transfer([&](const unsigned int c, const unsigned int t,
+                                    const ContactHeatTransfer &transfer) {
+        last_contact_exchange += std::abs(transfer.heat_flow);
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            rate[3 * c + k] += transfer.contactor_nodal_heat[k];
+            rate[3 * t + k] += transfer.target_nodal_heat[k];
+            total += transfer.contactor_nodal_heat[k] + transfer.target_nodal_heat[k];
+          }
+      });
       return total;
     }
 
@@ -296,20 +289,14 @@ namespace tmfdem
       for (unsigned int j = 0; j < model.n_joints; ++j)
         for (unsigned int s = 0; s < 4; ++s)
           row[model.joint_nodes[4 * j + s]] += 2. * joint_conductance[j];
-      for (const auto &[c, t] : contact_pairs)
-        {
-          OverlapPolygon      overlap;
-          ContactHeatTransfer transfer;
-          if (!contact_heat(&model.x[3 * c], &model.y[3 * c], T.begin() + 3 * c,
-                            &model.x[3 * t], &model.y[3 * t], T.begin() + 3 * t,
-                            contact_conductance, overlap, transfer))
-            continue;
-          for (unsigned int k = 0; k < 3; ++k)
-            {
-              row[3 * c + k] += 2. * transfer.conductance * transfer.contactor_shape[k];
-              row[3 * t + k] += 2. * transfer.conductance * transfer.target_shape[k];
-            }
-        }
+      for_each_contact_transfer([&](const unsigned int c, const unsigned int t,
+                                    const ContactHeatTransfer &transfer) {
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            row[3 * c + k] += 2. * transfer.conductance * transfer.contactor_shape[k];
+            row[3 * t + k] += 2. * transfer.conductance * transfer.target_shape[k];
+          }
+      });
       set_function_time(0.);
       for (const auto &b : boundary_edges)
         if (conditions[b.condition].type == ThermalBoundaryCondition::Type::robin)
@@ -574,21 +561,15 @@ namespace tmfdem
               matrix.add(b, a, -G);
             }
       // contact conductance: +K = h_c L_c w w^T, w = (N_c, -N_t)
-      for (const auto &[c, t] : contact_pairs)
-        {
-          OverlapPolygon      overlap;
-          ContactHeatTransfer transfer;
-          if (!contact_heat(&model.x[3 * c], &model.y[3 * c], T.begin() + 3 * c,
-                            &model.x[3 * t], &model.y[3 * t], T.begin() + 3 * t,
-                            contact_conductance, overlap, transfer))
-            continue;
-          const auto         J = transfer.heat_jacobian();
-          const unsigned int nodes[6] = {3 * c, 3 * c + 1, 3 * c + 2,
-                                         3 * t, 3 * t + 1, 3 * t + 2};
-          for (unsigned int a = 0; a < 6; ++a)
-            for (unsigned int b = 0; b < 6; ++b)
-              matrix.add(nodes[a], nodes[b], -J[a][b]);
-        }
+      for_each_contact_transfer([&](const unsigned int c, const unsigned int t,
+                                    const ContactHeatTransfer &transfer) {
+        const auto         J = transfer.heat_jacobian();
+        const unsigned int nodes[6] = {3 * c, 3 * c + 1, 3 * c + 2,
+                                       3 * t, 3 * t + 1, 3 * t + 2};
+        for (unsigned int a = 0; a < 6; ++a)
+          for (unsigned int b = 0; b < 6; ++b)
+            matrix.add(nodes[a], nodes[b], -J[a][b]);
+      });
       for (const auto &b : boundary_edges)
         {
           const auto &f = conditions[b.condition];

@@ -3,6 +3,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <numeric>
+#include <set>
 #include <sstream>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/discrete/discrete_model.h>
@@ -153,6 +154,27 @@ namespace tmfdem
       joint_status.assign(n_joints, JointStatus::intact);
       joint_break_time.assign(n_joints, -1.);
       joint_force.assign(8 * n_joints, 0.);
+    }
+
+    void
+    DiscreteModel::check_boundary_ids(
+      const std::string                     &entry,
+      const std::vector<types::boundary_id> &ids) const
+    {
+      std::set<types::boundary_id> mesh_ids;
+      for (const auto id : edge_boundary)
+        if (id != numbers::internal_face_boundary_id)
+          mesh_ids.insert(id);
+      for (const auto id : ids)
+        if (mesh_ids.count(id) == 0)
+          {
+            std::string on_mesh;
+            for (const auto m : mesh_ids)
+              on_mesh += " " + std::to_string(m);
+            throw InputError(entry + ": boundary id " + std::to_string(id) +
+                             " is not on the mesh; the mesh has boundary ids" +
+                             on_mesh + ".");
+          }
     }
 
     unsigned int

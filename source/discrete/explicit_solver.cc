@@ -366,10 +366,6 @@ namespace tmfdem
       conditions.clear();
       node_conditions.clear();
       node_condition_slot.assign(model.n_nodes, -1);
-      std::set<types::boundary_id> mesh_ids;
-      for (const auto id : model.edge_boundary)
-        if (id != numbers::internal_face_boundary_id)
-          mesh_ids.insert(id);
       using Type = MechanicalBoundaryCondition::Type;
       std::vector<int> condition_of_id(256, -1);
       for (const auto &c : parameters.mechanical_boundary.conditions)
@@ -397,22 +393,10 @@ namespace tmfdem
                      !std::isalnum(expression[i + 1])))
                   f.time_dependent[d] = true;
             }
+          model.check_boundary_ids(c.name + "/Boundary ids", c.boundary_ids);
           for (const auto id : c.boundary_ids)
-            {
-              if (mesh_ids.count(id) == 0)
-                {
-                  std::string ids;
-                  for (const auto m : mesh_ids)
-                    ids += " " + std::to_string(m);
-                  throw InputError(c.name + "/Boundary ids: boundary id " +
-                                   std::to_string(id) +
-                                   " is not on the mesh; the mesh has "
-                                   "boundary ids" +
-                                   ids + ".");
-                }
-              if (id < condition_of_id.size())
-                condition_of_id[id] = conditions.size();
-            }
+            if (id < condition_of_id.size())
+              condition_of_id[id] = conditions.size();
           conditions.push_back(std::move(f));
         }
       // nodes on boundary edges with a condition (free bodies only; fixed

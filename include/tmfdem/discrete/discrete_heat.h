@@ -193,6 +193,11 @@ namespace tmfdem
       /** Conducting pairs: (contactor, target) triangles. */
       std::vector<std::pair<unsigned int, unsigned int>> contact_pairs;
       double contact_conductance = 0.;
+      /** Calls @p f(contactor, target, transfer) for every overlapping
+       *  pair at the current temperatures. */
+      template <typename Function>
+      void
+      for_each_contact_transfer(const Function &f) const;
       /** Adds the contact heats of T to @p rate; returns their sum. */
       double
       add_contact_heat(Vector<double> &rate) const;

@@ -16,6 +16,7 @@
 #include <deal.II/base/types.h>
 #include <deal.II/dofs/dof_handler.h>
 
+#include <string>
 #include <tmfdem/discrete/cohesive_law.h>
 #include <vector>
 
@@ -115,6 +116,15 @@ namespace tmfdem
             return true;
         return false;
       }
+
+      /**
+       * Throws InputError naming @p entry (e.g. "Thermal boundary
+       * conditions/Condition 1/Boundary ids") if a boundary id in @p ids is
+       * not on the mesh, listing those that are.
+       */
+      void
+      check_boundary_ids(const std::string                     &entry,
+                         const std::vector<types::boundary_id> &ids) const;
 
       /** Number of broken joints. */
       unsigned int
