@@ -149,6 +149,23 @@ namespace tmfdem
       if (!probe)
         throw InputError("cannot open the parameter file '" + prm_file +
                          "' (missing or unreadable).");
+      // deal.II's `include` recurses without a depth limit (a file that
+      // includes itself overflows the stack): tmfdem files are flat
+      std::string  line;
+      unsigned int number = 0;
+      while (std::getline(probe, line))
+        {
+          ++number;
+          const auto first = line.find_first_not_of(" \t");
+          if (first != std::string::npos &&
+              line.compare(first, 7, "include") == 0 &&
+              (line.size() == first + 7 || line[first + 7] == ' ' ||
+               line[first + 7] == '\t'))
+            throw InputError("in parameter file '" + prm_file + "', line " +
+                             std::to_string(number) +
+                             ": 'include' is not allowed; write the entries "
+                             "into the file (or use --set).");
+        }
     }
     ParameterHandler prm;
     Parameters::declare_parameters(prm);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <unistd.h>
 #include <fstream>
 #include <sstream>
 #include <tmfdem/base/exceptions.h>
@@ -164,12 +165,53 @@ namespace tmfdem
     if (!in)
       throw InputError("Mesh/File name: cannot open '" + file_name +
                        "' (missing or unreadable).");
-    std::string first_word;
-    in >> first_word;
+    std::string first_word, version, file_type;
+    in >> first_word >> version >> file_type;
     if (first_word != "$MeshFormat")
       throw InputError("Mesh file '" + file_name +
                        "' is not an ASCII gmsh .msh file: it must start with "
                        "$MeshFormat (gmsh -format msh22 or msh4, ASCII).");
+    if (file_type != "0")
+      throw InputError("Mesh file '" + file_name +
+                       "' is a binary gmsh file (file-type " + file_type +
+                       "); allowed are ASCII files (gmsh -format msh22).");
+    if (version.rfind("4.", 0) == 0)
+      {
+        // deal.II 9.4's format-4 reader does not check its reads (a bad
+        // token corrupts memory): let gmsh check and convert it to 2.2
+        const std::string converted =
+          (std::filesystem::temp_directory_path() /
+           ("tmfdem-msh22-" + std::to_string(::getpid()) + ".msh"))
+            .string();
+        const std::string command =
+          "timeout 60 gmsh -0 \"" + file_name +
+          "\" -format msh22 -v 0 -o \"" + converted + "\" > /dev/null 2>&1";
+        std::filesystem::remove(converted);
+        const int status = std::system(command.c_str());
+        if (status != 0 || !std::filesystem::exists(converted))
+          {
+            std::filesystem::remove(converted);
+            throw InputError("Mesh file '" + file_name +
+                             "' (gmsh format " + version +
+                             ") cannot be read: gmsh rejected it (exit status " +
+                             std::to_string(status) + ").");
+          }
+        try
+          {
+            read_gmsh_file(converted, triangulation);
+          }
+        catch (const InputError &error)
+          {
+            std::filesystem::remove(converted);
+            throw InputError("Mesh file '" + file_name + "' (converted by gmsh " +
+                             "from format " + version + "): " + error.what());
+          }
+        std::filesystem::remove(converted);
+        return;
+      }
+    if (version.rfind("2.", 0) != 0)
+      throw InputError("Mesh file '" + file_name + "' has gmsh format version '" +
+                       version + "'; allowed are 2.x and 4.x (ASCII).");
     in.seekg(0);
     GridIn<2> grid_in;
     grid_in.attach_triangulation(triangulation);
@@ -205,6 +247,20 @@ namespace tmfdem
     const bool triangles =
       parameters.element_type == MeshParameters::ElementType::triangles;
     const double h = parameters.element_size;
+    if (parameters.source != Source::file)
+      {
+        // refuse absurd sizes before gmsh or GridGenerator try them
+        const double area           = domain_area(parameters);
+        const double estimated_cells = area / (0.43 * h * h);
+        if (!std::isfinite(area) || !(area > 0.) ||
+            !std::isfinite(estimated_cells) || estimated_cells > 2e7)
+          throw InputError(
+            "Mesh: a domain of area " + Utilities::to_string(area) +
+            " m^2 with Element size = " + Utilities::to_string(h) +
+            " m would have about " + Utilities::to_string(estimated_cells) +
+            " cells; allowed are finite domains and at most 2e7 cells (then "
+            "Mesh/Global refinements).");
+      }
 
     if (parameters.source == Source::file)
       {
