@@ -29,6 +29,7 @@
 #include <sstream>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/function_expression.h>
+#include <tmfdem/continuum/adaptivity.h>
 #include <tmfdem/continuum/heat_solver.h>
 #include <tmfdem/continuum/thermoelastic_solver.h>
 #include <tmfdem/io/monitors.h>
@@ -863,34 +864,13 @@ namespace tmfdem
   {
     auto &distributed_triangulation =
       dynamic_cast<parallel::distributed::Triangulation<2> &>(*triangulation);
-    Vector<float> estimated_error(triangulation->n_active_cells());
-    KellyErrorEstimator<2>::estimate(*mapping,
-                                     *dof_handler,
-                                     QGauss<1>(fe->degree + 1),
-                                     {},
-                                     solution,
-                                     estimated_error);
-    if (parameters.adaptivity.strategy == "fixed fraction")
-      parallel::distributed::GridRefinement::refine_and_coarsen_fixed_fraction(
-        distributed_triangulation,
-        estimated_error,
-        parameters.adaptivity.refine_fraction,
-        parameters.adaptivity.coarsen_fraction);
-    else
-      parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
-        distributed_triangulation,
-        estimated_error,
-        parameters.adaptivity.refine_fraction,
-        parameters.adaptivity.coarsen_fraction);
-    const unsigned int max_level =
-      coarse_level + parameters.adaptivity.max_level;
-    for (const auto &cell : triangulation->active_cell_iterators())
-      {
-        if (cell->level() >= static_cast<int>(max_level))
-          cell->clear_refine_flag();
-        if (cell->level() <= static_cast<int>(coarse_level))
-          cell->clear_coarsen_flag();
-      }
+    mark_cells_by_kelly(distributed_triangulation,
+                        *mapping,
+                        *dof_handler,
+                        solution,
+                        fe->degree,
+                        parameters.adaptivity,
+                        coarse_level);
     parallel::distributed::SolutionTransfer<2, TrilinosWrappers::MPI::Vector>
       transfer(*dof_handler);
     triangulation->prepare_coarsening_and_refinement();

@@ -8,8 +8,8 @@ namespace tmfdem
     const std::vector<std::pair<std::string, SofteningLaw>> &
     softening_law_registry()
     {
-      static const std::vector<std::pair<std::string, SofteningLaw>> laws = {
-        {"Munjiza", SofteningLaw::munjiza}, {"linear", SofteningLaw::linear}};
+      static const std::vector<std::pair<std::string, SofteningLaw>> laws =
+        {{"Munjiza", SofteningLaw::munjiza}, {"linear", SofteningLaw::linear}};
       return laws;
     }
 
@@ -24,9 +24,9 @@ namespace tmfdem
     softening_integral(const SofteningLaw law)
     {
       // composite Simpson; z is smooth, 2000 intervals give 1e-12
-      const unsigned int n   = 2000;
-      const double       h   = 1. / n;
-      double             sum = softening_value(law, 0.) + softening_value(law, 1.);
+      const unsigned int n = 2000;
+      const double       h = 1. / n;
+      double sum = softening_value(law, 0.) + softening_value(law, 1.);
       for (unsigned int i = 1; i < n; ++i)
         sum += (i % 2 ? 4. : 2.) * softening_value(law, i * h);
       return sum * h / 3.;
@@ -48,8 +48,8 @@ namespace tmfdem
       k.tangential_stiffness = tangential_penalty / length;
       k.tensile_strength     = tensile_strength;
       k.cohesion             = cohesion;
-      k.friction_tangent = std::tan(friction_angle_degrees * M_PI / 180.);
-      const double integral = softening_integral(law);
+      k.friction_tangent     = std::tan(friction_angle_degrees * M_PI / 180.);
+      const double integral  = softening_integral(law);
       const double pre_peak_I =
         4. / 3. * tensile_strength * tensile_strength / k.normal_stiffness;
       const double pre_peak_II =
@@ -76,9 +76,9 @@ namespace tmfdem
           energy += k.tensile_strength * op * (r * r - r * r * r / 3.);
         }
       const double compression = o < 0. ? k.normal_stiffness * o : 0.;
-      const double fs = k.cohesion - compression * k.friction_tangent;
-      const double sp = 2. * fs / k.tangential_stiffness;
-      const double r  = std::min(std::abs(s) / sp, 1.);
+      const double fs          = k.cohesion - compression * k.friction_tangent;
+      const double sp          = 2. * fs / k.tangential_stiffness;
+      const double r           = std::min(std::abs(s) / sp, 1.);
       energy += fs * sp * (r * r - r * r * r / 3.);
       return energy;
     }

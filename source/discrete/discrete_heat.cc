@@ -47,9 +47,15 @@ namespace tmfdem
         {
           OverlapPolygon      overlap;
           ContactHeatTransfer transfer;
-          if (contact_heat(&model.x[3 * c], &model.y[3 * c], T.begin() + 3 * c,
-                           &model.x[3 * t], &model.y[3 * t], T.begin() + 3 * t,
-                           contact_conductance, overlap, transfer))
+          if (contact_heat(&model.x[3 * c],
+                           &model.y[3 * c],
+                           T.begin() + 3 * c,
+                           &model.x[3 * t],
+                           &model.y[3 * t],
+                           T.begin() + 3 * t,
+                           contact_conductance,
+                           overlap,
+                           transfer))
             f(c, t, transfer);
         }
     }
@@ -59,7 +65,9 @@ namespace tmfdem
       /** Gradients of the P1 shape functions times 2A (current geometry)
        *  and the current area A [m^2]. */
       inline double
-      shape_gradients(const DiscreteModel &m, const unsigned int e, double g[3][2])
+      shape_gradients(const DiscreteModel &m,
+                      const unsigned int   e,
+                      double               g[3][2])
       {
         const double *x = &m.x[3 * e], *y = &m.y[3 * e];
         g[0][0] = y[1] - y[2];
@@ -68,7 +76,8 @@ namespace tmfdem
         g[1][1] = x[0] - x[2];
         g[2][0] = y[0] - y[1];
         g[2][1] = x[1] - x[0];
-        return 0.5 * ((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]));
+        return 0.5 *
+               ((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]));
       }
 
       /** Conductivity matrix K_ab = k A grad N_a . grad N_b of element e. */
@@ -87,13 +96,14 @@ namespace tmfdem
       }
     } // namespace
 
-    DiscreteHeat::DiscreteHeat(const Parameters &parameters, DiscreteModel &model)
+    DiscreteHeat::DiscreteHeat(const Parameters &parameters,
+                               DiscreteModel    &model)
       : parameters(parameters)
       , model(model)
     {
-      const auto &dh = parameters.discrete_heat;
-      use_implicit   = dh.time_integration == "implicit";
-      beta           = dh.joint_conductance_factor;
+      const auto &dh      = parameters.discrete_heat;
+      use_implicit        = dh.time_integration == "implicit";
+      beta                = dh.joint_conductance_factor;
       contact_conductance = dh.contact_conductance;
       T.reinit(model.n_nodes);
 
@@ -114,9 +124,9 @@ namespace tmfdem
       joint_conductance.resize(model.n_joints);
       for (unsigned int j = 0; j < model.n_joints; ++j)
         {
-          const double ka = conductivity[model.joint_elements[2 * j]];
-          const double kb = conductivity[model.joint_elements[2 * j + 1]];
-          const double k  = 2. * ka * kb / (ka + kb);
+          const double ka      = conductivity[model.joint_elements[2 * j]];
+          const double kb      = conductivity[model.joint_elements[2 * j + 1]];
+          const double k       = 2. * ka * kb / (ka + kb);
           joint_conductance[j] = 0.5 * beta * k;
         }
 
@@ -134,11 +144,13 @@ namespace tmfdem
       for (const auto &c : parameters.thermal_boundary.conditions)
         {
           ConditionFunctions f;
-          f.type        = c.type;
-          f.temperature = make_expression_function(c.temperature, c.name + "/Temperature");
-          f.flux        = make_expression_function(c.heat_flux, c.name + "/Heat flux");
-          f.coefficient = make_expression_function(c.heat_transfer_coefficient,
-                                                   c.name + "/Heat transfer coefficient");
+          f.type = c.type;
+          f.temperature =
+            make_expression_function(c.temperature, c.name + "/Temperature");
+          f.flux = make_expression_function(c.heat_flux, c.name + "/Heat flux");
+          f.coefficient =
+            make_expression_function(c.heat_transfer_coefficient,
+                                     c.name + "/Heat transfer coefficient");
           f.ambient = make_expression_function(c.ambient_temperature,
                                                c.name + "/Ambient temperature");
           model.check_boundary_ids(c.name + "/Boundary ids", c.boundary_ids);
@@ -154,7 +166,8 @@ namespace tmfdem
           {
             const types::boundary_id id = model.edge_boundary[3 * e + k];
             heat_balance.boundary_heat_in[id] += 0.;
-            if (id == numbers::internal_face_boundary_id || condition_of_id[id] < 0)
+            if (id == numbers::internal_face_boundary_id ||
+                condition_of_id[id] < 0)
               continue;
             const unsigned int c = condition_of_id[id];
             boundary_edges.push_back({e, k, c, id});
@@ -230,16 +243,22 @@ namespace tmfdem
           elements.push_back(e);
       LinkedCellSearch         search;
       std::vector<ContactPair> candidates;
-      search.rebuild(model.x, model.y, elements, 0.,
-                     [&](const unsigned int a, const unsigned int b) {
-                       return model.joined(a, b);
-                     },
-                     candidates);
+      search.rebuild(
+        model.x,
+        model.y,
+        elements,
+        0.,
+        [&](const unsigned int a, const unsigned int b) {
+          return model.joined(a, b);
+        },
+        candidates);
       for (const ContactPair &c : candidates)
         {
           OverlapPolygon overlap;
-          if (triangle_overlap(&model.x[3 * c.first], &model.y[3 * c.first],
-                               &model.x[3 * c.second], &model.y[3 * c.second],
+          if (triangle_overlap(&model.x[3 * c.first],
+                               &model.y[3 * c.first],
+                               &model.x[3 * c.second],
+                               &model.y[3 * c.second],
                                overlap) &&
               overlap.contact_length > 0.)
             contact_pairs.emplace_back(c.first, c.second);
@@ -251,14 +270,16 @@ namespace tmfdem
     {
       double total          = 0.;
       last_contact_exchange = 0.;
-      for_each_contact_transfer([&](const unsigned int c, const unsigned int t,
+      for_each_contact_transfer([&](const unsigned int         c,
+                                    const unsigned int         t,
                                     const ContactHeatTransfer &transfer) {
         last_contact_exchange += std::abs(transfer.heat_flow);
         for (unsigned int k = 0; k < 3; ++k)
           {
             rate[3 * c + k] += transfer.contactor_nodal_heat[k];
             rate[3 * t + k] += transfer.target_nodal_heat[k];
-            total += transfer.contactor_nodal_heat[k] + transfer.target_nodal_heat[k];
+            total +=
+              transfer.contactor_nodal_heat[k] + transfer.target_nodal_heat[k];
           }
       });
       return total;
@@ -289,21 +310,26 @@ namespace tmfdem
       for (unsigned int j = 0; j < model.n_joints; ++j)
         for (unsigned int s = 0; s < 4; ++s)
           row[model.joint_nodes[4 * j + s]] += 2. * joint_conductance[j];
-      for_each_contact_transfer([&](const unsigned int c, const unsigned int t,
+      for_each_contact_transfer([&](const unsigned int         c,
+                                    const unsigned int         t,
                                     const ContactHeatTransfer &transfer) {
         for (unsigned int k = 0; k < 3; ++k)
           {
-            row[3 * c + k] += 2. * transfer.conductance * transfer.contactor_shape[k];
-            row[3 * t + k] += 2. * transfer.conductance * transfer.target_shape[k];
+            row[3 * c + k] +=
+              2. * transfer.conductance * transfer.contactor_shape[k];
+            row[3 * t + k] +=
+              2. * transfer.conductance * transfer.target_shape[k];
           }
       });
       set_function_time(0.);
       for (const auto &b : boundary_edges)
-        if (conditions[b.condition].type == ThermalBoundaryCondition::Type::robin)
+        if (conditions[b.condition].type ==
+            ThermalBoundaryCondition::Type::robin)
           {
             const unsigned int n0 = 3 * b.element + b.edge;
             const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
-            const double L = std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
+            const double       L =
+              std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
             for (const unsigned int n : {n0, n1})
               row[n] += 0.5 * L *
                         conditions[b.condition].coefficient->value(
@@ -317,10 +343,11 @@ namespace tmfdem
     }
 
     void
-    DiscreteHeat::heat_rates(const double                          time,
-                             Vector<double>                       &rate,
-                             std::map<types::boundary_id, double> &boundary_rate,
-                             double                               &source_rate) const
+    DiscreteHeat::heat_rates(
+      const double                          time,
+      Vector<double>                       &rate,
+      std::map<types::boundary_id, double> &boundary_rate,
+      double                               &source_rate) const
     {
       rate.reinit(model.n_nodes);
       // conduction inside the triangles
@@ -354,8 +381,9 @@ namespace tmfdem
       source_rate = 0.;
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
-          const double *x = &model.x_ref[3 * e], *y = &model.y_ref[3 * e];
-          const Point<2> centroid((x[0] + x[1] + x[2]) / 3., (y[0] + y[1] + y[2]) / 3.);
+          const double  *x = &model.x_ref[3 * e], *y = &model.y_ref[3 * e];
+          const Point<2> centroid((x[0] + x[1] + x[2]) / 3.,
+                                  (y[0] + y[1] + y[2]) / 3.);
           const double   s = sources[model.material[e]]->value(centroid);
           if (s != 0.)
             {
@@ -375,14 +403,16 @@ namespace tmfdem
             continue;
           const unsigned int n0 = 3 * b.element + b.edge;
           const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
-          const double L = std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
+          const double       L =
+            std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
           for (const unsigned int n : {n0, n1})
             {
               const Point<2> p(model.x_ref[n], model.y_ref[n]);
               const double   q =
                 f.type == ThermalBoundaryCondition::Type::neumann ?
                     0.5 * L * f.flux->value(p) :
-                    0.5 * L * f.coefficient->value(p) * (f.ambient->value(p) - T[n]);
+                    0.5 * L * f.coefficient->value(p) *
+                    (f.ambient->value(p) - T[n]);
               rate[n] += q;
               boundary_rate[b.id] += q;
             }
@@ -392,11 +422,12 @@ namespace tmfdem
     void
     DiscreteHeat::step(const double time, const double time_step)
     {
-      const Vector<double> T_old = T;
-      Vector<double>       rate;
-      std::map<types::boundary_id, double> boundary_rate = heat_balance.boundary_heat_in;
-      double                               source_rate   = 0.;
-      Vector<double>                       stored_change(model.n_nodes);
+      const Vector<double>                 T_old = T;
+      Vector<double>                       rate;
+      std::map<types::boundary_id, double> boundary_rate =
+        heat_balance.boundary_heat_in;
+      double         source_rate = 0.;
+      Vector<double> stored_change(model.n_nodes);
       if (!use_implicit)
         {
           heat_rates(time, rate, boundary_rate, source_rate);
@@ -417,17 +448,19 @@ namespace tmfdem
           Vector<double> capacity_T(model.n_nodes);
           for (unsigned int e = 0; e < model.n_elements; ++e)
             {
-              const double c = volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
+              const double c =
+                volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
               for (unsigned int a = 0; a < 3; ++a)
                 for (unsigned int b = 0; b < 3; ++b)
-                  capacity_T[3 * e + a] += c * (a == b ? 2. : 1.) * T_old[3 * e + b];
+                  capacity_T[3 * e + a] +=
+                    c * (a == b ? 2. : 1.) * T_old[3 * e + b];
             }
           rhs.add(1. / time_step, capacity_T);
           set_function_time(time + time_step);
           for (unsigned int e = 0; e < model.n_elements; ++e)
             {
               const double *x = &model.x_ref[3 * e], *y = &model.y_ref[3 * e];
-              const double s = sources[model.material[e]]->value(
+              const double  s = sources[model.material[e]]->value(
                 Point<2>((x[0] + x[1] + x[2]) / 3., (y[0] + y[1] + y[2]) / 3.));
               for (unsigned int a = 0; a < 3; ++a)
                 rhs[3 * e + a] += s * model.reference_area[e] / 3.;
@@ -439,13 +472,15 @@ namespace tmfdem
                 continue;
               const unsigned int n0 = 3 * b.element + b.edge;
               const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
-              const double L = std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
+              const double       L  = std::hypot(model.x[n1] - model.x[n0],
+                                          model.y[n1] - model.y[n0]);
               for (const unsigned int n : {n0, n1})
                 {
                   const Point<2> p(model.x_ref[n], model.y_ref[n]);
-                  rhs[n] += f.type == ThermalBoundaryCondition::Type::neumann ?
-                              0.5 * L * f.flux->value(p) :
-                              0.5 * L * f.coefficient->value(p) * f.ambient->value(p);
+                  rhs[n] +=
+                    f.type == ThermalBoundaryCondition::Type::neumann ?
+                      0.5 * L * f.flux->value(p) :
+                      0.5 * L * f.coefficient->value(p) * f.ambient->value(p);
                 }
             }
           set_dirichlet_values(time + time_step);
@@ -456,11 +491,15 @@ namespace tmfdem
           Vector<double> solution = T_old;
           for (const auto &[n, v] : boundary_values)
             solution[n] = v;
-          MatrixTools::apply_boundary_values(boundary_values, matrix, solution, rhs, true);
+          MatrixTools::apply_boundary_values(boundary_values,
+                                             matrix,
+                                             solution,
+                                             rhs,
+                                             true);
           SolverControl control(std::max<unsigned int>(1000, model.n_nodes),
                                 parameters.discrete_heat.solver_tolerance *
                                   std::max(1e-300, rhs.l2_norm()));
-          SolverCG<Vector<double>> cg(control);
+          SolverCG<Vector<double>>               cg(control);
           PreconditionSSOR<SparseMatrix<double>> ssor;
           ssor.initialize(matrix, 1.2);
           try
@@ -469,19 +508,21 @@ namespace tmfdem
             }
           catch (const SolverControl::NoConvergence &e)
             {
-              throw RunError("discrete heat: CG did not converge in " +
-                             std::to_string(e.last_step) +
-                             " iterations at t = " + std::to_string(time + time_step) +
-                             " s (residual " + std::to_string(e.last_residual) +
-                             "); Discrete heat/Linear solver tolerance may be too "
-                             "strict.");
+              throw RunError(
+                "discrete heat: CG did not converge in " +
+                std::to_string(e.last_step) +
+                " iterations at t = " + std::to_string(time + time_step) +
+                " s (residual " + std::to_string(e.last_residual) +
+                "); Discrete heat/Linear solver tolerance may be too "
+                "strict.");
             }
           iterations = control.last_step();
           T          = solution;
           heat_rates(time + time_step, rate, boundary_rate, source_rate);
           for (unsigned int e = 0; e < model.n_elements; ++e)
             {
-              const double c = volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
+              const double c =
+                volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
               for (unsigned int a = 0; a < 3; ++a)
                 for (unsigned int b = 0; b < 3; ++b)
                   stored_change[3 * e + a] +=
@@ -502,7 +543,8 @@ namespace tmfdem
             {
               // which boundary id: the first of its condition
               const auto &ids =
-                parameters.thermal_boundary.conditions[dirichlet_condition[n]].boundary_ids;
+                parameters.thermal_boundary.conditions[dirichlet_condition[n]]
+                  .boundary_ids;
               heat_balance.boundary_heat_in[ids.front()] +=
                 stored_change[n] - time_step * rate[n];
               last_rate[ids.front()] += stored_change[n] / time_step - rate[n];
@@ -543,10 +585,13 @@ namespace tmfdem
         {
           double K[3][3];
           conductivity_matrix(model, e, conductivity[e], K);
-          const double c = volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
+          const double c =
+            volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
           for (unsigned int a = 0; a < 3; ++a)
             for (unsigned int b = 0; b < 3; ++b)
-              matrix.add(3 * e + a, 3 * e + b, K[a][b] + c * (a == b ? 2. : 1.) / time_step);
+              matrix.add(3 * e + a,
+                         3 * e + b,
+                         K[a][b] + c * (a == b ? 2. : 1.) / time_step);
         }
       for (unsigned int j = 0; j < model.n_joints; ++j)
         if (model.joint_status[j] == JointStatus::intact)
@@ -561,11 +606,12 @@ namespace tmfdem
               matrix.add(b, a, -G);
             }
       // contact conductance: +K = h_c L_c w w^T, w = (N_c, -N_t)
-      for_each_contact_transfer([&](const unsigned int c, const unsigned int t,
+      for_each_contact_transfer([&](const unsigned int         c,
+                                    const unsigned int         t,
                                     const ContactHeatTransfer &transfer) {
         const auto         J = transfer.heat_jacobian();
-        const unsigned int nodes[6] = {3 * c, 3 * c + 1, 3 * c + 2,
-                                       3 * t, 3 * t + 1, 3 * t + 2};
+        const unsigned int nodes[6] =
+          {3 * c, 3 * c + 1, 3 * c + 2, 3 * t, 3 * t + 1, 3 * t + 2};
         for (unsigned int a = 0; a < 6; ++a)
           for (unsigned int b = 0; b < 6; ++b)
             matrix.add(nodes[a], nodes[b], -J[a][b]);
@@ -577,14 +623,20 @@ namespace tmfdem
             continue;
           const unsigned int n0 = 3 * b.element + b.edge;
           const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
-          const double L = std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
+          const double       L =
+            std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
           for (const unsigned int n : {n0, n1})
-            matrix.add(n, n, 0.5 * L * f.coefficient->value(Point<2>(model.x_ref[n], model.y_ref[n])));
+            matrix.add(n,
+                       n,
+                       0.5 * L *
+                         f.coefficient->value(
+                           Point<2>(model.x_ref[n], model.y_ref[n])));
         }
     }
 
     void
-    DiscreteHeat::interpolate_from_vertices(const std::vector<double> &vertex_values)
+    DiscreteHeat::interpolate_from_vertices(
+      const std::vector<double> &vertex_values)
     {
       for (unsigned int n = 0; n < model.n_nodes; ++n)
         T[n] = vertex_values[model.node_vertex[n]];

@@ -34,8 +34,12 @@ namespace tmfdem
     {
       if (input_checked)
         return;
-      build_discrete_mesh(
-        parameters, communicator, triangulation, dof_handler, fe, model);
+      build_discrete_mesh(parameters,
+                          communicator,
+                          triangulation,
+                          dof_handler,
+                          fe,
+                          model);
       heat = std::make_unique<DiscreteHeat>(parameters, model);
       heat->initialise(parameters.time.start_time); // T0, contact pairs
       locate_monitors(parameters.monitors, model, probe_samples, line_samples);
@@ -85,7 +89,8 @@ namespace tmfdem
           output_times.push_back(t);
       output_times.push_back(end);
       std::sort(output_times.begin(), output_times.end());
-      output_times.erase(std::unique(output_times.begin(), output_times.end(),
+      output_times.erase(std::unique(output_times.begin(),
+                                     output_times.end(),
                                      [&](double a, double b) {
                                        return std::abs(a - b) < 0.5 * time_step;
                                      }),
@@ -118,10 +123,13 @@ namespace tmfdem
       };
       write_output();
 
-      ProgressReporter progress(parameters.output.progress_interval, time, end, true);
-      unsigned long    steps          = 0;
-      unsigned long    cg_iterations  = 0;
-      unsigned int     next_output    = 0;
+      ProgressReporter progress(parameters.output.progress_interval,
+                                time,
+                                end,
+                                true);
+      unsigned long    steps         = 0;
+      unsigned long    cg_iterations = 0;
+      unsigned int     next_output   = 0;
       while (time < end - 1e-9 * time_step)
         {
           // land exactly on output times
@@ -177,9 +185,9 @@ namespace tmfdem
                0.)
         .add("heat_balance", balance);
       write_file_atomically(folder + "/summary.json", summary.str() + "\n");
-      std::cerr << "[tmfdem] discrete heat: " << steps << " steps to t = " << time
-                << " s, heat imbalance " << std::abs(b.imbalance()) / b.scale()
-                << " (relative)\n";
+      std::cerr << "[tmfdem] discrete heat: " << steps
+                << " steps to t = " << time << " s, heat imbalance "
+                << std::abs(b.imbalance()) / b.scale() << " (relative)\n";
     }
   } // namespace discrete
 } // namespace tmfdem

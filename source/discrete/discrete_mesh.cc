@@ -62,7 +62,7 @@ namespace tmfdem
         for (unsigned int e = 0; e < model.n_elements; ++e)
           {
             const double *xr = &model.x_ref[3 * e], *yr = &model.y_ref[3 * e];
-            const double det = (yr[1] - yr[2]) * (xr[0] - xr[2]) +
+            const double  det = (yr[1] - yr[2]) * (xr[0] - xr[2]) +
                                (xr[2] - xr[1]) * (yr[0] - yr[2]);
             const double l0 = ((yr[1] - yr[2]) * (p[0] - xr[2]) +
                                (xr[2] - xr[1]) * (p[1] - yr[2])) /

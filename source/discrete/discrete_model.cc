@@ -43,17 +43,17 @@ namespace tmfdem
       joint_elements.clear();
 
       std::vector<types::global_dof_index> dofs(3);
-      auto local_edge = [](const auto &cell, const unsigned int v0,
-                           const unsigned int v1) {
-        for (unsigned int k = 0; k < 3; ++k)
-          {
-            const unsigned int a = cell->vertex_index(k);
-            const unsigned int b = cell->vertex_index((k + 1) % 3);
-            if ((a == v0 && b == v1) || (a == v1 && b == v0))
-              return k;
-          }
-        return 3u;
-      };
+      auto                                 local_edge =
+        [](const auto &cell, const unsigned int v0, const unsigned int v1) {
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              const unsigned int a = cell->vertex_index(k);
+              const unsigned int b = cell->vertex_index((k + 1) % 3);
+              if ((a == v0 && b == v1) || (a == v1 && b == v0))
+                return k;
+            }
+          return 3u;
+        };
 
       for (const auto &cell : dof_handler.active_cell_iterators())
         {
@@ -75,25 +75,27 @@ namespace tmfdem
               y_ref[3 * e + k]       = cell->vertex(k)[1];
               node_vertex[3 * e + k] = cell->vertex_index(k);
             }
-          material[e] = cell->material_id();
-          const Matrix2 basis =
-            element_basis(x_ref[3 * e], y_ref[3 * e], x_ref[3 * e + 1],
-                          y_ref[3 * e + 1], x_ref[3 * e + 2], y_ref[3 * e + 2]);
-          const double det = determinant(basis);
+          material[e]         = cell->material_id();
+          const Matrix2 basis = element_basis(x_ref[3 * e],
+                                              y_ref[3 * e],
+                                              x_ref[3 * e + 1],
+                                              y_ref[3 * e + 1],
+                                              x_ref[3 * e + 2],
+                                              y_ref[3 * e + 2]);
+          const double  det   = determinant(basis);
           if (!(det > 0.))
             {
               std::ostringstream where;
               where << "(" << cell->center()[0] << ", " << cell->center()[1]
                     << ")";
-              throw InputError("discrete layer: triangle " +
-                               std::to_string(e) + " at " + where.str() +
-                               " has " +
+              throw InputError("discrete layer: triangle " + std::to_string(e) +
+                               " at " + where.str() + " has " +
                                (det == 0. ? std::string("zero area") :
                                             std::string("clockwise nodes")) +
                                "; every triangle must have positive area "
                                "with counter-clockwise nodes.");
             }
-          const Matrix2 inv = inverse(basis);
+          const Matrix2 inv        = inverse(basis);
           inverse_basis[4 * e + 0] = inv.a00;
           inverse_basis[4 * e + 1] = inv.a01;
           inverse_basis[4 * e + 2] = inv.a10;
@@ -111,7 +113,8 @@ namespace tmfdem
                   continue;
                 }
               const auto neighbour = cell->neighbor(f);
-              if (neighbour->has_children() || neighbour->level() != cell->level())
+              if (neighbour->has_children() ||
+                  neighbour->level() != cell->level())
                 throw InputError(
                   "discrete layer: the mesh has hanging nodes at triangle " +
                   std::to_string(e) +
@@ -131,9 +134,10 @@ namespace tmfdem
                       cell->vertex_index((k + 1) % 3))
                     b1 = 3 * n + m;
                 }
-              const unsigned int kb = local_edge(neighbour,
-                                                 cell->vertex_index(k),
-                                                 cell->vertex_index((k + 1) % 3));
+              const unsigned int kb =
+                local_edge(neighbour,
+                           cell->vertex_index(k),
+                           cell->vertex_index((k + 1) % 3));
               joint_nodes.insert(joint_nodes.end(), {a0, a1, b0, b1});
               joint_elements.insert(joint_elements.end(), {e, n});
               edge_joint[3 * e + k]  = 2 * j;
@@ -147,8 +151,10 @@ namespace tmfdem
       joint_length.assign(n_joints, 0.);
       for (unsigned int j = 0; j < n_joints; ++j)
         {
-          const unsigned int a0 = joint_nodes[4 * j], a1 = joint_nodes[4 * j + 1];
-          joint_length[j] = std::hypot(x_ref[a1] - x_ref[a0], y_ref[a1] - y_ref[a0]);
+          const unsigned int a0 = joint_nodes[4 * j],
+                             a1 = joint_nodes[4 * j + 1];
+          joint_length[j] =
+            std::hypot(x_ref[a1] - x_ref[a0], y_ref[a1] - y_ref[a0]);
         }
       joint_damage.assign(2 * n_joints, 0.);
       joint_status.assign(n_joints, JointStatus::intact);
@@ -204,7 +210,8 @@ namespace tmfdem
             ++n_broken;
             for (unsigned int end = 0; end < 2; ++end)
               {
-                const unsigned int vertex = node_vertex[joint_nodes[4 * j + end]];
+                const unsigned int vertex =
+                  node_vertex[joint_nodes[4 * j + end]];
                 const auto [it, inserted] = joint_at_vertex.emplace(vertex, j);
                 if (!inserted)
                   {

@@ -62,7 +62,8 @@ namespace tmfdem
       }
     } // namespace
 
-    VtuSeries::VtuSeries(const std::string &folder, const std::string &base_name)
+    VtuSeries::VtuSeries(const std::string &folder,
+                         const std::string &base_name)
       : folder(folder)
       , base_name(base_name)
     {}
@@ -71,7 +72,9 @@ namespace tmfdem
     VtuSeries::write(const double time, const std::string &vtu_text)
     {
       char number[16];
-      std::snprintf(number, sizeof(number), "%05u",
+      std::snprintf(number,
+                    sizeof(number),
+                    "%05u",
                     static_cast<unsigned int>(records.size()));
       const std::string file = base_name + "_" + number + ".vtu";
       write_file_atomically(folder + "/" + file, vtu_text);
@@ -95,13 +98,14 @@ namespace tmfdem
     {
       std::vector<double>       points(2 * model.n_nodes);
       std::vector<unsigned int> connectivity(model.n_nodes);
-      std::vector<double>       displacement(3 * model.n_nodes), velocity(3 * model.n_nodes);
+      std::vector<double>       displacement(3 * model.n_nodes),
+        velocity(3 * model.n_nodes);
       for (unsigned int n = 0; n < model.n_nodes; ++n)
         {
-          points[2 * n]         = model.x[n];
-          points[2 * n + 1]     = model.y[n];
-          connectivity[n]       = n;
-          displacement[3 * n]   = model.x[n] - model.x_ref[n];
+          points[2 * n]           = model.x[n];
+          points[2 * n + 1]       = model.y[n];
+          connectivity[n]         = n;
+          displacement[3 * n]     = model.x[n] - model.x_ref[n];
           displacement[3 * n + 1] = model.y[n] - model.y_ref[n];
           displacement[3 * n + 2] = 0.;
           velocity[3 * n]         = model.vx[n];
@@ -148,7 +152,12 @@ namespace tmfdem
       data_array(cell_data, "Float64", "joint_damage", 1, damage);
       data_array(cell_data, "Int32", "material_id", 1, material);
       data_array(cell_data, "Int32", "body", 1, body);
-      return grid(points, connectivity, 3, 5, point_data.str(), cell_data.str());
+      return grid(points,
+                  connectivity,
+                  3,
+                  5,
+                  point_data.str(),
+                  cell_data.str());
     }
 
     std::string

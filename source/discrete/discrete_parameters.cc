@@ -140,9 +140,9 @@ namespace tmfdem
   DiscreteMechanicsParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Discrete mechanics");
-    time_step                       = prm.get_double("Time step");
-    safety_factor                   = prm.get_double("Safety factor");
-    joint_normal_penalty_factor     = prm.get_double("Joint normal penalty factor");
+    time_step                   = prm.get_double("Time step");
+    safety_factor               = prm.get_double("Safety factor");
+    joint_normal_penalty_factor = prm.get_double("Joint normal penalty factor");
     joint_tangential_penalty_factor =
       prm.get_double("Joint tangential penalty factor");
     contact_penalty_factor = prm.get_double("Contact penalty factor");
@@ -163,7 +163,8 @@ namespace tmfdem
     random_seed              = prm.get_integer("Random seed");
     max_steps                = prm.get_integer("Maximum steps");
     prm.leave_subsection();
-    require_positive(joint_normal_penalty_factor, "Joint normal penalty factor");
+    require_positive(joint_normal_penalty_factor,
+                     "Joint normal penalty factor");
     require_positive(joint_tangential_penalty_factor,
                      "Joint tangential penalty factor");
     require_positive(contact_penalty_factor, "Contact penalty factor");
@@ -243,12 +244,13 @@ namespace tmfdem
     for (unsigned int n = 1; n <= max_bodies; ++n)
       {
         prm.enter_subsection("Body " + std::to_string(n));
-        prm.declare_entry("Material ids",
-                          "",
-                          Patterns::List(Patterns::Integer(0, 255), 0, 256, ","),
-                          "Cells of these material ids form the body (empty: "
-                          "unused). Material ids named by no body move "
-                          "freely.");
+        prm.declare_entry(
+          "Material ids",
+          "",
+          Patterns::List(Patterns::Integer(0, 255), 0, 256, ","),
+          "Cells of these material ids form the body (empty: "
+          "unused). Material ids named by no body move "
+          "freely.");
         prm.declare_entry("Motion",
                           "free",
                           Patterns::Selection("free|fixed|velocity"),
@@ -294,11 +296,11 @@ namespace tmfdem
                Utilities::split_string_list(prm.get("Material ids"), ',')))
           body.material_ids.push_back(static_cast<types::material_id>(id));
         const std::string motion = prm.get("Motion");
-        body.motion = motion == "fixed"    ? DiscreteBody::Motion::fixed :
-                      motion == "velocity" ? DiscreteBody::Motion::velocity :
-                                             DiscreteBody::Motion::free;
-        body.velocity_x         = prm.get("Velocity x");
-        body.velocity_y         = prm.get("Velocity y");
+        body.motion     = motion == "fixed"    ? DiscreteBody::Motion::fixed :
+                          motion == "velocity" ? DiscreteBody::Motion::velocity :
+                                                 DiscreteBody::Motion::free;
+        body.velocity_x = prm.get("Velocity x");
+        body.velocity_y = prm.get("Velocity y");
         body.initial_velocity_x = prm.get("Initial velocity x");
         body.initial_velocity_y = prm.get("Initial velocity y");
         prm.leave_subsection();

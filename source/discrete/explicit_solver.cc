@@ -1,18 +1,17 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/dofs/dof_handler.h>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <iomanip>
 #include <random>
 #include <set>
-#include <sys/resource.h>
-#include <cctype>
 #include <sstream>
+#include <sys/resource.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 #include <thread>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/function_expression.h>
@@ -42,7 +41,9 @@ namespace tmfdem
         "heat drive F = F_T F_e; fracture and contact reshape the heat flow "
         "(multi-rate: one thermal step every n mechanical steps)",
         [](const Parameters &parameters, MPI_Comm communicator) {
-          return std::make_unique<ExplicitSolver>(parameters, communicator, true);
+          return std::make_unique<ExplicitSolver>(parameters,
+                                                  communicator,
+                                                  true);
         });
 
       /** Runs @p body(chunk_begin, chunk_end, chunk_index) over fixed chunks
@@ -59,7 +60,9 @@ namespace tmfdem
           tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_chunks),
                             [&](const tbb::blocked_range<std::size_t> &r) {
                               for (std::size_t c = r.begin(); c != r.end(); ++c)
-                                body(c * chunk, std::min(n, (c + 1) * chunk), c);
+                                body(c * chunk,
+                                     std::min(n, (c + 1) * chunk),
+                                     c);
                             });
         });
       }
@@ -111,15 +114,19 @@ namespace tmfdem
 
       const auto &dm = parameters.discrete_mechanics;
       idealisation   = parameters.mechanics.idealisation ==
-                           MechanicsParameters::Idealisation::plane_strain ?
+                         MechanicsParameters::Idealisation::plane_strain ?
                          Idealisation::plane_strain :
                          Idealisation::plane_stress;
       for (const auto &[name, law] : softening_law_registry())
         if (name == dm.softening_law)
           softening_law = law;
 
-      build_discrete_mesh(
-        parameters, communicator, triangulation, dof_handler, fe, model);
+      build_discrete_mesh(parameters,
+                          communicator,
+                          triangulation,
+                          dof_handler,
+                          fe,
+                          model);
 
       setup_materials();
       setup_bodies();
@@ -135,8 +142,9 @@ namespace tmfdem
           Utilities::to_string(stable_time_step) +
           " s of this mesh, penalties and damping; allowed is at most the "
           "stable step (or 0 for Safety factor x stable step).");
-      time_step = requested > 0. ? requested : dm.safety_factor * stable_time_step;
-      time      = parameters.time.start_time;
+      time_step =
+        requested > 0. ? requested : dm.safety_factor * stable_time_step;
+      time = parameters.time.start_time;
       if (with_heat)
         {
           heat = std::make_unique<DiscreteHeat>(parameters, model);
@@ -146,18 +154,20 @@ namespace tmfdem
           if (n > 0)
             steps_per_thermal_step = n;
           else if (heat->implicit())
-            steps_per_thermal_step = std::max(
-              1., std::floor(parameters.time.time_step / time_step + 0.5));
+            steps_per_thermal_step =
+              std::max(1.,
+                       std::floor(parameters.time.time_step / time_step + 0.5));
           else
             steps_per_thermal_step =
-              std::max(1., std::floor(parameters.discrete_heat.safety_factor *
-                                      heat->stable_time_step() / time_step));
+              std::max(1.,
+                       std::floor(parameters.discrete_heat.safety_factor *
+                                  heat->stable_time_step() / time_step));
           const double thermal_step = steps_per_thermal_step * time_step;
           if (!heat->implicit() && thermal_step > heat->stable_time_step())
             throw InputError(
               "Discrete heat/Mechanical steps per thermal step = " +
-              std::to_string(steps_per_thermal_step) + " makes the thermal step " +
-              Utilities::to_string(thermal_step) +
+              std::to_string(steps_per_thermal_step) +
+              " makes the thermal step " + Utilities::to_string(thermal_step) +
               " s, above the stable explicit thermal step " +
               Utilities::to_string(heat->stable_time_step()) +
               " s; allowed is at most " +
@@ -172,11 +182,10 @@ namespace tmfdem
                          "time for the discrete layer.");
       const double n_steps = (parameters.time.end_time - time) / time_step;
       if (n_steps > 1e10)
-        throw InputError("Time stepping/End time: " +
-                         Utilities::to_string(n_steps) +
-                         " explicit steps of " +
-                         Utilities::to_string(time_step) +
-                         " s; allowed are at most 1e10.");
+        throw InputError(
+          "Time stepping/End time: " + Utilities::to_string(n_steps) +
+          " explicit steps of " + Utilities::to_string(time_step) +
+          " s; allowed are at most 1e10.");
 
       // contact
       contact_enabled = dm.contact;
@@ -185,11 +194,13 @@ namespace tmfdem
         min_h = std::min(min_h, model.joint_length[j]);
       for (unsigned int e = 0; e < model.n_elements; ++e)
         min_h = std::min(min_h, std::sqrt(2. * model.reference_area[e]));
-      contact_buffer = dm.contact_buffer > 0. ? dm.contact_buffer : 0.25 * min_h;
+      contact_buffer =
+        dm.contact_buffer > 0. ? dm.contact_buffer : 0.25 * min_h;
       friction_coefficient = dm.friction_coefficient;
 
-      n_threads = dm.threads > 0 ? dm.threads :
-                                   std::max(1u, std::thread::hardware_concurrency());
+      n_threads = dm.threads > 0 ?
+                    dm.threads :
+                    std::max(1u, std::thread::hardware_concurrency());
 
       locate_monitors(parameters.monitors, model, probe_samples, line_samples);
       input_checked = true;
@@ -214,8 +225,8 @@ namespace tmfdem
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
           const MaterialProperties &m = parameters.materials[model.material[e]];
-          const double h = std::sqrt(2. * model.reference_area[e]);
-          viscosity[e]   = parameters.discrete_mechanics.damping_ratio * 2. * h *
+          const double              h = std::sqrt(2. * model.reference_area[e]);
+          viscosity[e] = parameters.discrete_mechanics.damping_ratio * 2. * h *
                          std::sqrt(m.youngs_modulus * m.density);
           const double node_mass = m.density * model.reference_area[e] / 3.;
           for (unsigned int k = 0; k < 3; ++k)
@@ -226,19 +237,22 @@ namespace tmfdem
     void
     ExplicitSolver::setup_joints()
     {
-      const auto &dm = parameters.discrete_mechanics;
+      const auto     &dm = parameters.discrete_mechanics;
       std::mt19937_64 generator(dm.random_seed);
       for (unsigned int j = 0; j < model.n_joints; ++j)
         {
-          const unsigned int ea = model.joint_elements[2 * j];
-          const unsigned int eb = model.joint_elements[2 * j + 1];
-          const MaterialProperties &ma = parameters.materials[model.material[ea]];
-          const MaterialProperties &mb = parameters.materials[model.material[eb]];
+          const unsigned int        ea = model.joint_elements[2 * j];
+          const unsigned int        eb = model.joint_elements[2 * j + 1];
+          const MaterialProperties &ma =
+            parameters.materials[model.material[ea]];
+          const MaterialProperties &mb =
+            parameters.materials[model.material[eb]];
           // interfaces between materials take the weaker of both
-          double ft  = std::min(ma.tensile_strength, mb.tensile_strength);
-          double coh = std::min(ma.cohesion, mb.cohesion);
+          double       ft  = std::min(ma.tensile_strength, mb.tensile_strength);
+          double       coh = std::min(ma.cohesion, mb.cohesion);
           const double phi = std::min(ma.friction_angle, mb.friction_angle);
-          const double GI  = std::min(ma.fracture_energy_I, mb.fracture_energy_I);
+          const double GI =
+            std::min(ma.fracture_energy_I, mb.fracture_energy_I);
           const double GII =
             std::min(ma.fracture_energy_II, mb.fracture_energy_II);
           const double E = std::max(ma.youngs_modulus, mb.youngs_modulus);
@@ -248,45 +262,47 @@ namespace tmfdem
               if (dm.heterogeneity == "Weibull")
                 {
                   // Weibull with mean 1: scale = 1 / Gamma(1 + 1/m)
-                  const double m = dm.weibull_modulus;
+                  const double                      m = dm.weibull_modulus;
                   std::weibull_distribution<double> weibull(
-                    m, 1. / std::tgamma(1. + 1. / m));
+                    m,
+                    1. / std::tgamma(1. + 1. / m));
                   factor = weibull(generator);
                 }
               else
                 {
                   std::normal_distribution<double> normal(
-                    1., dm.coefficient_of_variation);
+                    1.,
+                    dm.coefficient_of_variation);
                   factor = std::max(0.01, normal(generator));
                 }
               ft *= factor;
               coh *= factor;
             }
-          const bool ok = make_joint_constants(ft,
-                                               coh,
-                                               phi,
-                                               GI,
-                                               GII,
-                                               dm.joint_normal_penalty_factor * E,
-                                               dm.joint_tangential_penalty_factor * E,
-                                               model.joint_length[j],
-                                               softening_law,
-                                               model.joint_constants[j]);
+          const bool ok =
+            make_joint_constants(ft,
+                                 coh,
+                                 phi,
+                                 GI,
+                                 GII,
+                                 dm.joint_normal_penalty_factor * E,
+                                 dm.joint_tangential_penalty_factor * E,
+                                 model.joint_length[j],
+                                 softening_law,
+                                 model.joint_constants[j]);
           if (!ok)
             {
-              const double h         = model.joint_length[j];
-              const double stored_I  = 4. / 3. * ft * ft * h /
-                                      (dm.joint_normal_penalty_factor * E);
+              const double h = model.joint_length[j];
+              const double stored_I =
+                4. / 3. * ft * ft * h / (dm.joint_normal_penalty_factor * E);
               const double stored_II = 4. / 3. * coh * coh * h /
                                        (dm.joint_tangential_penalty_factor * E);
-              const bool   mode_I    = GI <= stored_I;
+              const bool mode_I = GI <= stored_I;
               throw InputError(
                 "joint " + std::to_string(j) + " between materials " +
                 std::to_string(model.material[ea]) + " and " +
                 std::to_string(model.material[eb]) + " (length " +
-                Utilities::to_string(h) + " m): Mode " +
-                (mode_I ? "I" : "II") + " fracture energy " +
-                Utilities::to_string(mode_I ? GI : GII) +
+                Utilities::to_string(h) + " m): Mode " + (mode_I ? "I" : "II") +
+                " fracture energy " + Utilities::to_string(mode_I ? GI : GII) +
                 " J/m^2 is below the work stored before the peak, 4 f^2 h / "
                 "(3 p) = " +
                 Utilities::to_string(mode_I ? stored_I : stored_II) +
@@ -298,8 +314,9 @@ namespace tmfdem
         0.; // set per pair from the stiffer material in compute_contact
       double E_max = 0.;
       for (unsigned int e = 0; e < model.n_elements; ++e)
-        E_max = std::max(E_max,
-                         parameters.materials[model.material[e]].youngs_modulus);
+        E_max =
+          std::max(E_max,
+                   parameters.materials[model.material[e]].youngs_modulus);
       contact_penalty            = dm.contact_penalty_factor * E_max;
       contact_tangential_penalty = dm.contact_tangential_penalty_factor * E_max;
     }
@@ -342,14 +359,15 @@ namespace tmfdem
       // initial velocities
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
-          auto vx0 = make_expression_function(bodies[b].initial_velocity_x,
-                                              bodies[b].name +
-                                                "/Initial velocity x");
-          auto vy0 = make_expression_function(bodies[b].initial_velocity_y,
-                                              bodies[b].name +
-                                                "/Initial velocity y");
+          auto vx0 =
+            make_expression_function(bodies[b].initial_velocity_x,
+                                     bodies[b].name + "/Initial velocity x");
+          auto vy0 =
+            make_expression_function(bodies[b].initial_velocity_y,
+                                     bodies[b].name + "/Initial velocity y");
           for (unsigned int n = 0; n < model.n_nodes; ++n)
-            if (node_body[n] == b && bodies[b].motion == DiscreteBody::Motion::free)
+            if (node_body[n] == b &&
+                bodies[b].motion == DiscreteBody::Motion::free)
               {
                 const Point<2> p(model.x_ref[n], model.y_ref[n]);
                 model.vx[n] = vx0->value(p);
@@ -371,7 +389,7 @@ namespace tmfdem
       for (const auto &c : parameters.mechanical_boundary.conditions)
         {
           ConditionFunctions f;
-          f.type = c.type;
+          f.type              = c.type;
           const char *axis[2] = {" x", " y"};
           for (unsigned int d = 0; d < 2; ++d)
             {
@@ -380,9 +398,10 @@ namespace tmfdem
                 c.type == Type::traction     ? c.traction[d] :
                                                c.velocity[d];
               const std::string entry =
-                c.name + (c.type == Type::displacement ? "/Displacement" :
-                          c.type == Type::traction     ? "/Traction" :
-                                                         "/Velocity") +
+                c.name +
+                (c.type == Type::displacement ? "/Displacement" :
+                 c.type == Type::traction     ? "/Traction" :
+                                                "/Velocity") +
                 axis[d];
               f.value[d] = make_expression_function(expression, entry);
               // a function that names t is evaluated every step
@@ -408,10 +427,11 @@ namespace tmfdem
             if (id == numbers::internal_face_boundary_id ||
                 id >= condition_of_id.size() || condition_of_id[id] < 0)
               continue;
-            const unsigned int c = condition_of_id[id];
+            const unsigned int c       = condition_of_id[id];
             const unsigned int ends[2] = {3 * e + k, 3 * e + (k + 1) % 3};
-            const double length = std::hypot(model.x_ref[ends[1]] - model.x_ref[ends[0]],
-                                             model.y_ref[ends[1]] - model.y_ref[ends[0]]);
+            const double       length =
+              std::hypot(model.x_ref[ends[1]] - model.x_ref[ends[0]],
+                         model.y_ref[ends[1]] - model.y_ref[ends[0]]);
             for (const unsigned int node : ends)
               {
                 if (node_body[node] != 255 &&
@@ -420,13 +440,13 @@ namespace tmfdem
                 if (node_condition_slot[node] < 0)
                   {
                     NodeCondition nc;
-                    nc.node            = node;
-                    nc.condition       = c;
-                    nc.prescribed[0]   = false;
-                    nc.prescribed[1]   = false;
+                    nc.node          = node;
+                    nc.condition     = c;
+                    nc.prescribed[0] = false;
+                    nc.prescribed[1] = false;
                     nc.velocity[0] = nc.velocity[1] = 0.;
                     nc.force[0] = nc.force[1] = 0.;
-                    nc.traction_length = 0.;
+                    nc.traction_length        = 0.;
                     node_condition_slot[node] = node_conditions.size();
                     node_conditions.push_back(nc);
                   }
@@ -437,7 +457,7 @@ namespace tmfdem
                 else
                   {
                     // a kinematic condition wins over a traction at corners
-                    nc.condition = c;
+                    nc.condition     = c;
                     nc.prescribed[0] = type != Type::roller_y;
                     nc.prescribed[1] = type != Type::roller_x;
                   }
@@ -445,15 +465,16 @@ namespace tmfdem
           }
       boundary_conditions_change = false;
       for (const ConditionFunctions &f : conditions)
-        boundary_conditions_change |=
-          f.type == Type::displacement || f.time_dependent[0] || f.time_dependent[1];
+        boundary_conditions_change |= f.type == Type::displacement ||
+                                      f.time_dependent[0] ||
+                                      f.time_dependent[1];
       evaluate_boundary_conditions();
     }
 
     void
     ExplicitSolver::evaluate_boundary_conditions()
     {
-      using Type = MechanicalBoundaryCondition::Type;
+      using Type         = MechanicalBoundaryCondition::Type;
       const double t_mid = time + 0.5 * time_step, t_next = time + time_step;
       for (ConditionFunctions &f : conditions)
         for (unsigned int d = 0; d < 2; ++d)
@@ -478,7 +499,8 @@ namespace tmfdem
                         (d == 0 ? model.x_ref[n] : model.y_ref[n]) +
                         f.value[d]->value(p);
                       const double now = d == 0 ? model.x[n] : model.y[n];
-                      nc.velocity[d] = time_step > 0. ? (target - now) / time_step : 0.;
+                      nc.velocity[d] =
+                        time_step > 0. ? (target - now) / time_step : 0.;
                     }
                   else
                     nc.velocity[d] = 0.;
@@ -504,7 +526,7 @@ namespace tmfdem
     void
     ExplicitSolver::update_thermal_stretch()
     {
-      const Vector<double> &T = heat->temperature();
+      const Vector<double> &T      = heat->temperature();
       double                before = 0., after = 0.;
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
@@ -518,16 +540,20 @@ namespace tmfdem
           const double s_old = model.thermal_stretch[e];
           if (s_new == s_old)
             continue;
-          const unsigned int n0 = 3 * e;
-          const double      *ib = &model.inverse_basis[4 * e];
-          const Matrix2      F =
-            multiply(element_basis(model.x[n0], model.y[n0], model.x[n0 + 1],
-                                   model.y[n0 + 1], model.x[n0 + 2], model.y[n0 + 2]),
-                     Matrix2{ib[0], ib[1], ib[2], ib[3]});
-          const auto energy = [&](const double s) {
+          const unsigned int n0     = 3 * e;
+          const double      *ib     = &model.inverse_basis[4 * e];
+          const Matrix2      F      = multiply(element_basis(model.x[n0],
+                                                   model.y[n0],
+                                                   model.x[n0 + 1],
+                                                   model.y[n0 + 1],
+                                                   model.x[n0 + 2],
+                                                   model.y[n0 + 2]),
+                                     Matrix2{ib[0], ib[1], ib[2], ib[3]});
+          const auto         energy = [&](const double s) {
             return model.reference_area[e] * s * s *
-                   strain_energy_density({F.a00 / s, F.a01 / s, F.a10 / s, F.a11 / s},
-                                         solid[model.material[e]].lame);
+                   strain_energy_density(
+                     {F.a00 / s, F.a01 / s, F.a10 / s, F.a11 / s},
+                     solid[model.material[e]].lame);
           };
           before += energy(s_old);
           after += energy(s_new);
@@ -544,7 +570,8 @@ namespace tmfdem
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
           const SolidMaterial &m = solid[model.material[e]];
-          const double c = std::sqrt((m.lame.lambda + 2. * m.lame.mu) / m.density);
+          const double         c =
+            std::sqrt((m.lame.lambda + 2. * m.lame.mu) / m.density);
           double longest = 0.;
           for (unsigned int k = 0; k < 3; ++k)
             {
@@ -554,29 +581,33 @@ namespace tmfdem
                                             model.y_ref[b] - model.y_ref[a]));
             }
           const double altitude = 2. * model.reference_area[e] / longest;
-          const double E        = parameters.materials[model.material[e]].youngs_modulus;
+          const double E =
+            parameters.materials[model.material[e]].youngs_modulus;
           // damping ratio of the highest mode of a bar of length h
           const double zeta =
             viscosity[e] / (altitude * std::sqrt(E * m.density));
-          dt = std::min(dt,
-                        altitude / c * (std::sqrt(1. + zeta * zeta) - zeta));
+          dt =
+            std::min(dt, altitude / c * (std::sqrt(1. + zeta * zeta) - zeta));
         }
       for (unsigned int j = 0; j < model.n_joints; ++j)
         {
-          const double k = 0.5 * std::max(model.joint_constants[j].normal_stiffness,
-                                           model.joint_constants[j].tangential_stiffness) *
-                           model.joint_length[j];
-          const double m_a = model.mass[model.joint_nodes[4 * j]];
-          const double m_b = model.mass[model.joint_nodes[4 * j + 2]];
+          const double k =
+            0.5 *
+            std::max(model.joint_constants[j].normal_stiffness,
+                     model.joint_constants[j].tangential_stiffness) *
+            model.joint_length[j];
+          const double m_a   = model.mass[model.joint_nodes[4 * j]];
+          const double m_b   = model.mass[model.joint_nodes[4 * j + 2]];
           const double omega = std::sqrt(k * (1. / m_a + 1. / m_b));
-          dt = std::min(dt, 2. / omega);
+          dt                 = std::min(dt, 2. / omega);
         }
       if (dm.contact)
         {
           double E_max = 0.;
           for (unsigned int e = 0; e < model.n_elements; ++e)
-            E_max = std::max(E_max,
-                             parameters.materials[model.material[e]].youngs_modulus);
+            E_max =
+              std::max(E_max,
+                       parameters.materials[model.material[e]].youngs_modulus);
           const double p = dm.contact_penalty_factor * E_max;
           for (unsigned int e = 0; e < model.n_elements; ++e)
             {
@@ -585,7 +616,7 @@ namespace tmfdem
               // both pair directions counted: k ~ 3 p
               const double k = 3. * p;
               const double m = model.mass[3 * e];
-              dt = std::min(dt, 2. / std::sqrt(2. * k / m));
+              dt             = std::min(dt, 2. / std::sqrt(2. * k / m));
             }
         }
       stable_time_step = dt;
@@ -624,8 +655,12 @@ namespace tmfdem
           return true;
         return model.joined(a, b);
       };
-      linked_cells.rebuild(
-        model.x, model.y, active_elements, contact_buffer, excluded, pairs);
+      linked_cells.rebuild(model.x,
+                           model.y,
+                           active_elements,
+                           contact_buffer,
+                           excluded,
+                           pairs);
       pair_force.assign(12 * pairs.size(), 0.);
       pair_friction.assign(pairs.size(), 0.);
       element_pair_start.assign(model.n_elements + 1, 0);
@@ -654,9 +689,9 @@ namespace tmfdem
     {
       if (pairs.empty())
         return;
-      const double  p_n = contact_penalty, p_t = contact_tangential_penalty;
-      const double  mu  = friction_coefficient;
-      const double  dt  = time_step;
+      const double   p_n = contact_penalty, p_t = contact_tangential_penalty;
+      const double   mu = friction_coefficient;
+      const double   dt = time_step;
       DiscreteModel &m  = model;
       for_each_chunk(
         arena_for(n_threads),
@@ -672,29 +707,38 @@ namespace tmfdem
               double dissipated = 0.;
               for (unsigned int direction = 0; direction < 2; ++direction)
                 {
-                  const unsigned int c = direction == 0 ? pair.first : pair.second;
-                  const unsigned int t = direction == 0 ? pair.second : pair.first;
-                  double *fc = force + 6 * direction;
-                  double *ft = force + 6 * (1 - direction);
+                  const unsigned int c =
+                    direction == 0 ? pair.first : pair.second;
+                  const unsigned int t =
+                    direction == 0 ? pair.second : pair.first;
+                  double       *fc = force + 6 * direction;
+                  double       *ft = force + 6 * (1 - direction);
                   const double *tx = &m.x[3 * t], *ty = &m.y[3 * t];
                   for (unsigned int edge = 0; edge < 3; ++edge)
                     {
                       double            &slip = pair.slip[3 * direction + edge];
-                      const unsigned int a = 3 * c + edge, b = 3 * c + (edge + 1) % 3;
+                      const unsigned int a    = 3 * c + edge,
+                                         b    = 3 * c + (edge + 1) % 3;
                       EdgePotentialIntegrals I;
-                      if (!edge_potential_integrals(
-                            m.x[a], m.y[a], m.x[b], m.y[b], tx, ty, I))
+                      if (!edge_potential_integrals(m.x[a],
+                                                    m.y[a],
+                                                    m.x[b],
+                                                    m.y[b],
+                                                    tx,
+                                                    ty,
+                                                    I))
                         {
                           slip = 0.;
                           continue;
                         }
                       const double ex = m.x[b] - m.x[a], ey = m.y[b] - m.y[a];
-                      const double L  = std::sqrt(ex * ex + ey * ey);
+                      const double L    = std::sqrt(ex * ex + ey * ey);
                       const double tx_u = ex / L, ty_u = ey / L;
                       const double nx = ty_u, ny = -tx_u; // outward of c
                       const double scale = p_n * L;
                       // normal: on c -p L int phi_t N n, reaction on t
-                      const double fa = scale * I.phi_start, fb = scale * I.phi_end;
+                      const double fa       = scale * I.phi_start,
+                                   fb       = scale * I.phi_end;
                       const unsigned int ka = edge, kb = (edge + 1) % 3;
                       fc[2 * ka] -= fa * nx;
                       fc[2 * ka + 1] -= fa * ny;
@@ -717,8 +761,8 @@ namespace tmfdem
                       const double lt[3] = {I.phi_target[0] / total,
                                             I.phi_target[1] / total,
                                             I.phi_target[2] / total};
-                      const double vcx = (1. - u) * m.vx[a] + u * m.vx[b];
-                      const double vcy = (1. - u) * m.vy[a] + u * m.vy[b];
+                      const double vcx   = (1. - u) * m.vx[a] + u * m.vx[b];
+                      const double vcy   = (1. - u) * m.vy[a] + u * m.vy[b];
                       double       vtx = 0., vty = 0.;
                       for (unsigned int k = 0; k < 3; ++k)
                         {
@@ -727,8 +771,8 @@ namespace tmfdem
                         }
                       const double rate =
                         (vcx - vtx) * tx_u + (vcy - vty) * ty_u;
-                      const double trial = slip + rate * dt;
-                      const double stiffness = p_t * I.clipped_length_fraction;
+                      const double trial      = slip + rate * dt;
+                      const double stiffness  = p_t * I.clipped_length_fraction;
                       double       tangential = -stiffness * trial;
                       const double limit      = mu * normal_force;
                       double       new_slip   = trial;
@@ -736,7 +780,8 @@ namespace tmfdem
                         {
                           tangential = trial > 0. ? -limit : limit;
                           new_slip   = -tangential / stiffness;
-                          dissipated += limit * (std::abs(trial) - std::abs(new_slip));
+                          dissipated +=
+                            limit * (std::abs(trial) - std::abs(new_slip));
                         }
                       slip = new_slip;
                       fc[2 * ka] += (1. - u) * tangential * tx_u;
@@ -765,15 +810,17 @@ namespace tmfdem
     void
     ExplicitSolver::compute_joint_forces_with()
     {
-      DiscreteModel     &m = model;
-      const double       t = time;
+      DiscreteModel     &m              = model;
+      const double       t              = time;
       std::vector<char> &broke_in_chunk = joint_chunk_broke;
       broke_in_chunk.assign((m.n_joints + chunk_size - 1) / chunk_size, 0);
       for_each_chunk(
         arena_for(n_threads),
         m.n_joints,
         chunk_size,
-        [&](const std::size_t begin, const std::size_t end, const std::size_t c) {
+        [&](const std::size_t begin,
+            const std::size_t end,
+            const std::size_t c) {
           // Gauss points on the edge, parameter u in [0, 1]
           constexpr double g0 = 0.21132486540518713, g1 = 0.78867513459481287;
           for (std::size_t j = begin; j < end; ++j)
@@ -781,26 +828,28 @@ namespace tmfdem
               double *f = &m.joint_force[8 * j];
               if (m.joint_status[j] != JointStatus::intact)
                 continue;
-              const unsigned int *n  = &m.joint_nodes[4 * j];
+              const unsigned int *n   = &m.joint_nodes[4 * j];
               const double        d0x = m.x[n[2]] - m.x[n[0]];
               const double        d0y = m.y[n[2]] - m.y[n[0]];
               const double        d1x = m.x[n[3]] - m.x[n[1]];
               const double        d1y = m.y[n[3]] - m.y[n[1]];
-              const double ex = 0.5 * (m.x[n[1]] + m.x[n[3]] - m.x[n[0]] - m.x[n[2]]);
-              const double ey = 0.5 * (m.y[n[1]] + m.y[n[3]] - m.y[n[0]] - m.y[n[2]]);
-              const double L  = std::sqrt(ex * ex + ey * ey);
-              const double tx = ex / L, ty = ey / L;
-              const double nx = ty, ny = -tx; // outward of element A
-              const JointConstants &k = m.joint_constants[j];
-              double fa0x = 0, fa0y = 0, fa1x = 0, fa1y = 0;
-              double last_do = 0., last_ds = 0.;
+              const double        ex =
+                0.5 * (m.x[n[1]] + m.x[n[3]] - m.x[n[0]] - m.x[n[2]]);
+              const double ey =
+                0.5 * (m.y[n[1]] + m.y[n[3]] - m.y[n[0]] - m.y[n[2]]);
+              const double          L  = std::sqrt(ex * ex + ey * ey);
+              const double          tx = ex / L, ty = ey / L;
+              const double          nx = ty, ny = -tx; // outward of element A
+              const JointConstants &k    = m.joint_constants[j];
+              double                fa0x = 0, fa0y = 0, fa1x = 0, fa1y = 0;
+              double                last_do = 0., last_ds = 0.;
               for (unsigned int q = 0; q < 2; ++q)
                 {
-                  const double u  = q == 0 ? g0 : g1;
-                  const double dx = (1. - u) * d0x + u * d1x;
-                  const double dy = (1. - u) * d0y + u * d1y;
-                  const double o  = dx * nx + dy * ny;
-                  const double s  = dx * tx + dy * ty;
+                  const double        u  = q == 0 ? g0 : g1;
+                  const double        dx = (1. - u) * d0x + u * d1x;
+                  const double        dy = (1. - u) * d0y + u * d1y;
+                  const double        o  = dx * nx + dy * ny;
+                  const double        s  = dx * tx + dy * ty;
                   const JointTraction tr =
                     cohesive_traction<law>(o, s, k, m.joint_damage[2 * j + q]);
                   last_do = std::max(last_do, tr.d_opening);
@@ -814,14 +863,15 @@ namespace tmfdem
                   fa1x += u * px;
                   fa1y += u * py;
                 }
-              if (m.joint_damage[2 * j] >= 1. && m.joint_damage[2 * j + 1] >= 1.)
+              if (m.joint_damage[2 * j] >= 1. &&
+                  m.joint_damage[2 * j + 1] >= 1.)
                 {
                   const double ratio =
                     last_do * last_do /
                     std::max(1e-300, last_do * last_do + last_ds * last_ds);
-                  m.joint_status[j] = ratio > 0.9 ? JointStatus::mode_I :
-                                      ratio < 0.1 ? JointStatus::mode_II :
-                                                    JointStatus::mixed;
+                  m.joint_status[j]     = ratio > 0.9 ? JointStatus::mode_I :
+                                          ratio < 0.1 ? JointStatus::mode_II :
+                                                        JointStatus::mixed;
                   m.joint_break_time[j] = t;
                   for (unsigned int i = 0; i < 8; ++i)
                     f[i] = 0.;
@@ -859,48 +909,56 @@ namespace tmfdem
     void
     ExplicitSolver::update_nodes()
     {
-      DiscreteModel     &m  = model;
-      const double       dt = time_step;
+      DiscreteModel     &m        = model;
+      const double       dt       = time_step;
       const unsigned int n_bodies = body_motion.size();
-      const unsigned int stride   = n_sums + 2 * max_bodies + 2 * max_conditions;
-      const std::size_t  n_chunks = (m.n_elements + chunk_size - 1) / chunk_size;
+      const unsigned int stride  = n_sums + 2 * max_bodies + 2 * max_conditions;
+      const std::size_t n_chunks = (m.n_elements + chunk_size - 1) / chunk_size;
       chunk_sums.assign(n_chunks * stride, 0.);
       const bool have_contact = !pairs.empty();
       // mass-proportional damping f_d = -c m v_avg, integrated exactly:
       // v_new = (a v_old + dt f / m) with a = (1 - c dt/2) / (1 + c dt/2)
-      const double c_damp  = parameters.discrete_mechanics.mass_damping;
-      const double damp_a  = (1. - 0.5 * c_damp * dt) / (1. + 0.5 * c_damp * dt);
-      const double damp_b  = dt / (1. + 0.5 * c_damp * dt);
+      const double c_damp = parameters.discrete_mechanics.mass_damping;
+      const double damp_a = (1. - 0.5 * c_damp * dt) / (1. + 0.5 * c_damp * dt);
+      const double damp_b = dt / (1. + 0.5 * c_damp * dt);
       for_each_chunk(
         arena_for(n_threads),
         m.n_elements,
         chunk_size,
-        [&](const std::size_t begin, const std::size_t end, const std::size_t c) {
-          double *sums = &chunk_sums[c * stride];
+        [&](const std::size_t begin,
+            const std::size_t end,
+            const std::size_t c) {
+          double *sums      = &chunk_sums[c * stride];
           double  w_elastic = 0., w_viscous = 0., w_joint = 0., w_contact = 0.,
                  w_external = 0., max_speed = 0.;
           for (std::size_t e = begin; e < end; ++e)
             {
               const unsigned int n0 = 3 * e;
-              const double *X = &m.x[n0], *Y = &m.y[n0];
-              const double *VX = &m.vx[n0], *VY = &m.vy[n0];
-              const double *ib = &m.inverse_basis[4 * e];
-              const Matrix2 Fi_inv{ib[0], ib[1], ib[2], ib[3]};
-              const Matrix2 F =
-                multiply(element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2]), Fi_inv);
-              const double s     = m.thermal_stretch[e];
-              const double inv_s = 1. / s;
-              const Matrix2 Fe{F.a00 * inv_s, F.a01 * inv_s, F.a10 * inv_s, F.a11 * inv_s};
-              const Stress2 sigma = elastic_stress(Fe, solid[m.material[e]].lame);
+              const double      *X = &m.x[n0], *Y = &m.y[n0];
+              const double      *VX = &m.vx[n0], *VY = &m.vy[n0];
+              const double      *ib = &m.inverse_basis[4 * e];
+              const Matrix2      Fi_inv{ib[0], ib[1], ib[2], ib[3]};
+              const Matrix2      F =
+                multiply(element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2]),
+                         Fi_inv);
+              const double  s     = m.thermal_stretch[e];
+              const double  inv_s = 1. / s;
+              const Matrix2 Fe{F.a00 * inv_s,
+                               F.a01 * inv_s,
+                               F.a10 * inv_s,
+                               F.a11 * inv_s};
+              const Stress2 sigma =
+                elastic_stress(Fe, solid[m.material[e]].lame);
               // viscous stress 2 eta sym(dF/dt F^-1)
               const Matrix2 Fdot = multiply(
-                element_basis(VX[0], VY[0], VX[1], VY[1], VX[2], VY[2]), Fi_inv);
+                element_basis(VX[0], VY[0], VX[1], VY[1], VX[2], VY[2]),
+                Fi_inv);
               const Matrix2 L   = multiply(Fdot, inverse(F));
               const double  eta = viscosity[e];
               const Stress2 sigma_v{2. * eta * L.a00,
                                     2. * eta * L.a11,
                                     eta * (L.a01 + L.a10)};
-              double f_el[6], f_v[6];
+              double        f_el[6], f_v[6];
               nodal_forces(sigma, X[0], Y[0], X[1], Y[1], X[2], Y[2], f_el);
               nodal_forces(sigma_v, X[0], Y[0], X[1], Y[1], X[2], Y[2], f_v);
               m.stress[3 * e]     = sigma.xx + sigma_v.xx;
@@ -914,7 +972,8 @@ namespace tmfdem
                      ++p)
                   {
                     const unsigned int entry = element_pair_entries[p];
-                    const double *pf = &pair_force[12 * (entry / 2) + 6 * (entry % 2)];
+                    const double      *pf =
+                      &pair_force[12 * (entry / 2) + 6 * (entry % 2)];
                     for (unsigned int i = 0; i < 6; ++i)
                       f_contact[i] += pf[i];
                   }
@@ -922,7 +981,7 @@ namespace tmfdem
                 {
                   const unsigned int node = n0 + k;
                   // joints: node k starts edge k and ends edge k+2
-                  double     fjx = 0., fjy = 0.;
+                  double    fjx = 0., fjy = 0.;
                   const int start_code = m.edge_joint[n0 + k];
                   if (start_code >= 0)
                     {
@@ -941,21 +1000,22 @@ namespace tmfdem
                     }
                   const double mass = m.mass[node];
                   const double fgx = mass * gravity[0], fgy = mass * gravity[1];
-                  const double fx = f_el[2 * k] + f_v[2 * k] + fjx + f_contact[2 * k] + fgx;
+                  const double fx =
+                    f_el[2 * k] + f_v[2 * k] + fjx + f_contact[2 * k] + fgx;
                   const double fy = f_el[2 * k + 1] + f_v[2 * k + 1] + fjy +
                                     f_contact[2 * k + 1] + fgy;
-                  const double vx_old = m.vx[node], vy_old = m.vy[node];
-                  double       vx_new, vy_new;
-                  const unsigned char b = node_body[node];
-                  const int slot = node_condition_slot[node];
+                  const double        vx_old = m.vx[node], vy_old = m.vy[node];
+                  double              vx_new, vy_new;
+                  const unsigned char b    = node_body[node];
+                  const int           slot = node_condition_slot[node];
                   if (slot >= 0)
                     {
                       // boundary conditions of boundary ids
                       const NodeCondition &nc = node_conditions[slot];
-                      const double tx = nc.force[0], ty = nc.force[1];
-                      double       gx = fx + tx, gy = fy + ty;
-                      vx_new = damp_a * vx_old + damp_b * gx / mass;
-                      vy_new = damp_a * vy_old + damp_b * gy / mass;
+                      const double         tx = nc.force[0], ty = nc.force[1];
+                      double               gx = fx + tx, gy = fy + ty;
+                      vx_new    = damp_a * vx_old + damp_b * gx / mass;
+                      vy_new    = damp_a * vy_old + damp_b * gy / mass;
                       double rx = 0., ry = 0.;
                       if (nc.prescribed[0])
                         {
@@ -970,11 +1030,13 @@ namespace tmfdem
                       w_external += 0.5 * dt *
                                     ((tx + rx) * (vx_old + vx_new) +
                                      (ty + ry) * (vy_old + vy_new));
-                      double *r = sums + n_sums + 2 * max_bodies + 2 * nc.condition;
+                      double *r =
+                        sums + n_sums + 2 * max_bodies + 2 * nc.condition;
                       r[0] += rx;
                       r[1] += ry;
                     }
-                  else if (b == 255 || body_motion[b] == DiscreteBody::Motion::free)
+                  else if (b == 255 ||
+                           body_motion[b] == DiscreteBody::Motion::free)
                     {
                       vx_new = damp_a * vx_old + damp_b * fx / mass;
                       vy_new = damp_a * vy_old + damp_b * fy / mass;
@@ -991,7 +1053,9 @@ namespace tmfdem
                       // reaction of the support or driver
                       const double rx = mass * (vx_new - vx_old) / dt - fx;
                       const double ry = mass * (vy_new - vy_old) / dt - fy;
-                      w_external += 0.5 * dt * (rx * (vx_old + vx_new) + ry * (vy_old + vy_new));
+                      w_external +=
+                        0.5 * dt *
+                        (rx * (vx_old + vx_new) + ry * (vy_old + vy_new));
                       sums[n_sums + 2 * b] += rx;
                       sums[n_sums + 2 * b + 1] += ry;
                     }
@@ -999,23 +1063,27 @@ namespace tmfdem
                   const double ay = 0.5 * dt * (vy_old + vy_new);
                   w_elastic += f_el[2 * k] * ax + f_el[2 * k + 1] * ay;
                   w_viscous += f_v[2 * k] * ax + f_v[2 * k + 1] * ay;
-                  if (c_damp > 0. &&
-                      (b == 255 || body_motion[b] == DiscreteBody::Motion::free))
+                  if (c_damp > 0. && (b == 255 || body_motion[b] ==
+                                                    DiscreteBody::Motion::free))
                     {
                       // work of -c m v_avg on the components not prescribed
-                      const bool px = slot >= 0 && node_conditions[slot].prescribed[0];
-                      const bool py = slot >= 0 && node_conditions[slot].prescribed[1];
+                      const bool px =
+                        slot >= 0 && node_conditions[slot].prescribed[0];
+                      const bool py =
+                        slot >= 0 && node_conditions[slot].prescribed[1];
                       w_viscous -= c_damp * mass / dt *
                                    ((px ? 0. : ax * ax) + (py ? 0. : ay * ay));
                     }
                   w_joint += fjx * ax + fjy * ay;
-                  w_contact += f_contact[2 * k] * ax + f_contact[2 * k + 1] * ay;
+                  w_contact +=
+                    f_contact[2 * k] * ax + f_contact[2 * k + 1] * ay;
                   w_external += fgx * ax + fgy * ay;
                   m.vx[node] = vx_new;
                   m.vy[node] = vy_new;
                   m.x[node] += dt * vx_new;
                   m.y[node] += dt * vy_new;
-                  max_speed = std::max(max_speed, vx_new * vx_new + vy_new * vy_new);
+                  max_speed =
+                    std::max(max_speed, vx_new * vx_new + vy_new * vy_new);
                 }
             }
           sums[0] = w_elastic;
@@ -1046,7 +1114,8 @@ namespace tmfdem
           for (unsigned int k = 0; k < conditions.size(); ++k)
             {
               condition_reaction[k][0] += sums[n_sums + 2 * max_bodies + 2 * k];
-              condition_reaction[k][1] += sums[n_sums + 2 * max_bodies + 2 * k + 1];
+              condition_reaction[k][1] +=
+                sums[n_sums + 2 * max_bodies + 2 * k + 1];
             }
         }
       travel_since_search += std::sqrt(max_speed) * dt;
@@ -1064,8 +1133,9 @@ namespace tmfdem
           {
             body_velocity[2 * b]->set_time(time + 0.5 * time_step);
             body_velocity[2 * b + 1]->set_time(time + 0.5 * time_step);
-            body_velocity_now[b] = {{body_velocity[2 * b]->value(mid_time),
-                                     body_velocity[2 * b + 1]->value(mid_time)}};
+            body_velocity_now[b] = {
+              {body_velocity[2 * b]->value(mid_time),
+               body_velocity[2 * b + 1]->value(mid_time)}};
           }
       if (boundary_conditions_change)
         evaluate_boundary_conditions();
@@ -1108,24 +1178,25 @@ namespace tmfdem
                                                    model.x[n0 + 2],
                                                    model.y[n0 + 2]),
                                      Matrix2{ib[0], ib[1], ib[2], ib[3]});
-          const double s = model.thermal_stretch[e];
-          const Matrix2 Fe{F.a00 / s, F.a01 / s, F.a10 / s, F.a11 / s};
+          const double       s  = model.thermal_stretch[e];
+          const Matrix2      Fe{F.a00 / s, F.a01 / s, F.a10 / s, F.a11 / s};
           strain += model.reference_area[e] * s * s *
                     strain_energy_density(Fe, solid[model.material[e]].lame);
         }
       for (unsigned int j = 0; j < model.n_joints; ++j)
         if (model.joint_status[j] == JointStatus::intact &&
-            model.joint_damage[2 * j] == 0. && model.joint_damage[2 * j + 1] == 0.)
+            model.joint_damage[2 * j] == 0. &&
+            model.joint_damage[2 * j + 1] == 0.)
           {
-            const unsigned int *n = &model.joint_nodes[4 * j];
-            const double ex = model.x[n[1]] - model.x[n[0]];
-            const double ey = model.y[n[1]] - model.y[n[0]];
-            const double L  = std::hypot(ex, ey);
-            const double tx = ex / L, ty = ey / L;
-            const double d0x = model.x[n[2]] - model.x[n[0]];
-            const double d0y = model.y[n[2]] - model.y[n[0]];
-            const double d1x = model.x[n[3]] - model.x[n[1]];
-            const double d1y = model.y[n[3]] - model.y[n[1]];
+            const unsigned int *n  = &model.joint_nodes[4 * j];
+            const double        ex = model.x[n[1]] - model.x[n[0]];
+            const double        ey = model.y[n[1]] - model.y[n[0]];
+            const double        L  = std::hypot(ex, ey);
+            const double        tx = ex / L, ty = ey / L;
+            const double        d0x = model.x[n[2]] - model.x[n[0]];
+            const double        d0y = model.y[n[2]] - model.y[n[0]];
+            const double        d1x = model.x[n[3]] - model.x[n[1]];
+            const double        d1y = model.y[n[3]] - model.y[n[1]];
             // the two Gauss points of the force computation
             for (const double u : {0.21132486540518713, 0.78867513459481287})
               {
@@ -1152,9 +1223,9 @@ namespace tmfdem
       row << std::setprecision(10) << time << ',' << step_number << ','
           << balance.kinetic << ',' << balance.strain << ','
           << balance.joint_work << ',' << balance.contact_work << ','
-          << balance.friction_dissipation << ','
-          << balance.viscous_dissipation << ',' << balance.external_work
-          << ',' << balance.balance_error() << ',' << model.n_broken_joints();
+          << balance.friction_dissipation << ',' << balance.viscous_dissipation
+          << ',' << balance.external_work << ',' << balance.balance_error()
+          << ',' << model.n_broken_joints();
       for (const auto &r : body_reaction)
         row << ',' << r[0] << ',' << r[1];
       for (const auto &r : condition_reaction)
@@ -1172,7 +1243,8 @@ namespace tmfdem
             {
               std::vector<double> T(heat->temperature().begin(),
                                     heat->temperature().end());
-              solution_series->write(time, discrete_solution_vtu(model, {{"T", &T}}));
+              solution_series->write(time,
+                                     discrete_solution_vtu(model, {{"T", &T}}));
             }
           else
             solution_series->write(time, discrete_solution_vtu(model));
@@ -1222,7 +1294,8 @@ namespace tmfdem
         .add("joint_stored", balance.joint_stored)
         .add("joint_dissipated", balance.joint_work - balance.joint_stored)
         .add("contact_work", balance.contact_work)
-        .add("contact_penalty", balance.contact_work - balance.friction_dissipation)
+        .add("contact_penalty",
+             balance.contact_work - balance.friction_dissipation)
         .add("friction_dissipation", balance.friction_dissipation)
         .add("viscous_dissipation", balance.viscous_dissipation)
         .add("external_work", balance.external_work)
@@ -1250,8 +1323,10 @@ namespace tmfdem
           reactions.push_back(r);
         }
       JsonObject summary;
-      summary.add("model", std::string(with_heat ? "discrete thermo-mechanics" :
-                                                   "discrete mechanics"))
+      summary
+        .add("model",
+             std::string(with_heat ? "discrete thermo-mechanics" :
+                                     "discrete mechanics"))
         .add("finished", finished)
         .add("elements", model.n_elements)
         .add("nodes", model.n_nodes)
@@ -1263,8 +1338,9 @@ namespace tmfdem
         .add("threads", n_threads)
         .add("wall_time", wall_time)
         .add("element_steps_per_second",
-             wall_time > 0. ? model.n_elements * double(step_number) / wall_time :
-                              0.)
+             wall_time > 0. ?
+               model.n_elements * double(step_number) / wall_time :
+               0.)
         .add("broken_joints", model.n_broken_joints())
         .add("broken_mode_I", by_mode[1])
         .add("broken_mode_II", by_mode[2])
@@ -1295,7 +1371,8 @@ namespace tmfdem
             .add("stored_heat", b.stored_heat)
             .add("imbalance", b.imbalance())
             .add("relative_imbalance", std::abs(b.imbalance()) / b.scale());
-          summary.add("mechanical_steps_per_thermal_step", steps_per_thermal_step)
+          summary
+            .add("mechanical_steps_per_thermal_step", steps_per_thermal_step)
             .add("thermal_time_step", steps_per_thermal_step * time_step)
             .add("heat_balance", hb);
         }
@@ -1323,9 +1400,9 @@ namespace tmfdem
       history_csv = std::make_unique<CsvSeries>(folder + "/history.csv",
                                                 header,
                                                 communicator);
-      const std::string monitor_header =
-        with_heat ? "time,name,x,y,T,ux,uy,sxx,syy,sxy" :
-                    "time,name,x,y,ux,uy,sxx,syy,sxy";
+      const std::string monitor_header = with_heat ?
+                                           "time,name,x,y,T,ux,uy,sxx,syy,sxy" :
+                                           "time,name,x,y,ux,uy,sxx,syy,sxy";
       if (!probe_samples.empty())
         probes_csv = std::make_unique<CsvSeries>(folder + "/probes.csv",
                                                  monitor_header,
@@ -1356,7 +1433,7 @@ namespace tmfdem
       write_output();
       write_history_row();
 
-      ProgressReporter progress(parameters.output.progress_interval,
+      ProgressReporter    progress(parameters.output.progress_interval,
                                 start,
                                 end,
                                 true);
@@ -1392,10 +1469,13 @@ namespace tmfdem
       if (next_output < output_times.size())
         write_output();
       write_summary(true);
-      std::cerr << "[tmfdem] " << (with_heat ? "discrete thermo-mechanics: " : "discrete mechanics: ") << step_number
-                << " steps of " << time_step << " s to t = " << time << " s, "
-                << model.n_broken_joints() << " broken joints, "
-                << model.n_cracks() << " cracks, energy balance error "
+      std::cerr << "[tmfdem] "
+                << (with_heat ? "discrete thermo-mechanics: " :
+                                "discrete mechanics: ")
+                << step_number << " steps of " << time_step
+                << " s to t = " << time << " s, " << model.n_broken_joints()
+                << " broken joints, " << model.n_cracks()
+                << " cracks, energy balance error "
                 << std::abs(balance.balance_error()) / balance.scale() * 100.
                 << " %\n";
     }

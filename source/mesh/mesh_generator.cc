@@ -9,11 +9,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <unistd.h>
 #include <fstream>
 #include <sstream>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/mesh/mesh_generator.h>
+#include <unistd.h>
 
 namespace tmfdem
 {
@@ -183,18 +183,18 @@ namespace tmfdem
           (std::filesystem::temp_directory_path() /
            ("tmfdem-msh22-" + std::to_string(::getpid()) + ".msh"))
             .string();
-        const std::string command =
-          "timeout 60 gmsh -0 \"" + file_name +
-          "\" -format msh22 -v 0 -o \"" + converted + "\" > /dev/null 2>&1";
+        const std::string command = "timeout 60 gmsh -0 \"" + file_name +
+                                    "\" -format msh22 -v 0 -o \"" + converted +
+                                    "\" > /dev/null 2>&1";
         std::filesystem::remove(converted);
         const int status = std::system(command.c_str());
         if (status != 0 || !std::filesystem::exists(converted))
           {
             std::filesystem::remove(converted);
-            throw InputError("Mesh file '" + file_name +
-                             "' (gmsh format " + version +
-                             ") cannot be read: gmsh rejected it (exit status " +
-                             std::to_string(status) + ").");
+            throw InputError(
+              "Mesh file '" + file_name + "' (gmsh format " + version +
+              ") cannot be read: gmsh rejected it (exit status " +
+              std::to_string(status) + ").");
           }
         try
           {
@@ -203,15 +203,17 @@ namespace tmfdem
         catch (const InputError &error)
           {
             std::filesystem::remove(converted);
-            throw InputError("Mesh file '" + file_name + "' (converted by gmsh " +
-                             "from format " + version + "): " + error.what());
+            throw InputError("Mesh file '" + file_name +
+                             "' (converted by gmsh " + "from format " +
+                             version + "): " + error.what());
           }
         std::filesystem::remove(converted);
         return;
       }
     if (version.rfind("2.", 0) != 0)
-      throw InputError("Mesh file '" + file_name + "' has gmsh format version '" +
-                       version + "'; allowed are 2.x and 4.x (ASCII).");
+      throw InputError("Mesh file '" + file_name +
+                       "' has gmsh format version '" + version +
+                       "'; allowed are 2.x and 4.x (ASCII).");
     in.seekg(0);
     GridIn<2> grid_in;
     grid_in.attach_triangulation(triangulation);
@@ -250,7 +252,7 @@ namespace tmfdem
     if (parameters.source != Source::file)
       {
         // refuse absurd sizes before gmsh or GridGenerator try them
-        const double area           = domain_area(parameters);
+        const double area            = domain_area(parameters);
         const double estimated_cells = area / (0.43 * h * h);
         if (!std::isfinite(area) || !(area > 0.) ||
             !std::isfinite(estimated_cells) || estimated_cells > 2e7)

@@ -9,7 +9,6 @@
 #include <deal.II/grid/tria.h>
 
 #include <gtest/gtest.h>
-
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/discrete/discrete_heat.h>
 #include <tmfdem/discrete/discrete_model.h>
@@ -20,20 +19,24 @@ using namespace tmfdem;
 TEST(DiscreteTransfer, VertexFieldRoundTripAndDoFNumbering)
 {
   Triangulation<2> triangulation;
-  GridGenerator::subdivided_hyper_rectangle_with_simplices(
-    triangulation, {4, 3}, Point<2>(0., 0.), Point<2>(2., 1.));
+  GridGenerator::subdivided_hyper_rectangle_with_simplices(triangulation,
+                                                           {4, 3},
+                                                           Point<2>(0., 0.),
+                                                           Point<2>(2., 1.));
   FE_SimplexDGP<2> fe(1);
   DoFHandler<2>    dof_handler(triangulation);
   dof_handler.distribute_dofs(fe);
   discrete::DiscreteModel model;
   model.build(dof_handler);
   EXPECT_EQ(model.n_nodes, 3 * triangulation.n_active_cells());
-  // every interior edge carries a joint: E_interior = (3 N_cells - E_boundary) / 2
-  EXPECT_EQ(model.n_joints, (3 * triangulation.n_active_cells() - 2 * (4 + 3)) / 2);
+  // every interior edge carries a joint: E_interior = (3 N_cells - E_boundary)
+  // / 2
+  EXPECT_EQ(model.n_joints,
+            (3 * triangulation.n_active_cells() - 2 * (4 + 3)) / 2);
 
-  Parameters           parameters;
+  Parameters             parameters;
   discrete::DiscreteHeat heat(parameters, model);
-  std::vector<double>  vertex_values(triangulation.n_vertices());
+  std::vector<double>    vertex_values(triangulation.n_vertices());
   for (unsigned int v = 0; v < triangulation.n_vertices(); ++v)
     vertex_values[v] = 3. + triangulation.get_vertices()[v][0] -
                        2. * triangulation.get_vertices()[v][1];

@@ -14,8 +14,8 @@
 #include <deal.II/base/types.h>
 
 #include <array>
-#include <tmfdem/discrete/discrete_parameters.h>
 #include <string>
+#include <tmfdem/discrete/discrete_parameters.h>
 #include <vector>
 
 namespace dealii

@@ -81,8 +81,8 @@ namespace tmfdem
     /** Tractions on a joint face pair [Pa]. */
     struct JointTraction
     {
-      double normal; ///< tension positive (resists opening)
-      double shear;  ///< along the slip (resists slip)
+      double normal;    ///< tension positive (resists opening)
+      double shear;     ///< along the slip (resists slip)
       double d_opening; ///< normalised softening opening d_o >= 0
       double d_slip;    ///< normalised softening slip d_s >= 0
     };
@@ -102,7 +102,7 @@ namespace tmfdem
       const double  ft           = k.tensile_strength;
       const double  opening_peak = 2. * ft / k.normal_stiffness;
       const double  compression  = o < 0. ? k.normal_stiffness * o : 0.;
-      const double  fs = k.cohesion - compression * k.friction_tangent;
+      const double  fs        = k.cohesion - compression * k.friction_tangent;
       const double  slip_peak = 2. * fs / k.tangential_stiffness;
       const double  abs_s     = std::abs(s);
       if (o > opening_peak)
@@ -114,8 +114,8 @@ namespace tmfdem
         {
           const double D_now =
             std::sqrt(t.d_opening * t.d_opening + t.d_slip * t.d_slip);
-          D = D_now > D ? D_now : D;
-          D = D < 1. ? D : 1.;
+          D      = D_now > D ? D_now : D;
+          D      = D < 1. ? D : 1.;
           damage = D;
         }
       const double z = D > 0. ? softening<law>(D) : 1.;
@@ -145,16 +145,16 @@ namespace tmfdem
      * pre-peak work 4 f^2 / (3 k), i.e. the penalty is too soft.
      */
     bool
-    make_joint_constants(const double    tensile_strength,
-                         const double    cohesion,
-                         const double    friction_angle_degrees,
-                         const double    fracture_energy_I,
-                         const double    fracture_energy_II,
-                         const double    normal_penalty,
-                         const double    tangential_penalty,
-                         const double    length,
+    make_joint_constants(const double       tensile_strength,
+                         const double       cohesion,
+                         const double       friction_angle_degrees,
+                         const double       fracture_energy_I,
+                         const double       fracture_energy_II,
+                         const double       normal_penalty,
+                         const double       tangential_penalty,
+                         const double       length,
                          const SofteningLaw law,
-                         JointConstants &k);
+                         JointConstants    &k);
 
     /**
      * Work per unit joint area stored elastically before the peak [J/m^2]
@@ -162,7 +162,9 @@ namespace tmfdem
      * the pre-peak tractions (the recoverable part).
      */
     double
-    stored_joint_energy(const double o, const double s, const JointConstants &k);
+    stored_joint_energy(const double          o,
+                        const double          s,
+                        const JointConstants &k);
   } // namespace discrete
 } // namespace tmfdem
 

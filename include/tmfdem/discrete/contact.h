@@ -48,30 +48,30 @@ namespace tmfdem
      * Returns false if the segment does not enter the target.
      */
     inline bool
-    edge_potential_integrals(const double           px,
-                             const double           py,
-                             const double           qx,
-                             const double           qy,
-                             const double          *tx,
-                             const double          *ty,
+    edge_potential_integrals(const double            px,
+                             const double            py,
+                             const double            qx,
+                             const double            qy,
+                             const double           *tx,
+                             const double           *ty,
                              EdgePotentialIntegrals &result)
     {
-      const double det = (ty[1] - ty[2]) * (tx[0] - tx[2]) +
-                         (tx[2] - tx[1]) * (ty[0] - ty[2]);
+      const double det =
+        (ty[1] - ty[2]) * (tx[0] - tx[2]) + (tx[2] - tx[1]) * (ty[0] - ty[2]);
       if (!(det > 0.))
         return false;
       const double inv = 1. / det;
       // barycentric coordinates of P and Q
       double lp[3], lq[3];
-      lp[0] = ((ty[1] - ty[2]) * (px - tx[2]) + (tx[2] - tx[1]) * (py - ty[2])) *
-              inv;
-      lp[1] = ((ty[2] - ty[0]) * (px - tx[2]) + (tx[0] - tx[2]) * (py - ty[2])) *
-              inv;
+      lp[0] =
+        ((ty[1] - ty[2]) * (px - tx[2]) + (tx[2] - tx[1]) * (py - ty[2])) * inv;
+      lp[1] =
+        ((ty[2] - ty[0]) * (px - tx[2]) + (tx[0] - tx[2]) * (py - ty[2])) * inv;
       lp[2] = 1. - lp[0] - lp[1];
-      lq[0] = ((ty[1] - ty[2]) * (qx - tx[2]) + (tx[2] - tx[1]) * (qy - ty[2])) *
-              inv;
-      lq[1] = ((ty[2] - ty[0]) * (qx - tx[2]) + (tx[0] - tx[2]) * (qy - ty[2])) *
-              inv;
+      lq[0] =
+        ((ty[1] - ty[2]) * (qx - tx[2]) + (tx[2] - tx[1]) * (qy - ty[2])) * inv;
+      lq[1] =
+        ((ty[2] - ty[0]) * (qx - tx[2]) + (tx[0] - tx[2]) * (qy - ty[2])) * inv;
       lq[2] = 1. - lq[0] - lq[1];
       // quick rejection: both ends outside the same edge
       for (unsigned int k = 0; k < 3; ++k)
@@ -110,7 +110,7 @@ namespace tmfdem
       knots[n_knots++] = u1;
       std::sort(knots + 1, knots + n_knots - 1);
 
-      result = EdgePotentialIntegrals();
+      result                         = EdgePotentialIntegrals();
       result.clipped_length_fraction = u1 - u0;
       auto add_point = [&](const double u, const double weight) {
         const double l0  = a[0] + b[0] * u;
@@ -127,7 +127,7 @@ namespace tmfdem
       for (unsigned int piece = 0; piece + 1 < n_knots; ++piece)
         {
           const double ua = knots[piece], ub = knots[piece + 1];
-          const double w  = (ub - ua) / 6.;
+          const double w = (ub - ua) / 6.;
           add_point(ua, w);
           add_point(0.5 * (ua + ub), 4. * w);
           add_point(ub, w);
@@ -198,16 +198,16 @@ namespace tmfdem
         {
           const unsigned int e  = active[i];
           const double      *xe = &x[3 * e], *ye = &y[3 * e];
-          double *bx = &box[4 * i];
-          bx[0] = std::min(xe[0], std::min(xe[1], xe[2])) - 0.5 * buffer;
-          bx[1] = std::min(ye[0], std::min(ye[1], ye[2])) - 0.5 * buffer;
-          bx[2] = std::max(xe[0], std::max(xe[1], xe[2])) + 0.5 * buffer;
-          bx[3] = std::max(ye[0], std::max(ye[1], ye[2])) + 0.5 * buffer;
+          double            *bx = &box[4 * i];
+          bx[0]   = std::min(xe[0], std::min(xe[1], xe[2])) - 0.5 * buffer;
+          bx[1]   = std::min(ye[0], std::min(ye[1], ye[2])) - 0.5 * buffer;
+          bx[2]   = std::max(xe[0], std::max(xe[1], xe[2])) + 0.5 * buffer;
+          bx[3]   = std::max(ye[0], std::max(ye[1], ye[2])) + 0.5 * buffer;
           largest = std::max(largest, std::max(bx[2] - bx[0], bx[3] - bx[1]));
-          gx0 = std::min(gx0, bx[0]);
-          gy0 = std::min(gy0, bx[1]);
-          gx1 = std::max(gx1, bx[2]);
-          gy1 = std::max(gy1, bx[3]);
+          gx0     = std::min(gx0, bx[0]);
+          gy0     = std::min(gy0, bx[1]);
+          gx1     = std::max(gx1, bx[2]);
+          gy1     = std::max(gy1, bx[3]);
         }
       double cell = largest;
       auto   dims = [&](const double c) {
@@ -243,13 +243,15 @@ namespace tmfdem
       // two cells per direction: look at the cell and its 8 neighbours
       for (std::size_t i = 0; i < n; ++i)
         {
-          const std::size_t cx = item_cell[i] % nc[0], cy = item_cell[i] / nc[0];
+          const std::size_t cx = item_cell[i] % nc[0],
+                            cy = item_cell[i] / nc[0];
           for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx)
               {
                 const long long ncx = static_cast<long long>(cx) + dx;
                 const long long ncy = static_cast<long long>(cy) + dy;
-                if (ncx < 0 || ncy < 0 || ncx >= static_cast<long long>(nc[0]) ||
+                if (ncx < 0 || ncy < 0 ||
+                    ncx >= static_cast<long long>(nc[0]) ||
                     ncy >= static_cast<long long>(nc[1]))
                   continue;
                 const std::size_t c = ncy * nc[0] + ncx;
@@ -282,8 +284,8 @@ namespace tmfdem
       for (ContactPair &p : new_pairs)
         {
           while (old < pairs.size() &&
-                 (pairs[old].first < p.first ||
-                  (pairs[old].first == p.first && pairs[old].second < p.second)))
+                 (pairs[old].first < p.first || (pairs[old].first == p.first &&
+                                                 pairs[old].second < p.second)))
             ++old;
           if (old < pairs.size() && pairs[old].first == p.first &&
               pairs[old].second == p.second)

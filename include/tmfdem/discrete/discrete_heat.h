@@ -38,7 +38,7 @@ namespace tmfdem
       double                               contact_heat = 0.; ///< sums to 0
       /** Heat that crossed contacts, sum over pairs of |Q| dt [J/m]. */
       double contact_exchange = 0.;
-      double                               stored_heat  = 0.;
+      double stored_heat      = 0.;
       /** in - stored [J/m]. */
       double
       imbalance() const;
@@ -147,7 +147,10 @@ namespace tmfdem
        *  conditions and sources at time @p time [W/m]; Dirichlet nodes
        *  excluded. Also per boundary id rates. */
       void
-      heat_rates(const double time, Vector<double> &rate, std::map<types::boundary_id, double> &boundary_rate, double &source_rate) const;
+      heat_rates(const double                          time,
+                 Vector<double>                       &rate,
+                 std::map<types::boundary_id, double> &boundary_rate,
+                 double                               &source_rate) const;
       void
       assemble_implicit(const double time_step);
       void
@@ -161,10 +164,11 @@ namespace tmfdem
       bool              use_implicit = true;
       double            beta         = 100.;
 
-      std::vector<double> conductivity;   ///< per element [W/(m K)]
+      std::vector<double> conductivity;             ///< per element [W/(m K)]
       std::vector<double> volumetric_heat_capacity; ///< rho c per element
-      std::vector<double> lumped_capacity;  ///< per node [J/(m K)]
-      std::vector<double> joint_conductance; ///< k_i L / 2 per node pair [W/(m K)]
+      std::vector<double> lumped_capacity;          ///< per node [J/(m K)]
+      std::vector<double>
+        joint_conductance; ///< k_i L / 2 per node pair [W/(m K)]
 
       struct BoundaryEdge
       {
@@ -178,7 +182,8 @@ namespace tmfdem
       struct ConditionFunctions
       {
         ThermalBoundaryCondition::Type     type;
-        std::unique_ptr<FunctionParser<2>> temperature, flux, coefficient, ambient;
+        std::unique_ptr<FunctionParser<2>> temperature, flux, coefficient,
+          ambient;
       };
       std::vector<ConditionFunctions>                 conditions;
       std::vector<std::unique_ptr<FunctionParser<2>>> sources; ///< by material
@@ -202,10 +207,10 @@ namespace tmfdem
       double
       add_contact_heat(Vector<double> &rate) const;
       /** Sum of |Q| over the pairs in the last add_contact_heat() [W/m]. */
-      mutable double last_contact_exchange = 0.;
+      mutable double                       last_contact_exchange = 0.;
       std::map<types::boundary_id, double> last_rate;
 
-      HeatBalance heat_balance;
+      HeatBalance    heat_balance;
       Vector<double> initial_T;
     };
   } // namespace discrete

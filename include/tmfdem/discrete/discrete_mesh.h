@@ -27,12 +27,12 @@ namespace tmfdem
      * for quadrilateral meshes and for more than one MPI process.
      */
     void
-    build_discrete_mesh(const Parameters         &parameters,
-                        MPI_Comm                  communicator,
-                        Triangulation<2>         &triangulation,
-                        DoFHandler<2>            &dof_handler,
-                        const FiniteElement<2>   &fe,
-                        DiscreteModel            &model);
+    build_discrete_mesh(const Parameters       &parameters,
+                        MPI_Comm                communicator,
+                        Triangulation<2>       &triangulation,
+                        DoFHandler<2>          &dof_handler,
+                        const FiniteElement<2> &fe,
+                        DiscreteModel          &model);
 
     /** A monitor point: its element and area coordinates in the reference
      *  configuration. */
@@ -40,7 +40,7 @@ namespace tmfdem
     {
       std::string  name;
       double       x = 0., y = 0.;
-      unsigned int element = 0;
+      unsigned int element   = 0;
       double       lambda[3] = {0., 0., 0.};
     };
 

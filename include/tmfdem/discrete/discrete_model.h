@@ -52,8 +52,8 @@ namespace tmfdem
 
       // --------------------------------------------------------- elements
       /** Inverse initial basis F_i^-1 (row-major 2x2) per element. */
-      std::vector<double> inverse_basis;
-      std::vector<double> reference_area; ///< [m^2]
+      std::vector<double>             inverse_basis;
+      std::vector<double>             reference_area; ///< [m^2]
       std::vector<types::material_id> material;
       /** Body index per element (see DiscreteBodyParameters), or 255. */
       std::vector<unsigned char> body;
@@ -77,8 +77,8 @@ namespace tmfdem
       std::vector<unsigned int>   joint_nodes;
       std::vector<unsigned int>   joint_elements; ///< A, B per joint
       std::vector<JointConstants> joint_constants;
-      std::vector<double>         joint_length;  ///< reference [m]
-      std::vector<double>         joint_damage;  ///< per Gauss point (2)
+      std::vector<double>         joint_length; ///< reference [m]
+      std::vector<double>         joint_damage; ///< per Gauss point (2)
       std::vector<JointStatus>    joint_status;
       std::vector<double>         joint_break_time; ///< [s]
       /** Forces of the last step on a0, a1, b0, b1 (x, y each) [N/m]. */

@@ -29,7 +29,7 @@ namespace tmfdem
       write(const double time, const std::string &vtu_text);
 
     private:
-      std::string                                  folder, base_name;
+      std::string                                 folder, base_name;
       std::vector<std::pair<double, std::string>> records;
     };
 

@@ -26,25 +26,25 @@ namespace tmfdem
   /** Subsection `Discrete mechanics`. */
   struct DiscreteMechanicsParameters
   {
-    double      time_step    = 0.;  ///< [s]; 0: safety factor x stable step
+    double      time_step     = 0.;  ///< [s]; 0: safety factor x stable step
     double      safety_factor = 0.5; ///< fraction of the stable step [-]
-    double joint_normal_penalty_factor     = 10.; ///< p_n / E [-]
-    double joint_tangential_penalty_factor = 10.; ///< p_t / E [-]
-    double contact_penalty_factor          = 10.; ///< p_c / E [-]
-    double contact_tangential_penalty_factor = 1.; ///< p_ct / E [-]
-    double friction_coefficient            = 0.5; ///< mu [-]
-    std::string softening_law              = "Munjiza";
-    double      damping_ratio = 1.; ///< eta / (2 h sqrt(E rho)) [-]
-    double      mass_damping  = 0.; ///< c of -c m v [1/s]
-    std::vector<double> gravity = {0., 0.}; ///< [m/s^2]
-    double              contact_buffer = 0.; ///< [m]; 0: 0.25 x smallest h
-    unsigned int        threads        = 0;  ///< 0: all cores
-    std::string         heterogeneity  = "none"; ///< none|Weibull|normal
-    double weibull_modulus          = 10.; ///< m [-]
-    double coefficient_of_variation = 0.1; ///< normal: std/mean [-]
-    unsigned int random_seed        = 1;
-    unsigned int max_steps          = 0;    ///< 0: no limit
-    bool         contact            = true;
+    double      joint_normal_penalty_factor       = 10.; ///< p_n / E [-]
+    double      joint_tangential_penalty_factor   = 10.; ///< p_t / E [-]
+    double      contact_penalty_factor            = 10.; ///< p_c / E [-]
+    double      contact_tangential_penalty_factor = 1.;  ///< p_ct / E [-]
+    double      friction_coefficient              = 0.5; ///< mu [-]
+    std::string softening_law                     = "Munjiza";
+    double      damping_ratio             = 1.; ///< eta / (2 h sqrt(E rho)) [-]
+    double      mass_damping              = 0.; ///< c of -c m v [1/s]
+    std::vector<double> gravity           = {0., 0.}; ///< [m/s^2]
+    double              contact_buffer    = 0.; ///< [m]; 0: 0.25 x smallest h
+    unsigned int        threads           = 0;  ///< 0: all cores
+    std::string         heterogeneity     = "none"; ///< none|Weibull|normal
+    double              weibull_modulus   = 10.;    ///< m [-]
+    double       coefficient_of_variation = 0.1;    ///< normal: std/mean [-]
+    unsigned int random_seed              = 1;
+    unsigned int max_steps                = 0; ///< 0: no limit
+    bool         contact                  = true;
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -55,11 +55,11 @@ namespace tmfdem
   /** Subsection `Discrete heat`. */
   struct DiscreteHeatParameters
   {
-    std::string time_integration = "implicit"; ///< implicit|explicit
-    double      joint_conductance_factor = 1000.; ///< beta [-]
-    double      contact_conductance      = 1e4;   ///< h_c [W/(m^2 K)]
-    double      safety_factor            = 0.9;   ///< explicit [-]
-    double      solver_tolerance         = 1e-12; ///< relative
+    std::string  time_integration         = "implicit"; ///< implicit|explicit
+    double       joint_conductance_factor = 1000.;      ///< beta [-]
+    double       contact_conductance      = 1e4;        ///< h_c [W/(m^2 K)]
+    double       safety_factor            = 0.9;        ///< explicit [-]
+    double       solver_tolerance         = 1e-12;      ///< relative
     unsigned int mechanical_steps_per_thermal_step = 0; ///< 0: automatic
 
     static void

@@ -53,11 +53,11 @@ namespace tmfdem
       double contact_work         = 0.; ///< done on contacts (incl. friction)
       double friction_dissipation = 0.;
       double viscous_dissipation  = 0.;
-      double external_work = 0.; ///< gravity and driven/fixed bodies
+      double external_work        = 0.; ///< gravity and driven/fixed bodies
       /** Strain energy put in by changes of the thermal stretch at fixed
        *  geometry (thermo-mechanical runs) [J/m]. */
       double thermal_work = 0.;
-      double elastic_work  = 0.; ///< done on the solid's elastic stress
+      double elastic_work = 0.; ///< done on the solid's elastic stress
 
       /** Energy in minus energy accounted for [J/m]. */
       double
@@ -167,13 +167,13 @@ namespace tmfdem
       MPI_Comm          communicator;
       bool              input_checked = false;
 
-      Triangulation<2>   triangulation;
-      FE_SimplexDGP<2>   fe;
-      DoFHandler<2>      dof_handler;
-      DiscreteModel      model;
-      Idealisation       idealisation = Idealisation::plane_stress;
-      SofteningLaw       softening_law = SofteningLaw::munjiza;
-      std::vector<SolidMaterial> solid;    ///< by material id
+      Triangulation<2>           triangulation;
+      FE_SimplexDGP<2>           fe;
+      DoFHandler<2>              dof_handler;
+      DiscreteModel              model;
+      Idealisation               idealisation  = Idealisation::plane_stress;
+      SofteningLaw               softening_law = SofteningLaw::munjiza;
+      std::vector<SolidMaterial> solid;     ///< by material id
       std::vector<double>        viscosity; ///< eta per element [Pa s]
 
       // heat (thermo-mechanical runs)
@@ -183,11 +183,11 @@ namespace tmfdem
       double                        thermal_time           = 0.;
 
       // bodies: motion per node, driven velocities
-      std::vector<unsigned char> node_body; ///< body index or 255 (free)
+      std::vector<unsigned char>        node_body; ///< body index or 255 (free)
       std::vector<DiscreteBody::Motion> body_motion;
       std::vector<std::unique_ptr<FunctionParser<2>>> body_velocity;
-      std::vector<std::array<double, 2>> body_velocity_now;
-      std::array<double, 2>              gravity{{0., 0.}};
+      std::vector<std::array<double, 2>>              body_velocity_now;
+      std::array<double, 2>                           gravity{{0., 0.}};
 
       // mechanical boundary conditions on boundary ids, per node: slot into
       // the compact arrays below, or -1
@@ -195,16 +195,16 @@ namespace tmfdem
       struct NodeCondition
       {
         unsigned int node;
-        unsigned int condition; ///< index into `conditions`
-        bool         prescribed[2]; ///< velocity component prescribed
-        double       velocity[2];   ///< prescribed velocity [m/s]
-        double       force[2];      ///< traction force [N/m]
+        unsigned int condition;       ///< index into `conditions`
+        bool         prescribed[2];   ///< velocity component prescribed
+        double       velocity[2];     ///< prescribed velocity [m/s]
+        double       force[2];        ///< traction force [N/m]
         double       traction_length; ///< reference length share [m]
       };
       std::vector<NodeCondition> node_conditions;
       struct ConditionFunctions
       {
-        MechanicalBoundaryCondition::Type             type;
+        MechanicalBoundaryCondition::Type                 type;
         std::array<std::unique_ptr<FunctionParser<2>>, 2> value;
         std::array<bool, 2> time_dependent{{false, false}};
       };
@@ -216,8 +216,8 @@ namespace tmfdem
       std::vector<std::array<double, 2>> condition_reaction;
 
       // contact
-      bool                      contact_enabled = true;
-      double                    contact_penalty = 0.;
+      bool                      contact_enabled            = true;
+      double                    contact_penalty            = 0.;
       double                    contact_tangential_penalty = 0.;
       double                    friction_coefficient       = 0.;
       double                    contact_buffer             = 0.;
@@ -225,7 +225,7 @@ namespace tmfdem
       bool                      contact_search_needed      = true;
       LinkedCellSearch          linked_cells;
       std::vector<ContactPair>  pairs;
-      std::vector<double>       pair_force; ///< 12 per pair
+      std::vector<double>       pair_force;    ///< 12 per pair
       std::vector<double>       pair_friction; ///< dissipation this step
       std::vector<unsigned int> element_pair_start;
       std::vector<unsigned int> element_pair_entries; ///< 2 pair + side
@@ -241,23 +241,23 @@ namespace tmfdem
 
       // bookkeeping: per chunk sums, summed in chunk order (thread-count
       // independent)
-      static constexpr unsigned int chunk_size  = 512;
-      static constexpr unsigned int n_sums      = 6;
-      static constexpr unsigned int max_bodies  = 8;
-      std::vector<double>           chunk_sums; ///< n_sums + 2 max_bodies
-      EnergyBalance                 balance;
+      static constexpr unsigned int      chunk_size = 512;
+      static constexpr unsigned int      n_sums     = 6;
+      static constexpr unsigned int      max_bodies = 8;
+      std::vector<double>                chunk_sums; ///< n_sums + 2 max_bodies
+      EnergyBalance                      balance;
       std::vector<std::array<double, 2>> body_reaction; ///< [N/m]
       bool                               joints_broke = false;
       std::vector<char>                  joint_chunk_broke;
 
       // output
-      std::unique_ptr<VtuSeries> solution_series, crack_series;
-      std::unique_ptr<CsvSeries> history_csv, probes_csv, lines_csv;
-      std::vector<double>        output_times;
-      unsigned int               next_output = 0;
-      double                     history_interval = 0.;
-      double                     next_history     = 0.;
-      double                     wall_time        = 0.;
+      std::unique_ptr<VtuSeries>   solution_series, crack_series;
+      std::unique_ptr<CsvSeries>   history_csv, probes_csv, lines_csv;
+      std::vector<double>          output_times;
+      unsigned int                 next_output      = 0;
+      double                       history_interval = 0.;
+      double                       next_history     = 0.;
+      double                       wall_time        = 0.;
       std::vector<ReferenceSample> probe_samples, line_samples;
     };
   } // namespace discrete

@@ -135,12 +135,12 @@ namespace tmfdem
     inline Stress2
     elastic_stress(const Matrix2 &Fe, const LameConstants &lame)
     {
-      const double J     = determinant(Fe);
-      const double b_xx  = Fe.a00 * Fe.a00 + Fe.a01 * Fe.a01;
-      const double b_yy  = Fe.a10 * Fe.a10 + Fe.a11 * Fe.a11;
-      const double b_xy  = Fe.a00 * Fe.a10 + Fe.a01 * Fe.a11;
-      const double mu_J  = lame.mu / J;
-      const double vol   = 0.5 * lame.lambda * (J - 1. / J);
+      const double J    = determinant(Fe);
+      const double b_xx = Fe.a00 * Fe.a00 + Fe.a01 * Fe.a01;
+      const double b_yy = Fe.a10 * Fe.a10 + Fe.a11 * Fe.a11;
+      const double b_xy = Fe.a00 * Fe.a10 + Fe.a01 * Fe.a11;
+      const double mu_J = lame.mu / J;
+      const double vol  = 0.5 * lame.lambda * (J - 1. / J);
       return {mu_J * (b_xx - 1.) + vol, mu_J * (b_yy - 1.) + vol, mu_J * b_xy};
     }
 
