@@ -447,13 +447,17 @@ namespace tmfdem
                     nc.velocity[0] = nc.velocity[1] = 0.;
                     nc.force[0] = nc.force[1] = 0.;
                     nc.traction_length        = 0.;
+                    nc.traction_condition     = -1;
                     node_condition_slot[node] = node_conditions.size();
                     node_conditions.push_back(nc);
                   }
                 NodeCondition &nc = node_conditions[node_condition_slot[node]];
                 const Type     type = conditions[c].type;
                 if (type == Type::traction)
-                  nc.traction_length += 0.5 * length;
+                  {
+                    nc.traction_length += 0.5 * length;
+                    nc.traction_condition = c;
+                  }
                 else
                   {
                     // a kinematic condition wins over a traction at corners
@@ -511,15 +515,11 @@ namespace tmfdem
       for (NodeCondition &nc : node_conditions)
         if (nc.traction_length > 0.)
           {
-            const unsigned int n = nc.node;
-            const Point<2>     p(model.x_ref[n], model.y_ref[n]);
-            // the traction condition of this node's boundary id
-            for (ConditionFunctions &f : conditions)
-              if (f.type == Type::traction)
-                {
-                  nc.force[0] = f.value[0]->value(p) * nc.traction_length;
-                  nc.force[1] = f.value[1]->value(p) * nc.traction_length;
-                }
+            const unsigned int  n = nc.node;
+            const Point<2>      p(model.x_ref[n], model.y_ref[n]);
+            ConditionFunctions &f = conditions[nc.traction_condition];
+            nc.force[0]           = f.value[0]->value(p) * nc.traction_length;
+            nc.force[1]           = f.value[1]->value(p) * nc.traction_length;
           }
     }
 

@@ -195,11 +195,12 @@ namespace tmfdem
       struct NodeCondition
       {
         unsigned int node;
-        unsigned int condition;       ///< index into `conditions`
-        bool         prescribed[2];   ///< velocity component prescribed
-        double       velocity[2];     ///< prescribed velocity [m/s]
-        double       force[2];        ///< traction force [N/m]
-        double       traction_length; ///< reference length share [m]
+        unsigned int condition;          ///< index into `conditions`
+        bool         prescribed[2];      ///< velocity component prescribed
+        double       velocity[2];        ///< prescribed velocity [m/s]
+        double       force[2];           ///< traction force [N/m]
+        double       traction_length;    ///< reference length share [m]
+        int          traction_condition; ///< its traction condition, or -1
       };
       std::vector<NodeCondition> node_conditions;
       struct ConditionFunctions
