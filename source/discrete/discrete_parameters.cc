@@ -216,6 +216,22 @@ namespace tmfdem
                       "Multi-rate coupling: one thermal step every n "
                       "mechanical steps; 0: the largest n that keeps the "
                       "thermal step stable (explicit) or 1000 (implicit).");
+    prm.declare_entry(
+      "Coupling",
+      "dynamic",
+      Patterns::Selection("dynamic|quasi-static"),
+      "discrete thermo-mechanics: dynamic: one physical clock, a thermal step "
+      "every n mechanical steps (thermal shock, fast events); quasi-static: "
+      "slow heating or cooling, each thermal step of Time stepping/Time step "
+      "is followed by up to Mechanical steps per thermal step damped "
+      "mechanical steps (no physical time) until kinetic / strain energy < "
+      "Relaxation tolerance; outputs in thermal (physical) time.");
+    prm.declare_entry("Relaxation tolerance",
+                      "1e-6",
+                      Patterns::Double(0.),
+                      "Quasi-static coupling: relaxation stops when the "
+                      "kinetic energy falls below this fraction of the "
+                      "strain energy [-] (checked every 50 steps).");
     prm.leave_subsection();
   }
 
@@ -230,6 +246,8 @@ namespace tmfdem
     solver_tolerance         = prm.get_double("Linear solver tolerance");
     mechanical_steps_per_thermal_step =
       prm.get_integer("Mechanical steps per thermal step");
+    coupling             = prm.get("Coupling");
+    relaxation_tolerance = prm.get_double("Relaxation tolerance");
     prm.leave_subsection();
     if (!(joint_conductance_factor > 0.))
       throw InputError("Discrete heat/Joint conductance factor = " +

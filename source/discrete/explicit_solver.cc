@@ -151,8 +151,11 @@ namespace tmfdem
           heat->initialise(time);
           const unsigned int n =
             parameters.discrete_heat.mechanical_steps_per_thermal_step;
+          quasi_static = parameters.discrete_heat.coupling == "quasi-static";
           if (n > 0)
             steps_per_thermal_step = n;
+          else if (quasi_static)
+            steps_per_thermal_step = 2000;
           else if (heat->implicit())
             steps_per_thermal_step =
               std::max(1.,
@@ -162,7 +165,9 @@ namespace tmfdem
               std::max(1.,
                        std::floor(parameters.discrete_heat.safety_factor *
                                   heat->stable_time_step() / time_step));
-          const double thermal_step = steps_per_thermal_step * time_step;
+          const double thermal_step = quasi_static ?
+                                        parameters.time.time_step :
+                                        steps_per_thermal_step * time_step;
           if (!heat->implicit() && thermal_step > heat->stable_time_step())
             throw InputError(
               "Discrete heat/Mechanical steps per thermal step = " +
@@ -1126,6 +1131,52 @@ namespace tmfdem
     void
     ExplicitSolver::step()
     {
+      if (quasi_static)
+        {
+          // relax the mechanics at the current temperatures (no clock) ...
+          unsigned int i = 0;
+          while (i < steps_per_thermal_step)
+            {
+              mechanical_step();
+              ++i;
+              if (i % 50 == 0)
+                {
+                  energy();
+                  last_kinetic_to_strain =
+                    balance.kinetic / std::max(balance.strain, 1e-300);
+                  if (last_kinetic_to_strain <
+                      parameters.discrete_heat.relaxation_tolerance)
+                    break;
+                }
+            }
+          last_relaxation_steps = i;
+          // ... then one thermal step of physical time
+          const double dt = parameters.time.time_step;
+          heat->update_contact_pairs();
+          heat->step(time, dt);
+          time += dt;
+          thermal_time = time;
+          ++n_thermal_steps;
+          update_thermal_stretch();
+          return;
+        }
+      mechanical_step();
+      time += time_step;
+      if (with_heat && step_number % steps_per_thermal_step == 0)
+        {
+          // M -> T: current geometry, broken joints, contacts
+          heat->update_contact_pairs();
+          heat->step(thermal_time, time - thermal_time);
+          thermal_time = time;
+          ++n_thermal_steps;
+          // T -> M
+          update_thermal_stretch();
+        }
+    }
+
+    void
+    ExplicitSolver::mechanical_step()
+    {
       // driven bodies move with their velocity at mid step
       const Point<2> mid_time(0., 0.);
       for (unsigned int b = 0; b < body_motion.size(); ++b)
@@ -1147,17 +1198,7 @@ namespace tmfdem
         }
       compute_joint_forces();
       update_nodes();
-      time += time_step;
       ++step_number;
-      if (with_heat && step_number % steps_per_thermal_step == 0)
-        {
-          // M -> T: current geometry, broken joints, contacts
-          heat->update_contact_pairs();
-          heat->step(thermal_time, time - thermal_time);
-          thermal_time = time;
-          // T -> M
-          update_thermal_stretch();
-        }
     }
 
     EnergyBalance
@@ -1371,9 +1412,14 @@ namespace tmfdem
             .add("stored_heat", b.stored_heat)
             .add("imbalance", b.imbalance())
             .add("relative_imbalance", std::abs(b.imbalance()) / b.scale());
-          summary
+          summary.add("coupling", parameters.discrete_heat.coupling)
+            .add("thermal_steps", static_cast<long long>(n_thermal_steps))
+            .add("last_relaxation_steps", last_relaxation_steps)
+            .add("last_kinetic_to_strain_energy", last_kinetic_to_strain)
             .add("mechanical_steps_per_thermal_step", steps_per_thermal_step)
-            .add("thermal_time_step", steps_per_thermal_step * time_step)
+            .add("thermal_time_step",
+                 quasi_static ? parameters.time.time_step :
+                                steps_per_thermal_step * time_step)
             .add("heat_balance", hb);
         }
       write_file_atomically(parameters.output.directory + "/summary.json",
@@ -1438,17 +1484,29 @@ namespace tmfdem
                                 end,
                                 true);
       const unsigned long max_steps = parameters.discrete_mechanics.max_steps;
-      while (time < end - 0.5 * time_step &&
+      const double        advance =
+        quasi_static ? parameters.time.time_step : time_step;
+      if (quasi_static)
+        {
+          history_interval = std::max(history_interval, advance);
+          next_history     = start + history_interval;
+        }
+      while (time < end - 0.5 * advance &&
              (max_steps == 0 || step_number < max_steps))
         {
           step();
-          if (time >= next_history - 0.5 * time_step)
+          if (quasi_static)
+            std::cerr << "[tmfdem] t = " << time << " s: relaxed in "
+                      << last_relaxation_steps
+                      << " mechanical steps, kinetic / strain energy "
+                      << last_kinetic_to_strain << "\n";
+          if (time >= next_history - 0.5 * advance)
             {
               write_history_row();
               next_history += history_interval;
             }
           while (next_output < output_times.size() &&
-                 time >= output_times[next_output] - 0.5 * time_step)
+                 time >= output_times[next_output] - 0.5 * advance)
             {
               energy();
               write_output();

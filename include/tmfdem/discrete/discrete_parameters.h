@@ -61,6 +61,8 @@ namespace tmfdem
     double       safety_factor            = 0.9;        ///< explicit [-]
     double       solver_tolerance         = 1e-12;      ///< relative
     unsigned int mechanical_steps_per_thermal_step = 0; ///< 0: automatic
+    std::string  coupling             = "dynamic"; ///< dynamic|quasi-static
+    double       relaxation_tolerance = 1e-6;      ///< kinetic / strain energy
 
     static void
     declare_parameters(ParameterHandler &prm);

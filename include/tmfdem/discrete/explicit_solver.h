@@ -180,7 +180,14 @@ namespace tmfdem
       bool                          with_heat = false;
       std::unique_ptr<DiscreteHeat> heat;
       unsigned int                  steps_per_thermal_step = 1;
-      double                        thermal_time           = 0.;
+      bool                          quasi_static           = false;
+      unsigned int                  last_relaxation_steps  = 0;
+      double                        last_kinetic_to_strain = 0.;
+      unsigned long                 n_thermal_steps        = 0;
+      /** One explicit mechanical step without advancing the clock. */
+      void
+             mechanical_step();
+      double thermal_time = 0.;
 
       // bodies: motion per node, driven velocities
       std::vector<unsigned char>        node_body; ///< body index or 255 (free)
