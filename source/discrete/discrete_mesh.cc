@@ -1,5 +1,6 @@
 #include <deal.II/base/mpi.h>
 
+#include <cmath>
 #include <sstream>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/discrete/discrete_mesh.h>
@@ -46,6 +47,47 @@ namespace tmfdem
       dof_handler.reinit(triangulation);
       dof_handler.distribute_dofs(fe);
       model.build(dof_handler);
+
+      // pre-existing fractures: joints on the given segments start broken
+      const auto &cracks = parameters.discrete_mechanics.initial_cracks;
+      for (unsigned int c = 0; c < cracks.size(); ++c)
+        {
+          const auto  &s  = cracks[c];
+          const double dx = s[2] - s[0], dy = s[3] - s[1];
+          const double length = std::hypot(dx, dy);
+          unsigned int n_on   = 0;
+          auto         on_segment =
+            [&](const double x, const double y, const double tol) {
+              const double t =
+                ((x - s[0]) * dx + (y - s[1]) * dy) / (length * length);
+              const double distance =
+                std::abs((x - s[0]) * dy - (y - s[1]) * dx) / length;
+              return distance <= tol && t >= -tol / length &&
+                     t <= 1. + tol / length;
+            };
+          for (unsigned int j = 0; j < model.n_joints; ++j)
+            {
+              const unsigned int a0  = model.joint_nodes[4 * j];
+              const unsigned int a1  = model.joint_nodes[4 * j + 1];
+              const double       tol = 1e-6 * model.joint_length[j];
+              if (length > 0. &&
+                  on_segment(model.x_ref[a0], model.y_ref[a0], tol) &&
+                  on_segment(model.x_ref[a1], model.y_ref[a1], tol))
+                {
+                  model.joint_status[j]     = JointStatus::mode_I;
+                  model.joint_break_time[j] = parameters.time.start_time;
+                  model.joint_damage[2 * j] = model.joint_damage[2 * j + 1] =
+                    1.;
+                  ++n_on;
+                }
+            }
+          if (n_on == 0)
+            throw InputError("Discrete mechanics/Initial cracks: no joint lies "
+                             "on segment " +
+                             std::to_string(c + 1) +
+                             "; the mesh needs edges along it (gmsh: Line In "
+                             "Surface).");
+        }
     }
 
     void

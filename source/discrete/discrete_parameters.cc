@@ -1,6 +1,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
 
+#include <cmath>
 #include <set>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/discrete/cohesive_law.h>
@@ -103,6 +104,14 @@ namespace tmfdem
                       Patterns::Bool(),
                       "Contact between free faces (boundary edges and "
                       "broken joints); false: no contact at all.");
+    prm.declare_entry("Initial cracks",
+                      "",
+                      Patterns::Anything(),
+                      "Pre-existing fractures: segments 'x0, y0, x1, y1' [m] "
+                      "separated by ';'. Every joint lying on a segment "
+                      "starts broken (it conducts no heat and carries no "
+                      "cohesion; its faces contact). The mesh must have "
+                      "edges along the segments (gmsh: Line In Surface).");
     prm.declare_entry("Threads",
                       "0",
                       Patterns::Integer(0, 1024),
@@ -162,6 +171,31 @@ namespace tmfdem
     coefficient_of_variation = prm.get_double("Coefficient of variation");
     random_seed              = prm.get_integer("Random seed");
     max_steps                = prm.get_integer("Maximum steps");
+    initial_cracks.clear();
+    for (const auto &text :
+         Utilities::split_string_list(prm.get("Initial cracks"), ';'))
+      {
+        const auto            values = Utilities::split_string_list(text, ',');
+        std::array<double, 4> segment;
+        bool                  valid = values.size() == 4;
+        for (unsigned int i = 0; valid && i < 4; ++i)
+          {
+            try
+              {
+                segment[i] = Utilities::string_to_double(values[i]);
+                valid      = std::isfinite(segment[i]);
+              }
+            catch (...)
+              {
+                valid = false;
+              }
+          }
+        if (!valid)
+          throw InputError("Discrete mechanics/Initial cracks: '" + text +
+                           "' is not a segment; allowed are 'x0, y0, x1, y1' "
+                           "[m], segments separated by ';'.");
+        initial_cracks.push_back(segment);
+      }
     prm.leave_subsection();
     require_positive(joint_normal_penalty_factor,
                      "Joint normal penalty factor");

@@ -1412,6 +1412,10 @@ namespace tmfdem
             .add("stored_heat", b.stored_heat)
             .add("imbalance", b.imbalance())
             .add("relative_imbalance", std::abs(b.imbalance()) / b.scale());
+          JsonObject rates;
+          for (const auto &[id, q] : heat->last_boundary_rate())
+            rates.add(std::to_string(id), q);
+          hb.add("boundary_heat_rate_last_step", rates);
           summary.add("coupling", parameters.discrete_heat.coupling)
             .add("thermal_steps", static_cast<long long>(n_thermal_steps))
             .add("last_relaxation_steps", last_relaxation_steps)

@@ -11,6 +11,7 @@
 
 #include <deal.II/base/types.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,9 @@ namespace tmfdem
     unsigned int random_seed              = 1;
     unsigned int max_steps                = 0; ///< 0: no limit
     bool         contact                  = true;
+    /** Pre-existing fractures: segments (x0, y0, x1, y1) [m]; the joints
+     *  lying on them start broken. */
+    std::vector<std::array<double, 4>> initial_cracks;
 
     static void
     declare_parameters(ParameterHandler &prm);
