@@ -186,7 +186,9 @@ namespace tmfdem
         throw InputError("Time stepping/End time must be later than Start "
                          "time for the discrete layer.");
       const double n_steps = (parameters.time.end_time - time) / time_step;
-      if (n_steps > 1e10)
+      const bool   quasi_static_run =
+        with_heat && parameters.discrete_heat.coupling == "quasi-static";
+      if (n_steps > 1e10 && !quasi_static_run)
         throw InputError(
           "Time stepping/End time: " + Utilities::to_string(n_steps) +
           " explicit steps of " + Utilities::to_string(time_step) +
@@ -1133,7 +1135,16 @@ namespace tmfdem
     {
       if (quasi_static)
         {
-          // relax the mechanics at the current temperatures (no clock) ...
+          // one thermal step of physical time (M -> T: current geometry,
+          // joints, contacts) and the new thermal stretch (T -> M) ...
+          const double dt = parameters.time.time_step;
+          heat->update_contact_pairs();
+          heat->step(time, dt);
+          time += dt;
+          thermal_time = time;
+          ++n_thermal_steps;
+          update_thermal_stretch();
+          // ... then the mechanics relaxes at these temperatures (no clock)
           unsigned int i = 0;
           while (i < steps_per_thermal_step)
             {
@@ -1150,14 +1161,6 @@ namespace tmfdem
                 }
             }
           last_relaxation_steps = i;
-          // ... then one thermal step of physical time
-          const double dt = parameters.time.time_step;
-          heat->update_contact_pairs();
-          heat->step(time, dt);
-          time += dt;
-          thermal_time = time;
-          ++n_thermal_steps;
-          update_thermal_stretch();
           return;
         }
       mechanical_step();
@@ -1291,6 +1294,96 @@ namespace tmfdem
             solution_series->write(time, discrete_solution_vtu(model));
           crack_series->write(time, crack_vtu(model));
         }
+      // monitor stresses: recovered at the mesh vertices by a linear
+      // least-squares fit to the triangles' constant stresses at their
+      // centroids over the vertex's patch (widened by the neighbours'
+      // patches where it has fewer than six triangles, as at boundaries),
+      // then interpolated linearly: O(h^2) instead of the O(h) error of the
+      // raw element values (vtu files hold the raw values)
+      unsigned int n_vertices = 0;
+      for (const auto v : model.node_vertex)
+        n_vertices = std::max(n_vertices, v + 1);
+      std::vector<unsigned int> patch_start(n_vertices + 1, 0), patch;
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        ++patch_start[model.node_vertex[n] + 1];
+      for (unsigned int v = 0; v < n_vertices; ++v)
+        patch_start[v + 1] += patch_start[v];
+      patch.resize(model.n_nodes);
+      {
+        std::vector<unsigned int> fill(patch_start.begin(),
+                                       patch_start.end() - 1);
+        for (unsigned int n = 0; n < model.n_nodes; ++n)
+          patch[fill[model.node_vertex[n]]++] = n / 3;
+      }
+      std::vector<double> vertex_stress(3 * n_vertices, 0.);
+      std::vector<double> vertex_x(n_vertices), vertex_y(n_vertices);
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        {
+          vertex_x[model.node_vertex[n]] = model.x_ref[n];
+          vertex_y[model.node_vertex[n]] = model.y_ref[n];
+        }
+      std::vector<unsigned int> elements;
+      for (unsigned int v = 0; v < n_vertices; ++v)
+        {
+          elements.assign(patch.begin() + patch_start[v],
+                          patch.begin() + patch_start[v + 1]);
+          if (elements.size() < 6)
+            {
+              const std::size_t own = elements.size();
+              for (std::size_t i = 0; i < own; ++i)
+                for (unsigned int k = 0; k < 3; ++k)
+                  {
+                    const unsigned int w =
+                      model.node_vertex[3 * elements[i] + k];
+                    elements.insert(elements.end(),
+                                    patch.begin() + patch_start[w],
+                                    patch.begin() + patch_start[w + 1]);
+                  }
+              std::sort(elements.begin(), elements.end());
+              elements.erase(std::unique(elements.begin(), elements.end()),
+                             elements.end());
+            }
+          // normal equations of sigma = c0 + c1 (x - xv) + c2 (y - yv)
+          double A[3][3]   = {{0., 0., 0.}, {0., 0., 0.}, {0., 0., 0.}};
+          double rhs[3][3] = {{0., 0., 0.}, {0., 0., 0.}, {0., 0., 0.}};
+          for (const unsigned int e : elements)
+            {
+              const double px[3] = {
+                1.,
+                (model.x_ref[3 * e] + model.x_ref[3 * e + 1] +
+                 model.x_ref[3 * e + 2]) /
+                    3. -
+                  vertex_x[v],
+                (model.y_ref[3 * e] + model.y_ref[3 * e + 1] +
+                 model.y_ref[3 * e + 2]) /
+                    3. -
+                  vertex_y[v]};
+              for (unsigned int i = 0; i < 3; ++i)
+                {
+                  for (unsigned int j = 0; j < 3; ++j)
+                    A[i][j] += px[i] * px[j];
+                  for (unsigned int c = 0; c < 3; ++c)
+                    rhs[c][i] += px[i] * model.stress[3 * e + c];
+                }
+            }
+          const double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+                             A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                             A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+          const double scale = A[1][1] + A[2][2];
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              if (elements.size() >= 3 &&
+                  std::abs(det) > 1e-12 * scale * scale * A[0][0])
+                // c0 by Cramer's rule: the value at the vertex
+                vertex_stress[3 * v + c] =
+                  (rhs[c][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+                   A[0][1] * (rhs[c][1] * A[2][2] - A[1][2] * rhs[c][2]) +
+                   A[0][2] * (rhs[c][1] * A[2][1] - A[1][1] * rhs[c][2])) /
+                  det;
+              else
+                vertex_stress[3 * v + c] = rhs[c][0] / A[0][0]; // mean
+            }
+        }
       auto rows = [&](const std::vector<ReferenceSample> &samples) {
         std::ostringstream out;
         out << std::setprecision(10);
@@ -1311,9 +1404,14 @@ namespace tmfdem
                   T += s.lambda[k] * heat->temperature()[3 * s.element + k];
                 out << T << ',';
               }
-            out << ux << ',' << uy << ',' << model.stress[3 * s.element] << ','
-                << model.stress[3 * s.element + 1] << ','
-                << model.stress[3 * s.element + 2] << '\n';
+            double stress[3] = {0., 0., 0.};
+            for (unsigned int k = 0; k < 3; ++k)
+              for (unsigned int c = 0; c < 3; ++c)
+                stress[c] +=
+                  s.lambda[k] *
+                  vertex_stress[3 * model.node_vertex[3 * s.element + k] + c];
+            out << ux << ',' << uy << ',' << stress[0] << ',' << stress[1]
+                << ',' << stress[2] << '\n';
           }
         return out.str();
       };
