@@ -317,8 +317,6 @@ namespace tmfdem
                 "joint penalty factors (Discrete mechanics).");
             }
         }
-      contact_penalty =
-        0.; // set per pair from the stiffer material in compute_contact
       double E_max = 0.;
       for (unsigned int e = 0; e < model.n_elements; ++e)
         E_max =
@@ -898,7 +896,6 @@ namespace tmfdem
       for (const char b : broke_in_chunk)
         if (b)
           {
-            joints_broke          = true;
             contact_search_needed = true;
           }
     }
@@ -956,18 +953,29 @@ namespace tmfdem
                                F.a11 * inv_s};
               const Stress2 sigma =
                 elastic_stress(Fe, solid[m.material[e]].lame);
-              // viscous stress 2 eta sym(dF/dt F^-1)
-              const Matrix2 Fdot = multiply(
-                element_basis(VX[0], VY[0], VX[1], VY[1], VX[2], VY[2]),
-                Fi_inv);
-              const Matrix2 L   = multiply(Fdot, inverse(F));
-              const double  eta = viscosity[e];
-              const Stress2 sigma_v{2. * eta * L.a00,
-                                    2. * eta * L.a11,
-                                    eta * (L.a01 + L.a10)};
-              double        f_el[6], f_v[6];
+              // viscous stress 2 eta sym(dF/dt F^-1), only where eta > 0
+              const double eta = viscosity[e];
+              Stress2      sigma_v;
+              double       f_el[6], f_v[6] = {0., 0., 0., 0., 0., 0.};
               nodal_forces(sigma, X[0], Y[0], X[1], Y[1], X[2], Y[2], f_el);
-              nodal_forces(sigma_v, X[0], Y[0], X[1], Y[1], X[2], Y[2], f_v);
+              if (eta > 0.)
+                {
+                  const Matrix2 Fdot = multiply(
+                    element_basis(VX[0], VY[0], VX[1], VY[1], VX[2], VY[2]),
+                    Fi_inv);
+                  const Matrix2 L = multiply(Fdot, inverse(F));
+                  sigma_v         = {2. * eta * L.a00,
+                                     2. * eta * L.a11,
+                                     eta * (L.a01 + L.a10)};
+                  nodal_forces(sigma_v,
+                               X[0],
+                               Y[0],
+                               X[1],
+                               Y[1],
+                               X[2],
+                               Y[2],
+                               f_v);
+                }
               m.stress[3 * e]     = sigma.xx + sigma_v.xx;
               m.stress[3 * e + 1] = sigma.yy + sigma_v.yy;
               m.stress[3 * e + 2] = sigma.xy + sigma_v.xy;

@@ -255,7 +255,6 @@ namespace tmfdem
       std::vector<double>                chunk_sums; ///< n_sums + 2 max_bodies
       EnergyBalance                      balance;
       std::vector<std::array<double, 2>> body_reaction; ///< [N/m]
-      bool                               joints_broke = false;
       std::vector<char>                  joint_chunk_broke;
 
       // output
