@@ -375,6 +375,15 @@ namespace tmfdem
                       Patterns::Anything(),
                       "Initial temperature, function of x, y [m] (t = start "
                       "time) [C].");
+    prm.declare_entry(
+      "Stress free",
+      "false",
+      Patterns::Bool(),
+      "Discrete thermo-mechanics: true: the body is stress free at its "
+      "initial temperature field (heated slowly to it before t = 0, as a "
+      "specimen before a quench), in place of the materials' Reference "
+      "temperature; false: the thermal strain is measured from the "
+      "Reference temperature.");
     prm.leave_subsection();
   }
 
@@ -383,6 +392,7 @@ namespace tmfdem
   {
     prm.enter_subsection("Initial conditions");
     temperature = prm.get("Temperature");
+    stress_free = prm.get_bool("Stress free");
     prm.leave_subsection();
   }
 

@@ -1087,6 +1087,12 @@ namespace tmfdem
   void
   ThermoelasticSolver::check_input()
   {
+    if (parameters.initial.stress_free)
+      throw InputError(
+        "Initial conditions/Stress free = true: the continuum thermoelastic "
+        "model measures the thermal strain from each material's Reference "
+        "temperature; allowed is false (set the Reference temperature "
+        "instead).");
     if (parameters.mechanics.temperature_source ==
         MechanicsParameters::TemperatureSource::heat_solver)
       {

@@ -193,6 +193,16 @@ namespace tmfdem
     }
 
     unsigned int
+    DiscreteModel::n_damaged_joints() const
+    {
+      unsigned int n = 0;
+      for (unsigned int j = 0; j < n_joints; ++j)
+        n += joint_status[j] != JointStatus::intact ||
+             joint_damage[2 * j] > 0. || joint_damage[2 * j + 1] > 0.;
+      return n;
+    }
+
+    unsigned int
     DiscreteModel::n_cracks() const
     {
       std::vector<unsigned int> parent(n_joints);

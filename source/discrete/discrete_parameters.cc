@@ -266,6 +266,19 @@ namespace tmfdem
                       "Quasi-static coupling: relaxation stops when the "
                       "kinetic energy falls below this fraction of the "
                       "strain energy [-] (checked every 50 steps).");
+    prm.declare_entry(
+      "Thermal step growth factor",
+      "1",
+      Patterns::Double(1., 10.),
+      "Quasi-static coupling: thermal step n is Time stepping/Time step x "
+      "factor^n, capped at Maximum thermal step; > 1 for a quench or a "
+      "sudden heating, whose early steps must be short and whose late "
+      "steps may be long [-].");
+    prm.declare_entry("Maximum thermal step",
+                      "0",
+                      Patterns::Double(0.),
+                      "Quasi-static coupling: cap of the growing thermal "
+                      "step; 0: no cap [s].");
     prm.leave_subsection();
   }
 
@@ -282,7 +295,15 @@ namespace tmfdem
       prm.get_integer("Mechanical steps per thermal step");
     coupling             = prm.get("Coupling");
     relaxation_tolerance = prm.get_double("Relaxation tolerance");
+    thermal_step_growth  = prm.get_double("Thermal step growth factor");
+    maximum_thermal_step = prm.get_double("Maximum thermal step");
     prm.leave_subsection();
+    if (thermal_step_growth > 1. && coupling != "quasi-static")
+      throw InputError(
+        "Discrete heat/Thermal step growth factor = " +
+        Utilities::to_string(thermal_step_growth) +
+        ": a growing thermal step needs Coupling = quasi-static (the dynamic "
+        "coupling ties the thermal step to the mechanical one); allowed is 1.");
     if (!(joint_conductance_factor > 0.))
       throw InputError("Discrete heat/Joint conductance factor = " +
                        Utilities::to_string(joint_conductance_factor) +

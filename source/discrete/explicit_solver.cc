@@ -180,6 +180,14 @@ namespace tmfdem
                 heat->stable_time_step() / time_step)) +
               ", or 0 (automatic), or implicit heat.");
           thermal_time = time;
+          // the stress-free temperature of each element
+          const Vector<double> &T = heat->temperature();
+          reference_temperature.resize(model.n_elements);
+          for (unsigned int e = 0; e < model.n_elements; ++e)
+            reference_temperature[e] =
+              parameters.initial.stress_free ?
+                (T[3 * e] + T[3 * e + 1] + T[3 * e + 2]) / 3. :
+                parameters.materials[model.material[e]].reference_temperature;
           update_thermal_stretch();
         }
       if (!(parameters.time.end_time > time))
@@ -537,7 +545,7 @@ namespace tmfdem
         {
           const MaterialProperties &m = parameters.materials[model.material[e]];
           const double dT = (T[3 * e] + T[3 * e + 1] + T[3 * e + 2]) / 3. -
-                            m.reference_temperature;
+                            reference_temperature[e];
           const double s_new = thermal_stretch(m.thermal_expansion,
                                                m.poisson_ratio,
                                                dT,
@@ -1145,7 +1153,7 @@ namespace tmfdem
         {
           // one thermal step of physical time (M -> T: current geometry,
           // joints, contacts) and the new thermal stretch (T -> M) ...
-          const double dt = parameters.time.time_step;
+          const double dt = quasi_static_thermal_step();
           heat->update_contact_pairs();
           heat->step(time, dt);
           time += dt;
@@ -1183,6 +1191,21 @@ namespace tmfdem
           // T -> M
           update_thermal_stretch();
         }
+    }
+
+    double
+    ExplicitSolver::quasi_static_thermal_step() const
+    {
+      const DiscreteHeatParameters &dh = parameters.discrete_heat;
+      double dt = parameters.time.time_step *
+                  std::pow(dh.thermal_step_growth,
+                           static_cast<double>(n_thermal_steps));
+      if (dh.maximum_thermal_step > 0.)
+        dt = std::min(dt, dh.maximum_thermal_step);
+      dt = std::max(dt, parameters.time.time_step);
+      // land on the end time instead of stepping past it
+      const double left = parameters.time.end_time - time;
+      return left < 1.5 * dt ? left : dt;
     }
 
     void
@@ -1277,7 +1300,8 @@ namespace tmfdem
           << balance.joint_work << ',' << balance.contact_work << ','
           << balance.friction_dissipation << ',' << balance.viscous_dissipation
           << ',' << balance.external_work << ',' << balance.balance_error()
-          << ',' << model.n_broken_joints();
+          << ',' << model.n_broken_joints() << ','
+          << model.n_damaged_joints();
       for (const auto &r : body_reaction)
         row << ',' << r[0] << ',' << r[1];
       for (const auto &r : condition_reaction)
@@ -1545,7 +1569,8 @@ namespace tmfdem
       crack_series    = std::make_unique<VtuSeries>(folder, "cracks");
       std::string header =
         "time,step,kinetic,strain,joint_work,contact_work,friction_dissipation,"
-        "viscous_dissipation,external_work,balance_error,broken_joints";
+        "viscous_dissipation,external_work,balance_error,broken_joints,"
+        "damaged_joints";
       for (unsigned int b = 0; b < body_motion.size(); ++b)
         header += ",body" + std::to_string(b + 1) + "_fx,body" +
                   std::to_string(b + 1) + "_fy";
@@ -1613,14 +1638,19 @@ namespace tmfdem
           if (time >= next_history - 0.5 * advance)
             {
               write_history_row();
-              next_history += history_interval;
+              while (next_history <= time + 0.5 * advance)
+                next_history += history_interval;
             }
-          while (next_output < output_times.size() &&
-                 time >= output_times[next_output] - 0.5 * advance)
+          // one file per step at most: a long (growing) thermal step may
+          // pass several output times
+          if (next_output < output_times.size() &&
+              time >= output_times[next_output] - 0.5 * advance)
             {
               energy();
               write_output();
-              ++next_output;
+              while (next_output < output_times.size() &&
+                     time >= output_times[next_output] - 0.5 * advance)
+                ++next_output;
             }
           if ((step_number & 255) == 0)
             {

@@ -99,3 +99,56 @@ def restrained_sheet_stress(E, nu, alpha, dT, idealisation, finite):
     if not finite:
         return -2 * (lam + mu) * s
     return mu * (1 - (1 + s)**2) + 0.5 * lam * ((1 + s)**-2 - (1 + s)**2)
+
+
+def quenched_disc_roots(biot, n_terms=60):
+    """The first n_terms roots lambda_n of lambda J1(lambda) = Bi J0(lambda),
+    one in each interval (j_{1,n-1}, j_{0,n}) (j_{1,0} = 0)."""
+    from scipy.optimize import brentq
+    from scipy.special import j0, j1, jn_zeros
+    z0 = jn_zeros(0, n_terms)
+    z1 = np.concatenate(([0.0], jn_zeros(1, n_terms - 1)))
+    f = lambda x: x * j1(x) - biot * j0(x)
+    return np.array([brentq(f, lo + 1e-12, hi - 1e-12) for lo, hi in zip(z1, z0)])
+
+
+def quenched_disc(r, t, radius, conductivity, diffusivity, h, t_initial, t_ambient,
+                  n_terms=60):
+    """Temperature [C] of a long cylinder / thin disc of the given radius [m],
+    initially at t_initial and cooled from t = 0 by convection h [W/(m^2 K)]
+    into t_ambient (Carslaw & Jaeger 7.6): theta = sum C_n exp(-lambda_n^2 Fo)
+    J0(lambda_n r/R), C_n = 2 J1(lambda_n) / (lambda_n (J0^2 + J1^2)).
+    Returns (T(r, t), area-mean T(t)) for scalar t, array r."""
+    from scipy.special import j0, j1
+    lam = quenched_disc_roots(h * radius / conductivity, n_terms)
+    c = 2 * j1(lam) / (lam * (j0(lam) ** 2 + j1(lam) ** 2))
+    decay = c * np.exp(-lam**2 * diffusivity * t / radius**2)
+    r = np.atleast_1d(np.asarray(r, dtype=float))
+    theta = (decay[None, :] * j0(np.outer(r / radius, lam))).sum(axis=1)
+    theta_mean = (decay * 2 * j1(lam) / lam).sum()
+    dT = t_initial - t_ambient
+    return t_ambient + dT * theta, t_ambient + dT * theta_mean
+
+
+def quenched_disc_rim_hoop_stress(t, E, alpha, **kw):
+    """Hoop stress at the rim of a free thin disc (plane stress), tension
+    positive [Pa]: sigma_theta(R) = E alpha (T_mean - T(R)) (Timoshenko &
+    Goodier Sec. 150)."""
+    T_rim, T_mean = quenched_disc([kw["radius"]], t, **kw)
+    return E * alpha * (T_mean - T_rim[0])
+
+
+def quenched_disc_first_crack_time(f_t, E, alpha, t_max=10.0, **kw):
+    """The first time [s] at which the rim hoop stress reaches f_t, or None
+    if its maximum stays below."""
+    from scipy.optimize import brentq
+    times = np.geomspace(1e-7, t_max, 400)
+    s = np.array([quenched_disc_rim_hoop_stress(t, E, alpha, **kw) for t in times])
+    above = np.nonzero(s >= f_t)[0]
+    if len(above) == 0:
+        return None
+    i = above[0]
+    if i == 0:
+        return times[0]
+    g = lambda t: quenched_disc_rim_hoop_stress(t, E, alpha, **kw) - f_t
+    return brentq(g, times[i - 1], times[i])

@@ -154,6 +154,9 @@ namespace tmfdem
   struct InitialConditionParameters
   {
     std::string temperature = "0"; ///< T(x,y,0) [C]
+    /** The initial temperature field is the stress-free state (discrete
+     * layer), in place of the materials' Reference temperature. */
+    bool stress_free = false;
 
     static void
     declare_parameters(ParameterHandler &prm);

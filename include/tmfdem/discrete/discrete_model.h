@@ -130,6 +130,11 @@ namespace tmfdem
       unsigned int
       n_broken_joints() const;
 
+      /** Number of joints whose traction has reached the strength at some
+       * time (damage > 0 at a Gauss point), broken ones included. */
+      unsigned int
+      n_damaged_joints() const;
+
       /** Number of cracks: connected sets of broken joints (joints that
        *  share a vertex of the original mesh are connected). */
       unsigned int

@@ -184,6 +184,13 @@ namespace tmfdem
       unsigned int                  last_relaxation_steps  = 0;
       double                        last_kinetic_to_strain = 0.;
       unsigned long                 n_thermal_steps        = 0;
+      /** Stress-free temperature per element [C]. */
+      std::vector<double> reference_temperature;
+      /** Quasi-static coupling: the next thermal step [s], growing from
+       * Time stepping/Time step by Discrete heat/Thermal step growth factor
+       * and landing on the end time. */
+      double
+      quasi_static_thermal_step() const;
       /** One explicit mechanical step without advancing the clock. */
       void
              mechanical_step();
