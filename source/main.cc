@@ -17,6 +17,7 @@ int
 main(int argc, char *argv[])
 {
   using namespace tmfdem;
+  tmfdem::install_signal_handlers(); // SIGINT/SIGTERM during start-up too
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const bool                               root =
     dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;

@@ -141,9 +141,11 @@ namespace tmfdem
       const double      seconds_taken =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();
-      std::cerr << "[tmfdem] checkpoint at step " << step_number
-                << ", t = " << seconds(time) << ": " << bytes << " bytes in "
-                << std::setprecision(3) << seconds_taken << " s\n";
+      std::ostringstream line;
+      line << "[tmfdem] checkpoint at step " << step_number
+           << ", t = " << seconds(time) << ": " << bytes << " bytes in "
+           << std::setprecision(3) << seconds_taken << " s\n";
+      std::cerr << line.str();
     }
 
     void
