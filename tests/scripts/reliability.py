@@ -9,6 +9,8 @@ usage: reliability.py TMFDEM OUT_DIR CHECK [CASE]
   sigterm CASE       SIGTERM a run: exit status 3, a checkpoint, summary.json
                      finished = false; --resume gives the uninterrupted result
   threads CASE       1 and 2 threads give identical outputs
+  sigint_continuum   SIGINT a continuum run: exit status 3, clear message,
+                     outputs and summary.json written
   refuse             --resume refused with a clear message: no checkpoint,
                      changed input, truncated and foreign checkpoint files
 CASE: mechanics (two_blocks_collision), thermo (cut_plate, quasi-static with
@@ -18,6 +20,7 @@ shortened), heat (plate_transient, discrete heat).
 import glob
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -37,6 +40,7 @@ CASES = {
     "thermo_multirate": ("sheet_restrained_expansion.prm",
                          ["Time stepping/End time=0.002"]),
     "heat": ("plate_transient.prm", []),
+    "continuum": ("plate_transient-continuum.prm", []),
 }
 prm, case_settings = CASES[case]
 prm = os.path.join(prm_dir, prm)
@@ -170,6 +174,32 @@ elif which == "threads":
         run(folder, f"Discrete mechanics/Threads={threads}")
         folders.append(folder)
     ok &= compare(*folders)
+elif which == "sigint_continuum":
+    folder = fresh(os.path.join(out, "interrupted"))
+    cmd = command(folder)
+    print("$", " ".join(cmd), "(SIGINT in the time loop)", flush=True)
+    process = subprocess.Popen(cmd, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    while process.poll() is None and not os.path.exists(
+            os.path.join(folder, "solution.pvd")):
+        time.sleep(0.005)
+    time.sleep(0.2)
+    sent = process.poll() is None
+    if sent:
+        process.send_signal(signal.SIGINT)
+    stdout, stderr = process.communicate()
+    print(stderr[-1500:])
+    ok &= check(sent, "SIGINT sent while running")
+    ok &= check(process.returncode == 3,
+                f"exit status {process.returncode} (3: stopped by a signal)")
+    ok &= check("stopped by SIGINT" in stderr and "cannot be resumed" in stderr,
+                "clear message: stopped by SIGINT ... cannot be resumed")
+    ok &= check(os.path.exists(os.path.join(folder, "summary.json")),
+                "summary.json written")
+    pvd = open(os.path.join(folder, "solution.pvd")).read()
+    files = re.findall(r'file="([^"]+)"', pvd)
+    ok &= check(files and all(os.path.exists(os.path.join(folder, f)) for f in files),
+                f"solution.pvd complete: {len(files)} outputs, all present")
 elif which == "refuse":
     folder = fresh(os.path.join(out, "refuse"))
     r = run(folder, resume=True, expect=1)
