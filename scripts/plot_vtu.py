@@ -30,8 +30,8 @@ from mpl_toolkits.axes_grid1 import make_axes_locatable  # noqa: E402
 VTK_TYPES = {"Int8": "i1", "UInt8": "u1", "Int16": "i2", "UInt16": "u2",
              "Int32": "i4", "UInt32": "u4", "Int64": "i8", "UInt64": "u8",
              "Float32": "f4", "Float64": "f8"}
-# VTK cell type -> number of corner vertices used for drawing
-CORNERS = {5: 3, 9: 4, 69: 3, 70: 4}
+# VTK cell type -> number of corner vertices used for drawing (3: line)
+CORNERS = {3: 2, 5: 3, 9: 4, 69: 3, 70: 4}
 
 
 def _split_b64(text, n_header_bytes):

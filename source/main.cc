@@ -1,7 +1,8 @@
 /**
  * The tmfdem program: parse the command line, read the prm file, run the
  * selected model. Exit status 0 on success, 1 on bad input, 2 on a failure
- * during the run.
+ * during the run (guards included), 3 when stopped by SIGINT/SIGTERM after
+ * writing a checkpoint.
  */
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
@@ -10,11 +11,13 @@
 #include <tmfdem/base/command_line.h>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/simulation.h>
+#include <tmfdem/io/checkpoint.h>
 
 int
 main(int argc, char *argv[])
 {
   using namespace tmfdem;
+  tmfdem::install_signal_handlers(); // SIGINT/SIGTERM during start-up too
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const bool                               root =
     dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
@@ -35,8 +38,10 @@ main(int argc, char *argv[])
           default:
             break;
         }
-      const Parameters parameters =
+      Parameters parameters =
         read_parameters(command_line.prm_file, command_line.overrides);
+      parameters.resume = command_line.resume;
+      install_signal_handlers();
       auto simulation = create_simulation(parameters, MPI_COMM_WORLD);
       if (command_line.action == CommandLine::Action::validate)
         {
@@ -46,6 +51,12 @@ main(int argc, char *argv[])
           return 0;
         }
       simulation->run();
+    }
+  catch (const StopRequested &stop)
+    {
+      if (root)
+        std::cerr << "tmfdem: " << stop.what() << std::endl;
+      return 3;
     }
   catch (const InputError &error)
     {

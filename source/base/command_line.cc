@@ -2,7 +2,9 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
 
+#include <cstdint>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 #include <tmfdem/base/command_line.h>
 #include <tmfdem/base/exceptions.h>
@@ -72,6 +74,44 @@ namespace tmfdem
       if (!error.empty())
         throw InputError("--set '" + assignment + "': " + error);
     }
+
+    /**
+     * FNV-1a 64 digest (hex) of the parameters that decide the results: all
+     * entries, with those that do not (Checkpoint, Output/Directory,
+     * Output/Progress interval, Discrete mechanics/Threads: results do not
+     * depend on the thread count) reset to fixed values first.
+     */
+    std::string
+    input_digest(ParameterHandler &prm)
+    {
+      const std::vector<std::pair<std::vector<std::string>, std::string>>
+        neutral = {{{"Checkpoint", "Interval (steps)"}, "0"},
+                   {{"Checkpoint", "Interval (wall minutes)"}, "0"},
+                   {{"Checkpoint", "Directory"}, ""},
+                   {{"Checkpoint", "Keep"}, "2"},
+                   {{"Output", "Directory"}, ""},
+                   {{"Output", "Progress interval"}, "2"},
+                   {{"Discrete mechanics", "Threads"}, "1"}};
+      for (const auto &[path, value] : neutral)
+        {
+          for (unsigned int i = 0; i + 1 < path.size(); ++i)
+            prm.enter_subsection(path[i]);
+          prm.set(path.back(), value);
+          for (unsigned int i = 0; i + 1 < path.size(); ++i)
+            prm.leave_subsection();
+        }
+      std::ostringstream text;
+      prm.print_parameters(text, ParameterHandler::ShortPRM);
+      std::uint64_t hash = 1469598103934665603ull;
+      for (const unsigned char c : text.str())
+        {
+          hash ^= c;
+          hash *= 1099511628211ull;
+        }
+      std::ostringstream hex;
+      hex << std::hex << std::setw(16) << std::setfill('0') << hash;
+      return hex.str();
+    }
   } // namespace
 
   std::string
@@ -83,6 +123,8 @@ namespace tmfdem
            "usage:\n"
            "  tmfdem case.prm [--set \"Subsection/Entry=value\" ...]   run a "
            "case\n"
+           "  tmfdem case.prm --resume [--set ...]     continue from the "
+           "newest checkpoint (Checkpoint subsection)\n"
            "  tmfdem --validate case.prm [--set ...]   check the input and the "
            "mesh, solve nothing\n"
            "  tmfdem --print-parameters                print the complete, "
@@ -91,7 +133,11 @@ namespace tmfdem
            "Outputs go to Output/Directory (default output/<prm stem>): "
            "solution.pvd, probes.csv, lines.csv, summary.json.\n"
            "Run in parallel with mpirun -np N tmfdem case.prm.\n"
-           "Exit status: 0 success, 1 bad input, 2 failure during the run.\n\n"
+           "Ctrl-C (SIGINT) or SIGTERM: the run finishes its step, writes its "
+           "outputs and a checkpoint, and exits with status 3.\n"
+           "Exit status: 0 success, 1 bad input, 2 failure during the run "
+           "(also a guard: non-finite values, inverted elements, unstable "
+           "step, runaway energy), 3 stopped by a signal.\n\n"
            "Models (prm entry Model):\n" +
            registered_simulation_descriptions();
   }
@@ -107,6 +153,8 @@ namespace tmfdem
           command_line.action = CommandLine::Action::help;
         else if (argument == "--print-parameters")
           command_line.action = CommandLine::Action::print_parameters;
+        else if (argument == "--resume")
+          command_line.resume = true;
         else if (argument == "--validate")
           command_line.action = CommandLine::Action::validate;
         else if (argument == "--set")
@@ -196,6 +244,7 @@ namespace tmfdem
         throw InputError("in parameter file '" + prm_file +
                          "': " + exception_text(exception));
       }
+    parameters.input_digest = input_digest(prm);
     return parameters;
   }
 

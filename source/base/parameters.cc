@@ -903,6 +903,78 @@ namespace tmfdem
     prm.leave_subsection();
   }
 
+  // ------------------------------------------------------------ Checkpoint
+  void
+  CheckpointParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Checkpoint");
+    prm.declare_entry("Interval (steps)",
+                      "0",
+                      Patterns::Integer(0),
+                      "Write a checkpoint every this many time steps (discrete "
+                      "models; tmfdem case.prm --resume continues from the "
+                      "newest); 0: not by step count [steps].");
+    prm.declare_entry("Interval (wall minutes)",
+                      "0",
+                      Patterns::Double(0.),
+                      "Write a checkpoint whenever this much wall time has "
+                      "passed since the last one; 0: not by wall time [min].");
+    prm.declare_entry("Directory",
+                      "",
+                      Patterns::Anything(),
+                      "Folder of the checkpoint files; empty: "
+                      "<Output/Directory>/checkpoints.");
+    prm.declare_entry("Keep",
+                      "2",
+                      Patterns::Integer(1, 1000),
+                      "Number of newest checkpoints kept; older ones are "
+                      "deleted [-].");
+    prm.leave_subsection();
+  }
+
+  void
+  CheckpointParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Checkpoint");
+    interval_steps   = prm.get_integer("Interval (steps)");
+    interval_minutes = prm.get_double("Interval (wall minutes)");
+    directory        = prm.get("Directory");
+    keep             = prm.get_integer("Keep");
+    prm.leave_subsection();
+  }
+
+  // ---------------------------------------------------------------- Guards
+  void
+  GuardParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Guards");
+    prm.declare_entry(
+      "Kinetic energy factor",
+      "100",
+      Patterns::Double(0.),
+      "Stop the run (discrete models) when the kinetic energy exceeds this "
+      "times the energy put in (initial kinetic and strain energy, external "
+      "and thermal work): a runaway; checked with every history row; 0: off "
+      "[-].");
+    prm.declare_entry("Stability check",
+                      "true",
+                      Patterns::Bool(),
+                      "Stop the run (discrete models) when the time step "
+                      "exceeds the stable step of the current, deformed "
+                      "geometry; checked with every history row. Non-finite "
+                      "values and inverted elements are always checked.");
+    prm.leave_subsection();
+  }
+
+  void
+  GuardParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Guards");
+    kinetic_energy_factor = prm.get_double("Kinetic energy factor");
+    stability_check       = prm.get_bool("Stability check");
+    prm.leave_subsection();
+  }
+
   // ------------------------------------------------------------ Parameters
   void
   Parameters::declare_parameters(ParameterHandler &prm)
@@ -926,6 +998,8 @@ namespace tmfdem
     DiscreteMechanicsParameters::declare_parameters(prm);
     DiscreteBodyParameters::declare_parameters(prm);
     DiscreteHeatParameters::declare_parameters(prm);
+    CheckpointParameters::declare_parameters(prm);
+    GuardParameters::declare_parameters(prm);
   }
 
   void
@@ -947,5 +1021,7 @@ namespace tmfdem
     discrete_mechanics.parse_parameters(prm);
     discrete_bodies.parse_parameters(prm);
     discrete_heat.parse_parameters(prm);
+    checkpoint.parse_parameters(prm);
+    guards.parse_parameters(prm);
   }
 } // namespace tmfdem

@@ -28,6 +28,7 @@
 #include <tmfdem/base/function_expression.h>
 #include <tmfdem/continuum/adaptivity.h>
 #include <tmfdem/continuum/heat_solver.h>
+#include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/monitors.h>
 #include <tmfdem/io/output_files.h>
 #include <tmfdem/mesh/mesh_checks.h>
@@ -762,6 +763,11 @@ namespace tmfdem
   void
   HeatSolver::run()
   {
+    if (parameters.resume)
+      throw InputError(
+        "--resume: the continuum models do not write checkpoints; run the "
+        "case again without --resume (SIGINT/SIGTERM stop them cleanly with "
+        "the outputs so far). Checkpoints are for the discrete models.");
     check_input();
     solution_series =
       std::make_unique<SolutionSeries>(parameters.output.directory,
@@ -897,6 +903,20 @@ namespace tmfdem
           if (std::abs(time - output_time) < time_tolerance)
             write_output(output_time);
           progress.update(step, time);
+          if (stop_requested_on_any_rank(communicator))
+            {
+              // finish cleanly: the state now as an extra output, the
+              // summary so far (no checkpoint: continuum runs restart)
+              if (std::abs(time - output_time) >= time_tolerance)
+                write_output(time);
+              write_summary(step, time, progress.elapsed(), balance, {});
+              throw StopRequested("stopped by " + stop_signal_name() +
+                                  " at t = " + Utilities::to_string(time) +
+                                  " s after step " + std::to_string(step) +
+                                  "; outputs so far in " +
+                                  parameters.output.directory +
+                                  " (continuum runs cannot be resumed).");
+            }
         }
     write_summary(step, time, progress.elapsed(), balance, {});
     if (Utilities::MPI::this_mpi_process(communicator) == 0)

@@ -32,6 +32,7 @@
 #include <tmfdem/continuum/adaptivity.h>
 #include <tmfdem/continuum/heat_solver.h>
 #include <tmfdem/continuum/thermoelastic_solver.h>
+#include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/monitors.h>
 #include <tmfdem/io/output_files.h>
 #include <tmfdem/mesh/mesh_generator.h>
@@ -1113,6 +1114,11 @@ namespace tmfdem
   void
   ThermoelasticSolver::run()
   {
+    if (parameters.resume)
+      throw InputError(
+        "--resume: the continuum models do not write checkpoints; run the "
+        "case again without --resume (SIGINT/SIGTERM stop them cleanly with "
+        "the outputs so far). Checkpoints are for the discrete models.");
     if (parameters.mechanics.temperature_source ==
         MechanicsParameters::TemperatureSource::heat_solver)
       run_with_heat_solver();
@@ -1195,6 +1201,17 @@ namespace tmfdem
               time < end - time_tolerance)
             adapt_mesh();
           progress.update(step, time);
+          if (stop_requested_on_any_rank(communicator))
+            {
+              if (std::abs(time - output_time) >= time_tolerance)
+                write_output(time);
+              throw StopRequested("stopped by " + stop_signal_name() +
+                                  " at t = " + Utilities::to_string(time) +
+                                  " s after step " + std::to_string(step) +
+                                  "; outputs so far in " +
+                                  parameters.output.directory +
+                                  " (continuum runs cannot be resumed).");
+            }
         }
   }
 

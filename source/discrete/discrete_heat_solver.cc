@@ -1,8 +1,10 @@
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/discrete/discrete_heat_solver.h>
 #include <tmfdem/discrete/discrete_output.h>
+#include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 
 namespace tmfdem
@@ -71,10 +73,15 @@ namespace tmfdem
       VtuSeries          series(folder, "solution");
       const std::string  header = "time,name,x,y,T";
       CsvSeries          probes_csv, lines_csv;
+      const auto         open_csv = [&](const std::string &file) {
+        return parameters.resume ?
+                         CsvSeries::reopen(file, file_size(file), communicator) :
+                         CsvSeries(file, header, communicator);
+      };
       if (!probe_samples.empty())
-        probes_csv = CsvSeries(folder + "/probes.csv", header, communicator);
+        probes_csv = open_csv(folder + "/probes.csv");
       if (!line_samples.empty())
-        lines_csv = CsvSeries(folder + "/lines.csv", header, communicator);
+        lines_csv = open_csv(folder + "/lines.csv");
 
       double       time = parameters.time.start_time;
       const double end  = parameters.time.end_time;
@@ -121,7 +128,8 @@ namespace tmfdem
         if (!line_samples.empty())
           lines_csv.append(rows(line_samples));
       };
-      write_output();
+      if (!parameters.resume)
+        write_output();
 
       ProgressReporter progress(parameters.output.progress_interval,
                                 time,
@@ -130,6 +138,79 @@ namespace tmfdem
       unsigned long    steps         = 0;
       unsigned long    cg_iterations = 0;
       unsigned int     next_output   = 0;
+
+      // checkpoints (doc/reliability.md): time, counters, output series and
+      // the thermal state
+      const std::string kind = "discrete heat";
+      const auto        save = [&]() {
+        CheckpointWriter out(kind, parameters.input_digest);
+        out.put<std::uint32_t>(model.n_nodes);
+        out.put(time);
+        out.put<std::uint64_t>(steps);
+        out.put<std::uint64_t>(cg_iterations);
+        out.put(next_output);
+        out.put(output_times);
+        out.put<std::uint64_t>(series.get_records().size());
+        for (const auto &[t, name] : series.get_records())
+          {
+            out.put(t);
+            out.put(name);
+          }
+        out.put<std::uint64_t>(probes_csv.size());
+        out.put<std::uint64_t>(lines_csv.size());
+        heat->save(out);
+        const std::size_t bytes = write_checkpoint(parameters, steps, out);
+        std::cerr << "[tmfdem] checkpoint at step " << steps << ", t = " << time
+                  << " s: " << bytes << " bytes\n";
+      };
+      if (parameters.resume)
+        {
+          const std::string file = newest_checkpoint(parameters);
+          CheckpointReader  in(file, kind, parameters.input_digest);
+          std::uint32_t     n_nodes = 0;
+          in.get(n_nodes);
+          if (n_nodes != model.n_nodes)
+            throw InputError("the checkpoint '" + file +
+                             "' is of another mesh.");
+          std::uint64_t count = 0;
+          in.get(time);
+          in.get(count);
+          steps = count;
+          in.get(count);
+          cg_iterations = count;
+          in.get(next_output);
+          in.get(output_times);
+          if (next_output > output_times.size())
+            throw InputError("the checkpoint '" + file +
+                             "' is corrupt (output counter).");
+          in.get(count);
+          if (count > 100000000)
+            throw InputError("the checkpoint '" + file +
+                             "' is corrupt (record count).");
+          std::vector<std::pair<double, std::string>> records(count);
+          for (auto &[t, name] : records)
+            {
+              in.get(t);
+              in.get(name);
+            }
+          std::uint64_t csv_bytes[2];
+          in.get(csv_bytes[0]);
+          in.get(csv_bytes[1]);
+          heat->load(in);
+          in.finish();
+          if (parameters.output.write_vtu)
+            series.restore(records);
+          if (!probe_samples.empty())
+            truncate_file(folder + "/probes.csv", csv_bytes[0]);
+          if (!line_samples.empty())
+            truncate_file(folder + "/lines.csv", csv_bytes[1]);
+          std::cerr << "[tmfdem] resumed from " << file << ": step " << steps
+                    << ", t = " << time << " s\n";
+        }
+      CheckpointSchedule checkpoints(parameters.checkpoint);
+      checkpoints.written(steps);
+      std::string stop_reason;
+
       while (time < end - 1e-9 * time_step)
         {
           // land exactly on output times
@@ -148,6 +229,32 @@ namespace tmfdem
               ++next_output;
             }
           progress.update(steps, time);
+          // guard: temperatures finite (one pass over the nodes)
+          for (unsigned int n = 0; n < model.n_nodes; ++n)
+            if (!std::isfinite(heat->temperature()[n]))
+              throw RunError(
+                "guard: non-finite temperature at node " + std::to_string(n) +
+                " (element " + std::to_string(n / 3) +
+                ") at t = " + Utilities::to_string(time) + " s (step " +
+                std::to_string(steps) +
+                "). Likely causes: an explicit time step above the stable "
+                "one, a contact conductance or Robin coefficient too high, or "
+                "a boundary or source function that is not finite. The "
+                "outputs up to the last output time are intact.");
+          if (checkpoints.active() && checkpoints.due(steps))
+            {
+              save();
+              checkpoints.written(steps);
+            }
+          if (stop_requested())
+            {
+              std::cerr << "[tmfdem] " << stop_signal_name()
+                        << ": finishing the step, writing a checkpoint and "
+                           "the outputs\n";
+              save();
+              stop_reason = "stopped by " + stop_signal_name();
+              break;
+            }
         }
 
       const HeatBalance &b = heat->balance();
@@ -168,6 +275,7 @@ namespace tmfdem
         .add("relative_imbalance", std::abs(b.imbalance()) / b.scale());
       JsonObject summary;
       summary.add("model", std::string("discrete heat"))
+        .add("finished", stop_reason.empty())
         .add("elements", model.n_elements)
         .add("nodes", model.n_nodes)
         .add("joints", model.n_joints)
@@ -184,7 +292,15 @@ namespace tmfdem
                model.n_elements * double(steps) / progress.elapsed() :
                0.)
         .add("heat_balance", balance);
+      if (!stop_reason.empty())
+        summary.add("stop_reason", stop_reason);
       write_file_atomically(folder + "/summary.json", summary.str() + "\n");
+      if (!stop_reason.empty())
+        throw StopRequested(
+          stop_reason + " at t = " + Utilities::to_string(time) +
+          " s after step " + std::to_string(steps) + "; checkpoint in " +
+          checkpoint_folder(parameters) + ". Continue with: tmfdem " +
+          parameters.prm_file + " --resume (and the same --set options).");
       std::cerr << "[tmfdem] discrete heat: " << steps
                 << " steps to t = " << time << " s, heat imbalance "
                 << std::abs(b.imbalance()) / b.scale() << " (relative)\n";

@@ -79,6 +79,19 @@ namespace tmfdem
       const std::string file = base_name + "_" + number + ".vtu";
       write_file_atomically(folder + "/" + file, vtu_text);
       records.emplace_back(time, file);
+      write_pvd();
+    }
+
+    void
+    VtuSeries::restore(const std::vector<std::pair<double, std::string>> &saved)
+    {
+      records = saved;
+      write_pvd();
+    }
+
+    void
+    VtuSeries::write_pvd() const
+    {
       std::ostringstream pvd;
       pvd << std::setprecision(12)
           << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" "

@@ -18,6 +18,7 @@
 #include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/explicit_solver.h>
+#include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 #include <tmfdem/mesh/mesh_checks.h>
 #include <tmfdem/mesh/mesh_generator.h>
@@ -674,6 +675,15 @@ namespace tmfdem
                            contact_buffer,
                            excluded,
                            pairs);
+      index_contact_pairs();
+      travel_since_search   = 0.;
+      contact_search_needed = false;
+      ++n_contact_searches;
+    }
+
+    void
+    ExplicitSolver::index_contact_pairs()
+    {
       pair_force.assign(12 * pairs.size(), 0.);
       pair_friction.assign(pairs.size(), 0.);
       element_pair_start.assign(model.n_elements + 1, 0);
@@ -692,9 +702,6 @@ namespace tmfdem
           element_pair_entries[fill[pairs[p].first]++]  = 2 * p;
           element_pair_entries[fill[pairs[p].second]++] = 2 * p + 1;
         }
-      travel_since_search   = 0.;
-      contact_search_needed = false;
-      ++n_contact_searches;
     }
 
     void
@@ -943,6 +950,8 @@ namespace tmfdem
           double *sums      = &chunk_sums[c * stride];
           double  w_elastic = 0., w_viscous = 0., w_joint = 0., w_contact = 0.,
                  w_external = 0., max_speed = 0.;
+          // guards: first non-finite node and first inverted element
+          double bad_node = -1., inverted = -1.;
           for (std::size_t e = begin; e < end; ++e)
             {
               const unsigned int n0 = 3 * e;
@@ -953,6 +962,8 @@ namespace tmfdem
               const Matrix2      F =
                 multiply(element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2]),
                          Fi_inv);
+              if (!(F.a00 * F.a11 - F.a01 * F.a10 > 0.) && inverted < 0.)
+                inverted = e;
               const double  s     = m.thermal_stretch[e];
               const double  inv_s = 1. / s;
               const Matrix2 Fe{F.a00 * inv_s,
@@ -1105,8 +1116,10 @@ namespace tmfdem
                   m.vy[node] = vy_new;
                   m.x[node] += dt * vx_new;
                   m.y[node] += dt * vy_new;
-                  max_speed =
-                    std::max(max_speed, vx_new * vx_new + vy_new * vy_new);
+                  const double v2 = vx_new * vx_new + vy_new * vy_new;
+                  max_speed       = std::max(max_speed, v2);
+                  if (!(v2 < 1e300) && bad_node < 0.)
+                    bad_node = node;
                 }
             }
           sums[0] = w_elastic;
@@ -1115,6 +1128,8 @@ namespace tmfdem
           sums[3] = w_contact;
           sums[4] = w_external;
           sums[5] = max_speed;
+          sums[6] = bad_node;
+          sums[7] = inverted;
         });
       double max_speed = 0.;
       for (auto &r : body_reaction)
@@ -1129,6 +1144,11 @@ namespace tmfdem
           balance.contact_work -= sums[3];
           balance.external_work += sums[4];
           max_speed = std::max(max_speed, sums[5]);
+          // chunks in element order: the first flagged is the lowest index
+          if (first_nonfinite_node < 0 && sums[6] >= 0.)
+            first_nonfinite_node = static_cast<long long>(sums[6]);
+          if (first_inverted_element < 0 && sums[7] >= 0.)
+            first_inverted_element = static_cast<long long>(sums[7]);
           for (unsigned int b = 0; b < n_bodies; ++b)
             {
               body_reaction[b][0] += sums[n_sums + 2 * b];
@@ -1529,6 +1549,8 @@ namespace tmfdem
         .add("momentum_y", py)
         .add("energy", energies)
         .add("body_reactions", reactions);
+      if (!stop_reason.empty())
+        summary.add("stop_reason", stop_reason);
       if (with_heat)
         {
           const HeatBalance &b = heat->balance();
@@ -1578,20 +1600,14 @@ namespace tmfdem
       for (unsigned int k = 0; k < conditions.size(); ++k)
         header += ",condition" + std::to_string(k + 1) + "_fx,condition" +
                   std::to_string(k + 1) + "_fy";
-      history_csv = std::make_unique<CsvSeries>(folder + "/history.csv",
-                                                header,
-                                                communicator);
+      history_csv = open_csv(folder + "/history.csv", header);
       const std::string monitor_header = with_heat ?
                                            "time,name,x,y,T,ux,uy,sxx,syy,sxy" :
                                            "time,name,x,y,ux,uy,sxx,syy,sxy";
       if (!probe_samples.empty())
-        probes_csv = std::make_unique<CsvSeries>(folder + "/probes.csv",
-                                                 monitor_header,
-                                                 communicator);
+        probes_csv = open_csv(folder + "/probes.csv", monitor_header);
       if (!line_samples.empty())
-        lines_csv = std::make_unique<CsvSeries>(folder + "/lines.csv",
-                                                monitor_header,
-                                                communicator);
+        lines_csv = open_csv(folder + "/lines.csv", monitor_header);
 
       const double start = time, end = parameters.time.end_time;
       output_times.clear();
@@ -1607,12 +1623,15 @@ namespace tmfdem
       history_interval = (end - start) / 1000.;
       next_history     = start + history_interval;
 
-      energy();
-      balance.initial_kinetic = balance.kinetic;
-      balance.initial_strain  = balance.strain;
-      balance.thermal_work    = 0.; // the initial stretch is in initial_strain
-      write_output();
-      write_history_row();
+      if (!parameters.resume)
+        {
+          energy();
+          balance.initial_kinetic = balance.kinetic;
+          balance.initial_strain  = balance.strain;
+          balance.thermal_work = 0.; // the initial stretch is in initial_strain
+          write_output();
+          write_history_row();
+        }
 
       ProgressReporter    progress(parameters.output.progress_interval,
                                 start,
@@ -1626,10 +1645,16 @@ namespace tmfdem
           history_interval = std::max(history_interval, advance);
           next_history     = start + history_interval;
         }
+      if (parameters.resume)
+        load_checkpoint();
+      keep_good_state();
+      CheckpointSchedule checkpoints(parameters.checkpoint);
+      checkpoints.written(step_number);
       while (time < end - 0.5 * advance &&
              (max_steps == 0 || step_number < max_steps))
         {
           step();
+          check_step_guards();
           if (quasi_static)
             std::cerr << "[tmfdem] t = " << time << " s: relaxed in "
                       << last_relaxation_steps
@@ -1638,6 +1663,7 @@ namespace tmfdem
           if (time >= next_history - 0.5 * advance)
             {
               write_history_row();
+              check_slow_guards();
               while (next_history <= time + 0.5 * advance)
                 next_history += history_interval;
             }
@@ -1654,14 +1680,15 @@ namespace tmfdem
             }
           if ((step_number & 255) == 0)
             {
-              wall_time = progress.elapsed();
+              wall_time = progress.elapsed() + resumed_wall_time;
               progress.update(step_number,
                               time,
                               " broken joints " +
                                 std::to_string(model.n_broken_joints()));
             }
+          after_step(checkpoints);
         }
-      wall_time = progress.elapsed();
+      wall_time = progress.elapsed() + resumed_wall_time;
       energy();
       write_history_row();
       if (next_output < output_times.size())

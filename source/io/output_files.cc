@@ -1,13 +1,16 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <fcntl.h>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <tmfdem/base/exceptions.h>
+#include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 #include <unistd.h>
 
@@ -120,11 +123,42 @@ namespace tmfdem
   {
     if (!writer || rows.empty())
       return;
-    std::ofstream out(file_name, std::ios::app);
-    out << rows;
-    out.flush();
-    if (!out)
+    const int fd = ::open(file_name.c_str(), O_WRONLY | O_APPEND);
+    if (fd < 0)
       throw RunError("cannot append to '" + file_name + "'");
+    std::size_t done = 0;
+    while (done < rows.size())
+      {
+        const ssize_t n = ::write(fd, rows.data() + done, rows.size() - done);
+        if (n < 0 && errno == EINTR)
+          continue;
+        if (n <= 0)
+          {
+            ::close(fd);
+            throw RunError("cannot append to '" + file_name + "' (disk full?)");
+          }
+        done += n;
+      }
+    ::close(fd);
+  }
+
+  CsvSeries
+  CsvSeries::reopen(const std::string  &file_name,
+                    const std::uint64_t size,
+                    MPI_Comm            communicator)
+  {
+    CsvSeries series;
+    series.file_name = file_name;
+    series.writer    = Utilities::MPI::this_mpi_process(communicator) == 0;
+    if (series.writer)
+      truncate_file(file_name, size);
+    return series;
+  }
+
+  std::uint64_t
+  CsvSeries::size() const
+  {
+    return writer ? file_size(file_name) : 0;
   }
 
   // ----------------------------------------------------------- JsonObject

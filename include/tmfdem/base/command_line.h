@@ -26,6 +26,8 @@ namespace tmfdem
     std::string prm_file;
     /** "Subsection/Entry=value" strings from --set, in order. */
     std::vector<std::string> overrides;
+    /** --resume: continue from the newest checkpoint. */
+    bool resume = false;
   };
 
   /** Parses argv; throws InputError for unknown options or missing files. */

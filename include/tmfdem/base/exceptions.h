@@ -35,6 +35,19 @@ namespace tmfdem
       : std::runtime_error(message)
     {}
   };
+
+  /**
+   * The run stopped on SIGINT or SIGTERM after finishing its step and
+   * writing its outputs and a checkpoint (resume with --resume). `main`
+   * prints the message and returns exit status 3.
+   */
+  class StopRequested : public std::runtime_error
+  {
+  public:
+    explicit StopRequested(const std::string &message)
+      : std::runtime_error(message)
+    {}
+  };
 } // namespace tmfdem
 
 #endif

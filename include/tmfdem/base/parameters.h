@@ -351,6 +351,36 @@ namespace tmfdem
     parse_parameters(ParameterHandler &prm);
   };
 
+  /** Subsection `Checkpoint`: periodic checkpoints for --resume. */
+  struct CheckpointParameters
+  {
+    unsigned int interval_steps   = 0;  ///< every n steps, 0: off
+    double       interval_minutes = 0.; ///< every m minutes of wall time
+    std::string  directory; ///< folder; <Output/Directory>/checkpoints
+    unsigned int keep = 2;  ///< newest checkpoints kept
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+  /** Subsection `Guards`: checks in the time loop that stop a failing run. */
+  struct GuardParameters
+  {
+    /** Kinetic energy above this times the energy put in stops the run;
+     *  0: off. */
+    double kinetic_energy_factor = 100.;
+    /** Check the time step against the stable step of the current
+     *  geometry (discrete layer). */
+    bool stability_check = true;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
   /** All parameters of a run. */
   struct Parameters
   {
@@ -370,6 +400,14 @@ namespace tmfdem
     DiscreteMechanicsParameters  discrete_mechanics;
     DiscreteBodyParameters       discrete_bodies;
     DiscreteHeatParameters       discrete_heat;
+    CheckpointParameters         checkpoint;
+    GuardParameters              guards;
+    /** Digest of the input that decides the results (every entry except
+     *  Checkpoint, Output/Directory, Output/Progress interval and Discrete
+     *  mechanics/Threads), hex; checkpoints of another input are refused. */
+    std::string input_digest;
+    /** Continue from the newest checkpoint (command line --resume). */
+    bool resume = false;
 
     static void
     declare_parameters(ParameterHandler &prm);

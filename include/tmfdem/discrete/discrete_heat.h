@@ -27,6 +27,9 @@
 
 namespace tmfdem
 {
+  class CheckpointWriter;
+  class CheckpointReader;
+
   namespace discrete
   {
     /** Heat that crossed each boundary id, joints and contacts, and the
@@ -141,6 +144,14 @@ namespace tmfdem
        *  to the discrete one [C], indexed by vertex index. */
       std::vector<double>
       average_to_vertices() const;
+
+      /** Appends the thermal state (temperatures, heat balance, last rates)
+       *  to a checkpoint. */
+      void
+      save(CheckpointWriter &out) const;
+      /** Restores what save() wrote; InputError on a size mismatch. */
+      void
+      load(CheckpointReader &in);
 
     private:
       /** Heat rates into each node from conduction, joints, boundary

@@ -27,8 +27,20 @@ namespace tmfdem
       /** Writes @p vtu_text as the output at @p time [s]. */
       void
       write(const double time, const std::string &vtu_text);
+      /** The (time [s], file) records so far, for checkpoints. */
+      const std::vector<std::pair<double, std::string>> &
+      get_records() const
+      {
+        return records;
+      }
+      /** Continues a series from a checkpoint's @p saved records: the pvd
+       *  is rewritten with exactly these (atomically). */
+      void
+      restore(const std::vector<std::pair<double, std::string>> &saved);
 
     private:
+      void
+                                                  write_pvd() const;
       std::string                                 folder, base_name;
       std::vector<std::pair<double, std::string>> records;
     };

@@ -16,6 +16,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/base/simulation.h>
@@ -30,6 +31,7 @@
 namespace tmfdem
 {
   class CsvSeries;
+  class CheckpointSchedule;
 
   namespace discrete
   {
@@ -257,7 +259,7 @@ namespace tmfdem
       // bookkeeping: per chunk sums, summed in chunk order (thread-count
       // independent)
       static constexpr unsigned int      chunk_size = 512;
-      static constexpr unsigned int      n_sums     = 6;
+      static constexpr unsigned int      n_sums     = 8;
       static constexpr unsigned int      max_bodies = 8;
       std::vector<double>                chunk_sums; ///< n_sums + 2 max_bodies
       EnergyBalance                      balance;
@@ -273,6 +275,70 @@ namespace tmfdem
       double                       next_history     = 0.;
       double                       wall_time        = 0.;
       std::vector<ReferenceSample> probe_samples, line_samples;
+
+      // ------------------------------------------ reliability (checkpoints,
+      // --resume, signals, guards; doc/reliability.md)
+      /** Kind of run in checkpoints: the model name. */
+      std::string
+      checkpoint_kind() const;
+      /** Writes a checkpoint of the complete state after the current step
+       *  (atomically; the newest Checkpoint/Keep are kept). */
+      void
+      save_checkpoint();
+      /** Restores the newest checkpoint (--resume): state, clocks, energy
+       *  and heat balance, contact history, output counters; CSV files are
+       *  cut to their length at the checkpoint, pvd series to its records. */
+      void
+      load_checkpoint();
+      /** A CSV series: new with @p header, or continued on --resume. */
+      std::unique_ptr<CsvSeries>
+      open_csv(const std::string &file_name, const std::string &header) const;
+      /** Re-indexes the contact pairs per element after @p pairs changed. */
+      void
+      index_contact_pairs();
+      /** After every step: a checkpoint when due; on SIGINT/SIGTERM the
+       *  outputs, a checkpoint and StopRequested. */
+      void
+      after_step(CheckpointSchedule &schedule);
+      /** Every step (cheap flags from the force kernel): non-finite
+       *  velocities, inverted elements (J <= 0). Throws RunError. */
+      void
+      check_step_guards()
+      {
+        if (first_nonfinite_node >= 0 || first_inverted_element >= 0)
+          step_guard_failure();
+      }
+      void
+      step_guard_failure();
+      /** With the history rows: non-finite temperatures, the time step
+       *  against the stable step of the deformed mesh, runaway kinetic
+       *  energy; if all pass, the state is kept as the last good one. */
+      void
+      check_slow_guards();
+      /** Writes failure_state.vtu (now), last_good_state.vtu and
+       *  summary.json, then throws RunError(@p message). */
+      [[noreturn]] void
+      guard_failure(const std::string &message);
+      /** Keeps the current state as the last good state (no allocation
+       *  after the first call). */
+      void
+      keep_good_state();
+
+      /** First node with a non-finite velocity in the last step, or -1. */
+      long long first_nonfinite_node = -1;
+      /** First element with J <= 0 in the last step, or -1. */
+      long long     first_inverted_element = -1;
+      std::uint64_t history_bytes = 0, probes_bytes = 0, lines_bytes = 0;
+      std::string   stop_reason; ///< in summary.json when the run stopped
+      double        resumed_wall_time = 0.; ///< wall time before --resume [s]
+      struct GoodState
+      {
+        double                   time = 0.;
+        unsigned long            step = 0;
+        std::vector<double>      x, y, vx, vy, stress, damage, break_time, T;
+        std::vector<JointStatus> status;
+        bool                     valid = false;
+      } good_state;
     };
   } // namespace discrete
 } // namespace tmfdem

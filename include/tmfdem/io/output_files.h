@@ -10,6 +10,7 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <chrono>
+#include <cstdint>
 #include <fstream>
 #include <mpi.h>
 #include <string>
@@ -66,9 +67,25 @@ namespace tmfdem
     CsvSeries(const std::string &file_name,
               const std::string &header,
               MPI_Comm           communicator);
-    /** Appends the lines in @p rows (each ending in a newline) and flushes. */
+    /**
+     * Appends the lines in @p rows (each ending in a newline) with one
+     * write(2) on a file opened for appending, so whole rows reach the file
+     * together; a run killed meanwhile can at worst leave one partial
+     * row, which --resume cuts off (truncate_file()).
+     */
     void
     append(const std::string &rows);
+
+    /** Continues the existing file @p file_name (written by this run before
+     *  a checkpoint), cut to its @p size bytes at the checkpoint. */
+    static CsvSeries
+    reopen(const std::string  &file_name,
+           const std::uint64_t size,
+           MPI_Comm            communicator);
+
+    /** The file's current size [bytes] (0 off rank 0), for checkpoints. */
+    std::uint64_t
+    size() const;
 
   private:
     std::string file_name;

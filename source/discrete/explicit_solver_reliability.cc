@@ -1,0 +1,520 @@
+/**
+ * @file
+ * Reliability of the explicit discrete runs (doc/reliability.md):
+ * checkpoints and --resume, stopping on SIGINT/SIGTERM, and the guards of
+ * the time loop. Kept apart from explicit_solver.cc, whose run() only calls
+ * these at fixed points.
+ */
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/discrete/discrete_output.h>
+#include <tmfdem/discrete/explicit_solver.h>
+#include <tmfdem/io/checkpoint.h>
+#include <tmfdem/io/output_files.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    namespace
+    {
+      using Records = std::vector<std::pair<double, std::string>>;
+
+      void
+      put_records(CheckpointWriter &out, const Records &records)
+      {
+        out.put<std::uint64_t>(records.size());
+        for (const auto &[t, name] : records)
+          {
+            out.put(t);
+            out.put(name);
+          }
+      }
+
+      Records
+      get_records(CheckpointReader &in)
+      {
+        std::uint64_t n = 0;
+        in.get(n);
+        if (n > 100000000)
+          throw InputError("the checkpoint '" + in.name() +
+                           "' is corrupt (output record count).");
+        Records records(n);
+        for (auto &[t, name] : records)
+          {
+            in.get(t);
+            in.get(name);
+          }
+        return records;
+      }
+
+      std::string
+      number(const double value)
+      {
+        std::ostringstream text;
+        text << std::setprecision(6) << value;
+        return text.str();
+      }
+
+      std::string
+      seconds(const double t)
+      {
+        std::ostringstream text;
+        text << std::setprecision(8) << t << " s";
+        return text.str();
+      }
+    } // namespace
+
+    std::string
+    ExplicitSolver::checkpoint_kind() const
+    {
+      return with_heat ? "discrete thermo-mechanics" : "discrete mechanics";
+    }
+
+    std::unique_ptr<CsvSeries>
+    ExplicitSolver::open_csv(const std::string &file_name,
+                             const std::string &header) const
+    {
+      if (parameters.resume) // cut to the checkpoint's length by load
+        return std::make_unique<CsvSeries>(
+          CsvSeries::reopen(file_name, file_size(file_name), communicator));
+      return std::make_unique<CsvSeries>(file_name, header, communicator);
+    }
+
+    // --------------------------------------------------------- checkpoints
+    void
+    ExplicitSolver::save_checkpoint()
+    {
+      const auto       start = std::chrono::steady_clock::now();
+      CheckpointWriter out(checkpoint_kind(), parameters.input_digest);
+      out.put<std::uint32_t>(model.n_elements);
+      out.put<std::uint32_t>(model.n_nodes);
+      out.put<std::uint32_t>(model.n_joints);
+      // clocks
+      out.put(time);
+      out.put<std::uint64_t>(step_number);
+      out.put(thermal_time);
+      out.put<std::uint64_t>(n_thermal_steps);
+      out.put(last_relaxation_steps);
+      out.put(last_kinetic_to_strain);
+      out.put(time_step);
+      // state of the nodes, elements and joints
+      out.put(model.x);
+      out.put(model.y);
+      out.put(model.vx);
+      out.put(model.vy);
+      out.put(model.thermal_stretch);
+      out.put(model.stress);
+      out.put(model.joint_damage);
+      out.put(model.joint_status);
+      out.put(model.joint_break_time);
+      out.put(model.joint_force);
+      // energy terms and reactions
+      out.put(balance);
+      out.put(body_reaction);
+      out.put(condition_reaction);
+      out.put(body_velocity_now);
+      // contact candidates with their friction history
+      out.put(travel_since_search);
+      out.put<std::uint8_t>(contact_search_needed);
+      out.put<std::uint64_t>(n_contact_searches);
+      out.put(pairs);
+      // output counters and series
+      out.put(next_output);
+      out.put(next_history);
+      out.put(history_interval);
+      out.put(output_times);
+      put_records(out, solution_series->get_records());
+      put_records(out, crack_series->get_records());
+      out.put<std::uint64_t>(history_csv->size());
+      out.put<std::uint64_t>(probes_csv ? probes_csv->size() : 0);
+      out.put<std::uint64_t>(lines_csv ? lines_csv->size() : 0);
+      out.put(wall_time);
+      out.put<std::uint8_t>(with_heat);
+      if (with_heat)
+        heat->save(out);
+      const std::size_t bytes = write_checkpoint(parameters, step_number, out);
+      const double      seconds_taken =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+      std::ostringstream line;
+      line << "[tmfdem] checkpoint at step " << step_number
+           << ", t = " << seconds(time) << ": " << bytes << " bytes in "
+           << std::setprecision(3) << seconds_taken << " s\n";
+      std::cerr << line.str();
+    }
+
+    void
+    ExplicitSolver::load_checkpoint()
+    {
+      const std::string file = newest_checkpoint(parameters);
+      CheckpointReader  in(file, checkpoint_kind(), parameters.input_digest);
+      std::uint32_t     sizes[3];
+      for (auto &n : sizes)
+        in.get(n);
+      if (sizes[0] != model.n_elements || sizes[1] != model.n_nodes ||
+          sizes[2] != model.n_joints)
+        throw InputError("the checkpoint '" + file + "' is of another mesh (" +
+                         std::to_string(sizes[0]) + " elements, this run " +
+                         std::to_string(model.n_elements) + ").");
+      std::uint64_t count = 0;
+      in.get(time);
+      in.get(count);
+      step_number = count;
+      in.get(thermal_time);
+      in.get(count);
+      n_thermal_steps = count;
+      in.get(last_relaxation_steps);
+      in.get(last_kinetic_to_strain);
+      double saved_time_step = 0.;
+      in.get(saved_time_step);
+      if (saved_time_step != time_step)
+        throw InputError("the checkpoint '" + file + "' has the time step " +
+                         seconds(saved_time_step) + ", this run " +
+                         seconds(time_step) + ".");
+      const std::size_t n = model.n_nodes, e = model.n_elements,
+                        j = model.n_joints;
+      in.get(model.x, n);
+      in.get(model.y, n);
+      in.get(model.vx, n);
+      in.get(model.vy, n);
+      in.get(model.thermal_stretch, e);
+      in.get(model.stress, model.stress.size());
+      in.get(model.joint_damage, model.joint_damage.size());
+      in.get(model.joint_status, j);
+      in.get(model.joint_break_time, j);
+      in.get(model.joint_force, model.joint_force.size());
+      in.get(balance);
+      in.get(body_reaction, body_reaction.size());
+      in.get(condition_reaction);
+      in.get(body_velocity_now, body_velocity_now.size());
+      in.get(travel_since_search);
+      std::uint8_t flag = 0;
+      in.get(flag);
+      contact_search_needed = flag != 0;
+      in.get(count);
+      n_contact_searches = count;
+      in.get(pairs);
+      for (const auto &p : pairs)
+        if (p.first >= e || p.second >= e)
+          throw InputError("the checkpoint '" + file +
+                           "' is corrupt (contact pair of element " +
+                           std::to_string(std::max(p.first, p.second)) + ").");
+      index_contact_pairs();
+      in.get(next_output);
+      in.get(next_history);
+      in.get(history_interval);
+      in.get(output_times);
+      if (next_output > output_times.size())
+        throw InputError("the checkpoint '" + file +
+                         "' is corrupt (output counter).");
+      const Records solution_records = get_records(in);
+      const Records crack_records    = get_records(in);
+      std::uint64_t csv_bytes[3];
+      for (auto &b : csv_bytes)
+        in.get(b);
+      in.get(resumed_wall_time);
+      wall_time = resumed_wall_time;
+      in.get(flag);
+      if ((flag != 0) != with_heat)
+        throw InputError("the checkpoint '" + file +
+                         "' does not match the model (heat).");
+      if (with_heat)
+        heat->load(in);
+      in.finish();
+
+      // the outputs continue exactly where the checkpoint left them
+      if (parameters.output.write_vtu)
+        {
+          solution_series->restore(solution_records);
+          crack_series->restore(crack_records);
+        }
+      const std::string &folder = parameters.output.directory;
+      truncate_file(folder + "/history.csv", csv_bytes[0]);
+      if (probes_csv)
+        truncate_file(folder + "/probes.csv", csv_bytes[1]);
+      if (lines_csv)
+        truncate_file(folder + "/lines.csv", csv_bytes[2]);
+      std::cerr << "[tmfdem] resumed from " << file << ": step " << step_number
+                << ", t = " << seconds(time) << "\n";
+    }
+
+    void
+    ExplicitSolver::after_step(CheckpointSchedule &schedule)
+    {
+      if (schedule.active() && schedule.due(step_number))
+        {
+          save_checkpoint();
+          schedule.written(step_number);
+        }
+      if (!stop_requested())
+        return;
+      const std::string signal = stop_signal_name();
+      std::cerr << "[tmfdem] " << signal
+                << ": finishing the step, writing a checkpoint and the "
+                   "outputs\n";
+      save_checkpoint();
+      energy();
+      stop_reason = "stopped by " + signal;
+      write_summary(false);
+      throw StopRequested("stopped by " + signal + " at t = " + seconds(time) +
+                          " after step " + std::to_string(step_number) +
+                          "; checkpoint in " + checkpoint_folder(parameters) +
+                          ", outputs so far in " + parameters.output.directory +
+                          ". Continue with: tmfdem " + parameters.prm_file +
+                          " --resume (and the same --set options).");
+    }
+
+    // -------------------------------------------------------------- guards
+    void
+    ExplicitSolver::keep_good_state()
+    {
+      good_state.time = time;
+      good_state.step = step_number;
+      good_state.x.assign(model.x.begin(), model.x.end());
+      good_state.y.assign(model.y.begin(), model.y.end());
+      good_state.vx.assign(model.vx.begin(), model.vx.end());
+      good_state.vy.assign(model.vy.begin(), model.vy.end());
+      good_state.stress.assign(model.stress.begin(), model.stress.end());
+      good_state.damage.assign(model.joint_damage.begin(),
+                               model.joint_damage.end());
+      good_state.break_time.assign(model.joint_break_time.begin(),
+                                   model.joint_break_time.end());
+      good_state.status.assign(model.joint_status.begin(),
+                               model.joint_status.end());
+      if (with_heat)
+        good_state.T.assign(heat->temperature().begin(),
+                            heat->temperature().end());
+      good_state.valid = true;
+    }
+
+    void
+    ExplicitSolver::step_guard_failure()
+    {
+      std::ostringstream message;
+      message << std::setprecision(6);
+      const std::string when = " at t = " + seconds(time) + " (step " +
+                               std::to_string(step_number) + ")";
+      long long element = first_inverted_element;
+      bool      finite  = true;
+      if (first_nonfinite_node >= 0)
+        {
+          element = first_nonfinite_node / 3;
+          finite  = false;
+        }
+      else
+        for (unsigned int k = 0; k < 3; ++k)
+          finite = finite && std::isfinite(model.x[3 * element + k]) &&
+                   std::isfinite(model.y[3 * element + k]);
+      const double cx =
+                     (model.x_ref[3 * element] + model.x_ref[3 * element + 1] +
+                      model.x_ref[3 * element + 2]) /
+                     3.,
+                   cy =
+                     (model.y_ref[3 * element] + model.y_ref[3 * element + 1] +
+                      model.y_ref[3 * element + 2]) /
+                     3.;
+      const std::string where =
+        "element " + std::to_string(element) + " (material id " +
+        std::to_string(model.material[element]) + ", reference centroid (" +
+        number(cx) + ", " + number(cy) + ") m)";
+      if (!finite)
+        message << "guard: non-finite values (NaN or infinite) at "
+                << (first_nonfinite_node >= 0 ?
+                      "node " + std::to_string(first_nonfinite_node) + " of " :
+                      std::string())
+                << where << when
+                << ": the explicit integration diverged. Likely causes: a "
+                   "time step too large (Discrete mechanics/Time step or "
+                   "Safety factor), penalties too stiff (Discrete "
+                   "mechanics/Contact penalty factor, Joint normal or "
+                   "tangential penalty factor), or a load or velocity "
+                   "function that is not finite.";
+      else
+        message << "guard: inverted " << where << " (J = det F <= 0)" << when
+                << ". Likely causes: a time step too large for the "
+                   "deformation (Discrete mechanics/Time step or Safety "
+                   "factor), a contact penalty too soft for the impact so "
+                   "that triangles pass through each other (Discrete "
+                   "mechanics/Contact penalty factor), or a prescribed "
+                   "velocity or load that crushes the elements.";
+      guard_failure(message.str());
+    }
+
+    void
+    ExplicitSolver::check_slow_guards()
+    {
+      const std::string when = " at t = " + seconds(time) + " (step " +
+                               std::to_string(step_number) + ")";
+      if (with_heat)
+        {
+          const auto &T = heat->temperature();
+          for (unsigned int n = 0; n < model.n_nodes; ++n)
+            if (!std::isfinite(T[n]))
+              guard_failure(
+                "guard: non-finite temperature at node " + std::to_string(n) +
+                " (element " + std::to_string(n / 3) + ")" + when +
+                ". Likely causes: a thermal step beyond the stable explicit "
+                "thermal step (Discrete heat/Mechanical steps per thermal "
+                "step), a contact conductance too high, or a boundary or "
+                "source function that is not finite.");
+        }
+      if (!std::isfinite(balance.kinetic) || !std::isfinite(balance.strain))
+        {
+          first_nonfinite_node = 0;
+          for (unsigned int n = 0; n < model.n_nodes; ++n)
+            if (!std::isfinite(model.x[n] + model.y[n] + model.vx[n] +
+                               model.vy[n]))
+              {
+                first_nonfinite_node = n;
+                break;
+              }
+          step_guard_failure();
+        }
+      const double factor = parameters.guards.kinetic_energy_factor;
+      if (factor > 0.)
+        {
+          const double put_in = balance.initial_kinetic +
+                                balance.initial_strain +
+                                std::max(0., balance.external_work) +
+                                std::max(0., balance.thermal_work);
+          if (balance.kinetic > factor * std::max(put_in, 1e-9))
+            {
+              unsigned int fastest = 0;
+              double       v2_max  = -1.;
+              for (unsigned int n = 0; n < model.n_nodes; ++n)
+                {
+                  const double v2 =
+                    model.vx[n] * model.vx[n] + model.vy[n] * model.vy[n];
+                  if (v2 > v2_max)
+                    {
+                      v2_max  = v2;
+                      fastest = n;
+                    }
+                }
+              guard_failure(
+                "guard: runaway kinetic energy " + number(balance.kinetic) +
+                " J/m, more than Guards/Kinetic energy factor = " +
+                number(factor) + " times the energy put in (" + number(put_in) +
+                " J/m)" + when + "; fastest node " + std::to_string(fastest) +
+                " (element " + std::to_string(fastest / 3) + ", " +
+                number(std::sqrt(v2_max)) +
+                " m/s). Likely causes: an unstable time step (Discrete "
+                "mechanics/Time step or Safety factor), penalties too stiff "
+                "(Contact penalty factor, Joint normal or tangential penalty "
+                "factor), or too little damping.");
+            }
+        }
+      if (parameters.guards.stability_check)
+        {
+          // the element limit of compute_stable_time_step() on the current
+          // geometry; joints and contacts do not depend on it
+          double       dt_min = 1e300, ratio = 1.;
+          unsigned int worst = 0;
+          for (unsigned int e = 0; e < model.n_elements; ++e)
+            {
+              const SolidMaterial &m = solid[model.material[e]];
+              const double         c =
+                std::sqrt((m.lame.lambda + 2. * m.lame.mu) / m.density);
+              const unsigned int n0   = 3 * e;
+              const double       area = 0.5 * ((model.x[n0 + 1] - model.x[n0]) *
+                                           (model.y[n0 + 2] - model.y[n0]) -
+                                         (model.x[n0 + 2] - model.x[n0]) *
+                                           (model.y[n0 + 1] - model.y[n0]));
+              double             longest = 0.;
+              for (unsigned int k = 0; k < 3; ++k)
+                {
+                  const unsigned int a = n0 + k, b = n0 + (k + 1) % 3;
+                  longest = std::max(longest,
+                                     std::hypot(model.x[b] - model.x[a],
+                                                model.y[b] - model.y[a]));
+                }
+              const double altitude = 2. * area / longest;
+              const double E =
+                parameters.materials[model.material[e]].youngs_modulus;
+              const double zeta =
+                viscosity[e] / (altitude * std::sqrt(E * m.density));
+              const double dt =
+                altitude / c * (std::sqrt(1. + zeta * zeta) - zeta);
+              if (dt < dt_min)
+                {
+                  dt_min = dt;
+                  worst  = e;
+                  ratio  = area / model.reference_area[e];
+                }
+            }
+          if (time_step > dt_min)
+            guard_failure(
+              "guard: the time step " + seconds(time_step) +
+              " exceeds the stable step " + seconds(dt_min) +
+              " of the deformed element " + std::to_string(worst) +
+              " (material id " + std::to_string(model.material[worst]) +
+              ", area now " + number(100. * ratio) +
+              " % of its reference area)" + when +
+              ". Likely causes: a time step too close to the stable step of "
+              "the undeformed mesh (lower Discrete mechanics/Safety factor or "
+              "Time step), or excessive compression (a load or prescribed "
+              "velocity too large, a contact penalty too soft); Guards/"
+              "Stability check = false turns this check off.");
+        }
+      keep_good_state();
+    }
+
+    void
+    ExplicitSolver::guard_failure(const std::string &message)
+    {
+      const std::string &folder = parameters.output.directory;
+      stop_reason               = message;
+      std::string written;
+      try
+        {
+          const auto solution_vtu = [&]() {
+            if (!with_heat)
+              return discrete_solution_vtu(model);
+            std::vector<double> T(heat->temperature().begin(),
+                                  heat->temperature().end());
+            return discrete_solution_vtu(model, {{"T", &T}});
+          };
+          write_file_atomically(folder + "/failure_state.vtu", solution_vtu());
+          written = " Wrote " + folder +
+                    "/failure_state.vtu (t = " + seconds(time) + ")";
+          if (good_state.valid)
+            {
+              // swap the last good state in, write it, swap back
+              const auto swap_state = [&]() {
+                model.x.swap(good_state.x);
+                model.y.swap(good_state.y);
+                model.vx.swap(good_state.vx);
+                model.vy.swap(good_state.vy);
+                model.stress.swap(good_state.stress);
+                model.joint_damage.swap(good_state.damage);
+                model.joint_break_time.swap(good_state.break_time);
+                model.joint_status.swap(good_state.status);
+                if (with_heat)
+                  for (unsigned int n = 0; n < model.n_nodes; ++n)
+                    std::swap(heat->temperature()[n], good_state.T[n]);
+              };
+              swap_state();
+              const std::string text = solution_vtu();
+              swap_state();
+              write_file_atomically(folder + "/last_good_state.vtu", text);
+              written +=
+                " and the last good state " + folder +
+                "/last_good_state.vtu (t = " + seconds(good_state.time) +
+                ", step " + std::to_string(good_state.step) + ")";
+            }
+          written += ".";
+          write_summary(false);
+        }
+      catch (const std::exception &)
+        {
+          // the message matters more than the files
+        }
+      throw RunError(message + written);
+    }
+  } // namespace discrete
+} // namespace tmfdem

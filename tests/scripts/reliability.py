@@ -1,0 +1,230 @@
+"""Reliability checks (doc/reliability.md): kill-and-resume, SIGTERM,
+thread-count independence, refused checkpoints.
+
+usage: reliability.py TMFDEM OUT_DIR CHECK [CASE]
+  kill_resume CASE   run CASE uninterrupted; run it again with checkpoints,
+                     SIGKILL it once a checkpoint exists, --resume it: the
+                     final summary.json numbers (except wall-clock ones), every
+                     vtu, the pvd series and the csv files are bitwise identical
+  sigterm CASE       SIGTERM a run: exit status 3, a checkpoint, summary.json
+                     finished = false; --resume gives the uninterrupted result
+  threads CASE       1 and 2 threads give identical outputs
+  sigint_continuum   SIGINT a continuum run: exit status 3, clear message,
+                     outputs and summary.json written
+  refuse             --resume refused with a clear message: no checkpoint,
+                     changed input, truncated and foreign checkpoint files
+CASE: mechanics (two_blocks_collision), thermo (cut_plate, quasi-static with
+fracture and contact heat), thermo_multirate (sheet_restrained_expansion,
+shortened), heat (plate_transient, discrete heat).
+"""
+import glob
+import json
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+sys.dont_write_bytecode = True
+sys.path.insert(0, os.path.dirname(__file__))
+from common import check  # noqa: E402
+
+binary, out, which = sys.argv[1], sys.argv[2], sys.argv[3]
+case = sys.argv[4] if len(sys.argv) > 4 else "mechanics"
+prm_dir = os.path.join(os.path.dirname(__file__), "..", "..", "prm")
+CASES = {
+    "mechanics": ("two_blocks_collision.prm", []),
+    "thermo": ("cut_plate.prm", []),
+    "thermo_multirate": ("sheet_restrained_expansion.prm",
+                         ["Time stepping/End time=0.002"]),
+    "heat": ("plate_transient.prm", []),
+    "continuum": ("plate_transient-continuum.prm", []),
+}
+prm, case_settings = CASES[case]
+prm = os.path.join(prm_dir, prm)
+# wall-clock facts differ between runs; everything else must not
+VOLATILE = {"wall_time", "element_steps_per_second",
+            "peak_resident_memory_bytes"}
+
+
+def command(folder, *settings, resume=False):
+    cmd = [binary, prm, "--set", f"Output/Directory={folder}",
+           "--set", "Output/Progress interval=0"]
+    for s in list(case_settings) + list(settings):
+        cmd += ["--set", s]
+    if resume:
+        cmd.append("--resume")
+    return cmd
+
+
+def run(folder, *settings, resume=False, expect=0):
+    cmd = command(folder, *settings, resume=resume)
+    print("$", " ".join(f"'{c}'" if " " in c else c for c in cmd), flush=True)
+    result = subprocess.run(cmd, capture_output=True, text=True)
+    print(result.stderr[-1500:], flush=True)
+    if expect is not None and result.returncode != expect:
+        sys.exit(f"FAIL: tmfdem exited with {result.returncode}, expected {expect}")
+    return result
+
+
+def strip(value):
+    if isinstance(value, dict):
+        return {k: strip(v) for k, v in value.items() if k not in VOLATILE}
+    if isinstance(value, list):
+        return [strip(v) for v in value]
+    return value
+
+
+def compare(reference, other):
+    """True if all outputs of the two folders are identical."""
+    ok = True
+    names = sorted(os.path.relpath(f, reference)
+                   for f in glob.glob(os.path.join(reference, "*"))
+                   if os.path.isfile(f) and not f.endswith(".json"))
+    for name in names:
+        a = open(os.path.join(reference, name), "rb").read()
+        path = os.path.join(other, name)
+        b = open(path, "rb").read() if os.path.exists(path) else None
+        if a != b:
+            ok &= check(False, f"{name} differs")
+    ok &= check(ok, f"{len(names)} output files (vtu, pvd, csv) bitwise identical")
+    sa = strip(json.load(open(os.path.join(reference, "summary.json"))))
+    sb = strip(json.load(open(os.path.join(other, "summary.json"))))
+    same = sa == sb
+    if not same:
+        for k in sa:
+            if sa.get(k) != sb.get(k):
+                print(f"  summary {k}: {sa.get(k)} vs {sb.get(k)}")
+    ok &= check(same, "summary.json identical (except wall time, speed, memory)")
+    return ok
+
+
+def fresh(folder):
+    shutil.rmtree(folder, ignore_errors=True)
+    return folder
+
+
+ok = True
+if which == "kill_resume":
+    reference = fresh(os.path.join(out, "reference"))
+    run(reference)
+    folder = fresh(os.path.join(out, "killed"))
+    interval = "Checkpoint/Interval (steps)=" + ("1" if case == "thermo" else
+                                                 "20" if case == "heat" else "500")
+    cmd = command(folder, interval)
+    print("$", " ".join(cmd), "(SIGKILL once a checkpoint exists)", flush=True)
+    process = subprocess.Popen(cmd, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+    pattern = os.path.join(folder, "checkpoints", "checkpoint_*.tmfchk")
+    while process.poll() is None and not glob.glob(pattern):
+        time.sleep(0.005)
+    killed = process.poll() is None
+    if killed:
+        process.send_signal(signal.SIGKILL)
+    process.wait()
+    ok &= check(killed, "SIGKILL while running, after the first checkpoint")
+    print("checkpoints:", sorted(os.path.basename(f) for f in glob.glob(pattern)))
+    summary_before = os.path.exists(os.path.join(folder, "summary.json"))
+    ok &= check(not summary_before, "no summary.json yet (the run was cut off)")
+    result = run(folder, interval, resume=True)
+    ok &= check("resumed from" in result.stderr, "resumed from the checkpoint")
+    ok &= compare(reference, folder)
+elif which == "sigterm":
+    reference = fresh(os.path.join(out, "reference"))
+    start = time.monotonic()
+    run(reference)
+    duration = time.monotonic() - start
+    folder = fresh(os.path.join(out, "terminated"))
+    cmd = command(folder)
+    print("$", " ".join(cmd), "(SIGTERM in the time loop)",
+          flush=True)
+    process = subprocess.Popen(cmd, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    # the first output marks the time loop (handlers installed long before)
+    while process.poll() is None and not os.path.exists(
+            os.path.join(folder, "solution.pvd")):
+        time.sleep(0.005)
+    deadline = time.monotonic() + 0.25 * duration
+    while process.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.005)
+    sent = process.poll() is None
+    if sent:
+        process.send_signal(signal.SIGTERM)
+    stdout, stderr = process.communicate()
+    print(stderr[-1500:])
+    ok &= check(sent, "SIGTERM sent while running")
+    ok &= check(process.returncode == 3,
+                f"exit status {process.returncode} (3: stopped by a signal)")
+    ok &= check("stopped by SIGTERM" in stderr and "--resume" in stderr,
+                "clear message: stopped by SIGTERM ... --resume")
+    ok &= check(glob.glob(os.path.join(folder, "checkpoints", "*.tmfchk")),
+                "a checkpoint was written")
+    s = json.load(open(os.path.join(folder, "summary.json")))
+    ok &= check(s.get("finished") is False and "SIGTERM" in s.get("stop_reason", ""),
+                "summary.json: finished = false, stop_reason SIGTERM")
+    run(folder, resume=True)
+    ok &= compare(reference, folder)
+elif which == "threads":
+    VOLATILE.add("threads")
+    folders = []
+    for threads in (1, 2):
+        folder = fresh(os.path.join(out, f"threads_{threads}"))
+        run(folder, f"Discrete mechanics/Threads={threads}")
+        folders.append(folder)
+    ok &= compare(*folders)
+elif which == "sigint_continuum":
+    folder = fresh(os.path.join(out, "interrupted"))
+    cmd = command(folder)
+    print("$", " ".join(cmd), "(SIGINT in the time loop)", flush=True)
+    process = subprocess.Popen(cmd, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    while process.poll() is None and not os.path.exists(
+            os.path.join(folder, "solution.pvd")):
+        time.sleep(0.005)
+    time.sleep(0.2)
+    sent = process.poll() is None
+    if sent:
+        process.send_signal(signal.SIGINT)
+    stdout, stderr = process.communicate()
+    print(stderr[-1500:])
+    ok &= check(sent, "SIGINT sent while running")
+    ok &= check(process.returncode == 3,
+                f"exit status {process.returncode} (3: stopped by a signal)")
+    ok &= check("stopped by SIGINT" in stderr and "cannot be resumed" in stderr,
+                "clear message: stopped by SIGINT ... cannot be resumed")
+    ok &= check(os.path.exists(os.path.join(folder, "summary.json")),
+                "summary.json written")
+    pvd = open(os.path.join(folder, "solution.pvd")).read()
+    files = re.findall(r'file="([^"]+)"', pvd)
+    ok &= check(files and all(os.path.exists(os.path.join(folder, f)) for f in files),
+                f"solution.pvd complete: {len(files)} outputs, all present")
+elif which == "refuse":
+    folder = fresh(os.path.join(out, "refuse"))
+    r = run(folder, resume=True, expect=1)
+    ok &= check("there is no checkpoint in" in r.stderr, "no checkpoint: refused")
+    run(folder, "Checkpoint/Interval (steps)=2000")
+    r = run(folder, "Materials/Material 1/Tensile strength=3e6", resume=True,
+            expect=1)
+    ok &= check("was written for a different input" in r.stderr,
+                "changed input: refused")
+    r = run(folder, "Discrete mechanics/Threads=2", "Checkpoint/Keep=1",
+            resume=True, expect=0)
+    ok &= check("resumed from" in r.stderr, "threads and Checkpoint may change")
+    newest = sorted(glob.glob(os.path.join(folder, "checkpoints", "*.tmfchk")))[-1]
+    data = open(newest, "rb").read()
+    open(newest, "wb").write(data[: len(data) // 2])
+    r = run(folder, resume=True, expect=1)
+    ok &= check("is truncated or corrupt" in r.stderr, "truncated checkpoint: clear error")
+    open(newest, "wb").write(b"not a checkpoint at all" * 10)
+    r = run(folder, resume=True, expect=1)
+    ok &= check("is not a tmfdem checkpoint" in r.stderr, "foreign file: clear error")
+    flipped = bytearray(data)
+    flipped[len(data) // 2] ^= 0xFF
+    open(newest, "wb").write(bytes(flipped))
+    r = run(folder, resume=True, expect=1)
+    ok &= check("checksum mismatch" in r.stderr, "corrupt checkpoint: clear error")
+else:
+    sys.exit(f"unknown check {which}")
+sys.exit(0 if ok else 1)
