@@ -152,3 +152,29 @@ def quenched_disc_first_crack_time(f_t, E, alpha, t_max=10.0, **kw):
         return times[0]
     g = lambda t: quenched_disc_rim_hoop_stress(t, E, alpha, **kw) - f_t
     return brentq(g, times[i - 1], times[i])
+
+
+def quenched_disc_hoop_stress(r, t, E, alpha, **kw):
+    """Hoop stress at radius r [m] of the quenched thin disc (plane stress,
+    tension positive) [Pa]: E alpha (T_mean / 2 + (1/r^2) int_0^r T r' dr' - T(r))."""
+    radius = kw["radius"]
+    rr = np.linspace(0., r, 801)
+    T, T_mean = quenched_disc(rr, t, **kw)
+    inner = np.trapz(T * rr, rr) / r**2
+    return E * alpha * (T_mean / 2 + inner - T[-1])
+
+
+def quenched_disc_hoop_stress_time(f_t, E, alpha, r, t_max=10.0, **kw):
+    """The first time [s] at which the hoop stress at radius r reaches f_t, or
+    None."""
+    from scipy.optimize import brentq
+    times = np.geomspace(1e-7, t_max, 400)
+    s = np.array([quenched_disc_hoop_stress(r, t, E, alpha, **kw) for t in times])
+    above = np.nonzero(s >= f_t)[0]
+    if len(above) == 0:
+        return None
+    i = above[0]
+    if i == 0:
+        return times[0]
+    g = lambda t: quenched_disc_hoop_stress(r, t, E, alpha, **kw) - f_t
+    return brentq(g, times[i - 1], times[i])

@@ -1,0 +1,157 @@
+#!/usr/bin/env python3
+"""Thermal cracking in the discrete layer (paper 5.5 and 5.6).
+
+  verify_discrete_thermal_cracking.py TMFDEM OUT hollow
+      prm/hollow_cylinder_cracking.prm up to shortly after the first
+      failure: the first damaged joints lie at the outer rim; the inner-wall
+      temperature at first failure (damage onset) is within 10 % of the
+      steady-state elastic prediction f_t / (sigma_theta(b) / T_a) (plane
+      strain, 77.45 C); the broken joints form radial cracks from the outer
+      rim inward; heat balance 1e-6.
+  verify_discrete_thermal_cracking.py TMFDEM OUT shock
+      prm/thermal_shock_disc.prm on a coarser mesh at T0 = 300 and 500 C:
+      the first damage at the rim, once the analytic hoop stress of the
+      quenched disc (E alpha (T_mean - T(R)) at the rim) has reached f_t at
+      the depth of the centroids of the rim triangles (h sqrt(3)/6 and
+      h sqrt(3)/3 inside the rim: the constant-stress triangles carry it);
+      radial cracks from the rim; more cracks at 500 C than at 300 C; heat
+      balance 1e-6.
+"""
+import os
+import sys
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                "scripts"))
+from plot_vtu import read_vtu  # noqa: E402
+from common import run, summary, check  # noqa: E402
+import analytic  # noqa: E402
+
+PRM = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "prm")
+
+
+def history(folder):
+    return np.genfromtxt(os.path.join(folder, "history.csv"), delimiter=",", names=True)
+
+
+def series(folder, name):
+    pvd = os.path.join(folder, name + ".pvd")
+    return [(float(d.get("timestep")), os.path.join(folder, d.get("file")))
+            for d in ET.parse(pvd).getroot().iter("DataSet")]
+
+
+def damaged_element_radii(vtu):
+    """Radii [m] of the centroids of triangles next to a damaged joint."""
+    pts, cells, damage, _ = read_vtu(vtu, "joint_damage")
+    centroids = np.array([pts[c].mean(axis=0) for c in cells])
+    return np.hypot(centroids[:, 0], centroids[:, 1])[damage > 0]
+
+
+def broken_joints(vtu):
+    """(midpoint radius [m], |cos| of the angle to the radial direction) per
+    broken joint."""
+    pts, lines, _, _ = read_vtu(vtu, "break_time")
+    r, radial = [], []
+    for line in lines:
+        p0, p1 = pts[line[0]], pts[line[1]]
+        mid = 0.5 * (p0 + p1)
+        d = (p1 - p0) / np.linalg.norm(p1 - p0)
+        r.append(np.hypot(*mid))
+        radial.append(abs(d @ mid) / np.hypot(*mid))
+    return np.array(r), np.array(radial)
+
+
+def hollow(binary, out):
+    ok = True
+    a, b, h = 0.03, 0.15, 0.007
+    rate = 1e-4   # C/s, prm: Temperature = 1e-4 * t
+    _, st = analytic.cylinder_stress([b], E=20e9, nu=0.25, t_a=1.0)
+    T_pred = 10e6 / st[0]
+    times = ",".join(str(t) for t in np.arange(7.0e5, 9.01e5, 1e4))
+    run(binary, os.path.join(PRM, "hollow_cylinder_cracking.prm"), out,
+        "Time stepping/End time=9e5", f"Output/Times={times}", "Output/Interval=0")
+    hist = history(out)
+    onset = np.nonzero(hist["damaged_joints"] > 0)[0]
+    ok &= check(len(onset) > 0, "joints damaged by t = 9e5 s")
+    if not ok:
+        return False
+    t_onset = hist["time"][onset[0]]
+    T_onset = rate * t_onset
+    err = T_onset / T_pred - 1
+    ok &= check(abs(err) <= 0.10,
+                f"inner-wall T at first failure {T_onset:.2f} C vs elastic prediction "
+                f"{T_pred:.2f} C: {100 * err:+.1f} % (within 10 %)")
+    snapshots = series(out, "solution")
+    first = next((s for s in snapshots if s[0] >= t_onset - 1), None)
+    r = damaged_element_radii(first[1])
+    ok &= check(len(r) > 0 and r.min() > b - 2 * h,
+                f"t = {first[0]:.0f} s: the {len(r)} elements at damaged joints lie at "
+                f"r = {r.min():.4f}..{r.max():.4f} m, at the outer rim (> b - 2h = {b - 2 * h})")
+    r, radial = broken_joints(series(out, "cracks")[-1][1])
+    ok &= check(len(r) >= 3, f"{len(r)} broken joints at the end")
+    if len(r):
+        ok &= check(r.max() > b - h, f"cracks start at the outer rim (outermost joint at "
+                    f"r = {r.max():.4f} m)")
+        ok &= check(r.min() < b - 0.3 * (b - a), f"cracks grow inward to r = {r.min():.4f} m "
+                    f"(< b - 0.3 (b - a) = {b - 0.3 * (b - a):.3f})")
+        frac = np.mean(radial > np.cos(np.radians(35)))
+        ok &= check(frac >= 0.7, f"{100 * frac:.0f} % of the broken joints within 35 deg of "
+                    f"radial (>= 70 %)")
+    s = summary(out)
+    rel = s["heat_balance"]["relative_imbalance"]
+    ok &= check(rel < 1e-6, f"heat balance {rel:.1e} (< 1e-6)")
+    return ok
+
+
+def shock(binary, out):
+    ok = True
+    R, h_mesh = 6.5e-3, 0.25e-3
+    E, alpha, f_t = 370e9, 7.5e-6, 180e6
+    kw = dict(radius=R, conductivity=35., diffusivity=35. / (3980 * 850.), h=3e4,
+              t_ambient=15.)
+    counts = {}
+    for T0 in (300, 500):
+        folder = f"{out}/T{T0}"
+        run(binary, os.path.join(PRM, "thermal_shock_disc.prm"), folder,
+            f"Initial conditions/Temperature={T0}", "Time stepping/End time=0.1",
+            "Output/Times=0.005,0.01,0.02,0.05")
+        hist = history(folder)
+        onset = np.nonzero(hist["damaged_joints"] > 0)[0]
+        ok &= check(len(onset) > 0, f"T0 = {T0}: joints damaged")
+        if len(onset) == 0:
+            continue
+        t_first = hist["time"][onset[0]]
+        t_prev = hist["time"][onset[0] - 1] if onset[0] > 0 else 0.
+        t_rim = analytic.quenched_disc_first_crack_time(f_t, E, alpha, t_initial=T0, **kw)
+        # a rim joint is loaded by the two triangles beside it, whose constant
+        # hoop stress is that of their centroids, h sqrt(3)/6 (edge on the
+        # rim) and h sqrt(3)/3 (vertex on the rim) inside the rim
+        d1, d2 = h_mesh * np.sqrt(3) / 6, h_mesh * np.sqrt(3) / 3
+        t1 = analytic.quenched_disc_hoop_stress_time(f_t, E, alpha, R - d1, t_initial=T0, **kw)
+        t2 = analytic.quenched_disc_hoop_stress_time(f_t, E, alpha, R - d2, t_initial=T0, **kw)
+        ok &= check(t_first >= t1 and t_prev <= t2,
+                    f"T0 = {T0}: first damage in ({t_prev * 1e3:.2f}, {t_first * 1e3:.2f}] ms; "
+                    f"the analytic hoop stress reaches f_t at the rim at {t_rim * 1e3:.2f} ms, "
+                    f"{d1 * 1e3:.3f} mm inside at {t1 * 1e3:.2f} ms, {d2 * 1e3:.3f} mm inside "
+                    f"at {t2 * 1e3:.2f} ms (first damage must fall in between)")
+        r, radial = broken_joints(series(folder, "cracks")[-1][1])
+        counts[T0] = summary(folder)["cracks"]
+        if len(r):
+            ok &= check(r.max() > R - 2 * h_mesh, f"T0 = {T0}: cracks start at the rim "
+                        f"(outermost broken joint at r = {r.max() * 1e3:.3f} mm)")
+            frac = np.mean(radial > np.cos(np.radians(35)))
+            ok &= check(frac >= 0.6, f"T0 = {T0}: {100 * frac:.0f} % of {len(r)} broken joints "
+                        f"within 35 deg of radial (>= 60 %)")
+        rel = summary(folder)["heat_balance"]["relative_imbalance"]
+        ok &= check(rel < 1e-6, f"T0 = {T0}: heat balance {rel:.1e} (< 1e-6)")
+    if len(counts) == 2:
+        ok &= check(counts[500] > counts[300],
+                    f"crack count grows with T0: {counts[300]} at 300 C, {counts[500]} at 500 C")
+    return ok
+
+
+if __name__ == "__main__":
+    binary, out, case = sys.argv[1:4]
+    sys.exit(0 if {"hollow": hollow, "shock": shock}[case](binary, out) else 1)
