@@ -28,7 +28,7 @@ from analytic import read_csv  # noqa: E402
 
 
 # the times of the temperature fields and monitor-line curves [s]
-FIELD_TIMES = [3600, 36000, 90000, 180000, 360000]
+FIELD_TIMES = [1800, 7200, 18000, 43200]
 
 
 def datasets(pvd):
@@ -44,7 +44,7 @@ def container(ax):
 
 
 def draw_mesh(ax, vtu, title):
-    pts, cells, material, _ = read_vtu(vtu, "material")
+    pts, cells, material, _ = read_vtu(vtu, "material_id")
     polys = [pts[c] for c in cells]
     colors = ["#b08060" if m == 1 else "0.6" for m in material]
     ax.add_collection(PolyCollection(polys, facecolors=colors, edgecolors="k", linewidths=0.1))
