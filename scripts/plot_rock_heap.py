@@ -37,12 +37,6 @@ def datasets(pvd):
             for d in ET.parse(pvd).getroot().iter("DataSet")]
 
 
-def container(ax):
-    for x0, y0, w, h in ((-0.02, -0.02, 0.54, 0.02), (-0.02, 0.0025, 0.02, 0.6975),
-                         (0.5, 0.0025, 0.02, 0.6975)):
-        ax.add_patch(plt.Rectangle((x0, y0), w, h, fc="0.6", ec="k", lw=0.5))
-
-
 def draw_mesh(ax, vtu, title):
     pts, cells, material, _ = read_vtu(vtu, "material_id")
     polys = [pts[c] for c in cells]
