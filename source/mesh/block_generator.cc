@@ -111,7 +111,11 @@ namespace tmfdem
     const auto       &p    = parameters.block_heap;
     const std::string name = "Mesh/Block heap/";
     const double      s    = p.mean_size;
-    auto text = [](const double v) { return Utilities::to_string(v); };
+    auto              text = [](const double v) {
+      std::ostringstream out; // 6 significant digits: 0.07, not 0.07000..
+      out << v;
+      return out.str();
+    };
     if (!(p.container_width > 0.) || !(p.container_height > 0.) ||
         !(p.wall_thickness > 0.) || !(s > 0.))
       throw InputError(name + "Container width, Container height, Wall "
