@@ -7,6 +7,7 @@
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/base/simulation.h>
+#include <tmfdem/mesh/block_generator.h>
 
 namespace tmfdem
 {
@@ -49,11 +50,12 @@ namespace tmfdem
     prm.declare_entry(
       "Source",
       "rectangle",
-      Patterns::Selection("rectangle|annulus|disc|file"),
+      Patterns::Selection("rectangle|annulus|disc|file|block heap"),
       "Where the mesh comes from: a generated rectangle (boundary ids 0 left, "
       "1 right, 2 bottom, 3 top), annulus (0 inner, 1 outer), disc (0 rim), "
       "or a gmsh .msh/.geo file (physical curves -> boundary ids, physical "
-      "surfaces -> material ids).");
+      "surfaces -> material ids), or a block heap (subsection Block heap: "
+      "a container and seeded random convex blocks, meshed by gmsh).");
     prm.declare_entry(
       "Element type",
       "triangles",
@@ -107,6 +109,56 @@ namespace tmfdem
                       Patterns::Integer(0,
                                         MaterialParameters::max_materials - 1),
                       "Material id of the cells of a generated mesh [-].");
+    prm.enter_subsection("Block heap");
+    {
+      const BlockHeap d;
+      prm.declare_entry("Container width",
+                        Utilities::to_string(d.container_width),
+                        Patterns::Double(0.),
+                        "Inner width W of the container: the blocks lie in "
+                        "0 < x < W, the base plate's top face is y = 0 "
+                        "(boundary id 1, material id 2), the side walls' "
+                        "inner faces x = 0 and x = W (boundary id 2, "
+                        "material id 2) [m].");
+      prm.declare_entry("Container height",
+                        Utilities::to_string(d.container_height),
+                        Patterns::Double(0.),
+                        "Height H of the side walls above the base [m].");
+      prm.declare_entry("Wall thickness",
+                        Utilities::to_string(d.wall_thickness),
+                        Patterns::Double(0.),
+                        "Thickness of the base plate and of the side walls "
+                        "[m].");
+      prm.declare_entry("Number of blocks",
+                        std::to_string(d.n_blocks),
+                        Patterns::Integer(1, 10000),
+                        "Number of blocks (material id 1, boundary id 0), "
+                        "the cells of a Voronoi tessellation of the region "
+                        "0 < x < W, Drop height < y < Drop height + N s^2 / "
+                        "W about seeded random points [-].");
+      prm.declare_entry("Mean block size",
+                        Utilities::to_string(d.mean_size),
+                        Patterns::Double(0.),
+                        "Mean block size s: the square root of the mean "
+                        "Voronoi cell area (before the gap is cut) [m].");
+      prm.declare_entry("Gap",
+                        Utilities::to_string(d.gap),
+                        Patterns::Double(0.),
+                        "Clear gap between neighbouring blocks and between "
+                        "blocks and walls (each Voronoi edge is moved by "
+                        "Gap / 2 towards its cell's seed) [m].");
+      prm.declare_entry("Drop height",
+                        Utilities::to_string(d.drop_height),
+                        Patterns::Double(0.),
+                        "Height of the region's bottom above the base: the "
+                        "lowest blocks fall at least this far [m].");
+      prm.declare_entry("Seed",
+                        std::to_string(d.seed),
+                        Patterns::Integer(0),
+                        "Seed of the random generator (std::mt19937); the "
+                        "same seed gives the same blocks and mesh [-].");
+    }
+    prm.leave_subsection();
     prm.leave_subsection();
   }
 
@@ -119,7 +171,8 @@ namespace tmfdem
     source             = source_name == "rectangle" ? Source::rectangle :
                          source_name == "annulus"   ? Source::annulus :
                          source_name == "disc"      ? Source::disc :
-                                                      Source::file;
+                         source_name == "file"      ? Source::file :
+                                                      Source::block_heap;
     element_type       = prm.get("Element type") == "triangles" ?
                            ElementType::triangles :
                            ElementType::quadrilaterals;
@@ -133,7 +186,19 @@ namespace tmfdem
     material_id        = prm.get_integer("Material id");
     file_name          = prm.get("File name");
     expected_area      = prm.get_double("Expected area");
+    prm.enter_subsection("Block heap");
+    block_heap.container_width  = prm.get_double("Container width");
+    block_heap.container_height = prm.get_double("Container height");
+    block_heap.wall_thickness   = prm.get_double("Wall thickness");
+    block_heap.n_blocks         = prm.get_integer("Number of blocks");
+    block_heap.mean_size        = prm.get_double("Mean block size");
+    block_heap.gap              = prm.get_double("Gap");
+    block_heap.drop_height      = prm.get_double("Drop height");
+    block_heap.seed             = prm.get_integer("Seed");
     prm.leave_subsection();
+    prm.leave_subsection();
+    if (source == Source::block_heap)
+      check_block_heap_parameters(*this);
 
     if (source != Source::file && !(element_size > 0.))
       throw InputError("Mesh/Element size = " + std::to_string(element_size) +
@@ -814,6 +879,14 @@ namespace tmfdem
                       Patterns::Bool(),
                       "Write solution.pvd and the vtu/pvtu files for "
                       "ParaView.");
+    prm.declare_entry("Write final mesh",
+                      "false",
+                      Patterns::Bool(),
+                      "Discrete mechanics and thermo-mechanics: write the "
+                      "deformed mesh at the end as <Directory>/final_mesh.msh "
+                      "(gmsh 2.2 ASCII; the copies of each original vertex "
+                      "averaged, material and boundary ids kept), e.g. a "
+                      "settled heap as the geometry of a discrete heat run.");
     prm.declare_entry("Progress interval",
                       "2",
                       Patterns::Double(0.),
@@ -834,6 +907,7 @@ namespace tmfdem
       Utilities::split_string_list(prm.get("Times"), ','));
     interval          = prm.get_double("Interval");
     write_vtu         = prm.get_bool("Write vtu");
+    write_final_mesh  = prm.get_bool("Write final mesh");
     progress_interval = prm.get_double("Progress interval");
     prm.leave_subsection();
     for (unsigned int i = 1; i < times.size(); ++i)
@@ -863,6 +937,14 @@ namespace tmfdem
                     ":"),
       "Named sampled lines 'name: x0, y0, x1, y1, n' (n >= 2 equally spaced "
       "points, x, y in m); sampled into lines.csv at every output time.");
+    prm.declare_entry(
+      "Snap to nearest element",
+      "false",
+      Patterns::Bool(),
+      "Discrete layer: a probe or line point outside the mesh (in a gap "
+      "between blocks) samples the nearest point of the nearest element "
+      "(in the reference configuration) instead of being an input error; "
+      "lines.csv keeps the requested x, y.");
     prm.leave_subsection();
   }
 
@@ -900,6 +982,7 @@ namespace tmfdem
                          Point<2>(values[2], values[3]),
                          static_cast<unsigned int>(values[4])});
       }
+    snap_to_nearest = prm.get_bool("Snap to nearest element");
     prm.leave_subsection();
   }
 

@@ -1,5 +1,6 @@
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <tmfdem/base/exceptions.h>
@@ -123,10 +124,40 @@ namespace tmfdem
                 return sample;
               }
           }
+        if (monitors.snap_to_nearest && model.n_elements > 0)
+          {
+            // the nearest point of the nearest element (reference mesh)
+            double best = 1e300;
+            for (unsigned int e = 0; e < model.n_elements; ++e)
+              for (unsigned int k = 0; k < 3; ++k)
+                {
+                  const unsigned int a = 3 * e + k, b = 3 * e + (k + 1) % 3;
+                  const double       ex = model.x_ref[b] - model.x_ref[a];
+                  const double       ey = model.y_ref[b] - model.y_ref[a];
+                  const double t = std::clamp(((p[0] - model.x_ref[a]) * ex +
+                                               (p[1] - model.y_ref[a]) * ey) /
+                                                (ex * ex + ey * ey),
+                                              0.,
+                                              1.);
+                  const double d = std::hypot(model.x_ref[a] + t * ex - p[0],
+                                              model.y_ref[a] + t * ey - p[1]);
+                  if (d < best)
+                    {
+                      best             = d;
+                      sample.element   = e;
+                      sample.lambda[0] = sample.lambda[1] = sample.lambda[2] =
+                        0.;
+                      sample.lambda[k]           = 1. - t;
+                      sample.lambda[(k + 1) % 3] = t;
+                    }
+                }
+            return sample;
+          }
         std::ostringstream where;
         where << "(" << p[0] << ", " << p[1] << ")";
         throw InputError("Monitors: point '" + name + "' at " + where.str() +
-                         " lies outside the mesh.");
+                         " lies outside the mesh (or set Monitors/Snap to "
+                         "nearest element = true).");
       };
       probes.clear();
       line_points.clear();

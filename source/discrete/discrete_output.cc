@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdio>
 #include <iomanip>
 #include <sstream>
@@ -198,6 +199,62 @@ namespace tmfdem
       data_array(cell_data, "Int32", "failure_mode", 1, mode);
       data_array(cell_data, "Float64", "break_time", 1, break_time);
       return grid(points, connectivity, 2, 3, "", cell_data.str());
+    }
+
+    std::string
+    deformed_mesh_msh(const DiscreteModel &model)
+    {
+      unsigned int n_vertices = 0;
+      for (const unsigned int v : model.node_vertex)
+        n_vertices = std::max(n_vertices, v + 1);
+      std::vector<double>       x(n_vertices, 0.), y(n_vertices, 0.);
+      std::vector<unsigned int> copies(n_vertices, 0);
+      for (unsigned int i = 0; i < model.n_nodes; ++i)
+        {
+          const unsigned int v = model.node_vertex[i];
+          x[v] += model.x[i];
+          y[v] += model.y[i];
+          ++copies[v];
+        }
+      // renumber the vertices that some element uses, from 1
+      std::vector<unsigned int> number(n_vertices, 0);
+      unsigned int              n_used = 0;
+      for (unsigned int v = 0; v < n_vertices; ++v)
+        if (copies[v] > 0)
+          number[v] = ++n_used;
+      std::ostringstream out;
+      out << std::setprecision(17);
+      out << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" << n_used << '\n';
+      for (unsigned int v = 0; v < n_vertices; ++v)
+        if (copies[v] > 0)
+          out << number[v] << ' ' << x[v] / copies[v] << ' ' << y[v] / copies[v]
+              << " 0\n";
+      out << "$EndNodes\n";
+      std::ostringstream elements;
+      unsigned int       n_elements = 0;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            const types::boundary_id id = model.edge_boundary[3 * e + k];
+            if (model.edge_joint[3 * e + k] < 0 && id > 0 &&
+                id != numbers::internal_face_boundary_id)
+              elements << ++n_elements << " 1 2 " << id << ' ' << id << ' '
+                       << number[model.node_vertex[3 * e + k]] << ' '
+                       << number[model.node_vertex[3 * e + (k + 1) % 3]]
+                       << '\n';
+          }
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          const unsigned int m = model.material[e];
+          elements << ++n_elements << " 2 2 " << m << ' ' << m;
+          for (unsigned int k = 0; k < 3; ++k)
+            elements << ' ' << number[model.node_vertex[3 * e + k]];
+          elements << '\n';
+        }
+      out << "$Elements\n"
+          << n_elements << '\n'
+          << elements.str() << "$EndElements\n";
+      return out.str();
     }
   } // namespace discrete
 } // namespace tmfdem

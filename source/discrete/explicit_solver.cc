@@ -1694,6 +1694,9 @@ namespace tmfdem
       if (next_output < output_times.size())
         write_output();
       write_summary(true);
+      if (parameters.output.write_final_mesh)
+        write_file_atomically(parameters.output.directory + "/final_mesh.msh",
+                              deformed_mesh_msh(model));
       std::cerr << "[tmfdem] "
                 << (with_heat ? "discrete thermo-mechanics: " :
                                 "discrete mechanics: ")

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 #include <tmfdem/base/exceptions.h>
+#include <tmfdem/mesh/block_generator.h>
 #include <tmfdem/mesh/mesh_generator.h>
 #include <unistd.h>
 
@@ -281,6 +282,21 @@ namespace tmfdem
         return;
       }
 
+    if (parameters.source == Source::block_heap)
+      {
+        if (!triangles)
+          throw InputError("Mesh/Source = block heap makes triangles only; "
+                           "allowed is Mesh/Element type = triangles.");
+        const std::string msh_file = work_folder + "/mesh.msh";
+        run_gmsh(block_heap_gmsh_script(generate_block_heap(parameters), h),
+                 work_folder + "/mesh.geo",
+                 work_folder,
+                 msh_file,
+                 communicator);
+        read_gmsh_file(msh_file, triangulation);
+        return;
+      }
+
     if (triangles)
       {
         const std::string msh_file = work_folder + "/mesh.msh";
@@ -416,6 +432,8 @@ namespace tmfdem
                                 p.inner_radius * p.inner_radius);
         case MeshParameters::Source::disc:
           return numbers::PI * p.outer_radius * p.outer_radius;
+        case MeshParameters::Source::block_heap:
+          return generate_block_heap(p).area();
         default:
           return p.expected_area;
       }

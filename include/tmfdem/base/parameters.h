@@ -36,7 +36,8 @@ namespace tmfdem
       rectangle,
       annulus,
       disc,
-      file
+      file,
+      block_heap
     };
     /** Cell shape of generated meshes (files bring their own). */
     enum class ElementType
@@ -65,6 +66,25 @@ namespace tmfdem
     unsigned int global_refinements = 0;
     /** Material id of generated meshes. */
     types::material_id material_id = 0;
+
+    /**
+     * Subsection `Mesh/Block heap` (Source = block heap): a container
+     * (base plate and two side walls, material id 2; boundary ids 1 base,
+     * 2 walls, 0 blocks) holding convex blocks (material id 1) cut from a
+     * seeded Voronoi tessellation of a region above the base.
+     */
+    struct BlockHeap
+    {
+      double       container_width  = 0.5;   ///< inner width W [m]
+      double       container_height = 0.7;   ///< inner wall height H [m]
+      double       wall_thickness   = 0.02;  ///< base and walls [m]
+      unsigned int n_blocks         = 61;    ///< number of blocks [-]
+      double       mean_size        = 0.07;  ///< sqrt(mean cell area) [m]
+      double       gap              = 0.005; ///< between blocks/walls [m]
+      double       drop_height      = 0.02;  ///< region above the base [m]
+      unsigned int seed             = 1;     ///< random seed [-]
+    };
+    BlockHeap block_heap;
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -320,7 +340,10 @@ namespace tmfdem
     std::vector<double> times;            ///< output times [s]
     double              interval  = 0.;   ///< output every ... [s], 0: off
     bool                write_vtu = true; ///< solution.pvd and vtu files
-    double              progress_interval = 2.; ///< stderr progress [s wall]
+    /** Discrete mechanics: write the deformed mesh at the end as
+     *  <directory>/final_mesh.msh (gmsh 2.2, ASCII). */
+    bool   write_final_mesh  = false;
+    double progress_interval = 2.; ///< stderr progress [s wall]
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -344,6 +367,9 @@ namespace tmfdem
     };
     std::vector<Probe> probes;
     std::vector<Line>  lines;
+    /** Discrete layer: a point outside the mesh (in a gap between blocks)
+     *  samples the nearest element instead of being an input error. */
+    bool snap_to_nearest = false;
 
     static void
     declare_parameters(ParameterHandler &prm);

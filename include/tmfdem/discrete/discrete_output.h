@@ -57,6 +57,18 @@ namespace tmfdem
      *  of its two faces' end nodes). */
     std::string
     crack_vtu(const DiscreteModel &model);
+
+    /**
+     * The current configuration as a gmsh 2.2 ASCII mesh (Output/Write
+     * final mesh): one vertex per vertex of the original mesh at the mean
+     * position of its copies (intact joints keep them together; a vertex
+     * whose copies have separated along broken joints is averaged too, so
+     * this suits meshes without broken joints, e.g. a settled heap of
+     * intact blocks), triangles with their material ids as physical tags and
+     * boundary edges with boundary id > 0 as line elements.
+     */
+    std::string
+    deformed_mesh_msh(const DiscreteModel &model);
   } // namespace discrete
 } // namespace tmfdem
 
