@@ -9,7 +9,7 @@
       strain, 77.45 C); the broken joints form radial cracks from the outer
       rim inward; heat balance 1e-6.
   verify_discrete_thermal_cracking.py TMFDEM OUT shock
-      prm/thermal_shock_disc.prm on a coarser mesh at T0 = 300 and 500 C:
+      prm/thermal_shock_disc.prm (h = 0.4 mm) to 50 ms at T0 = 300 and 500 C:
       the first damage at the rim, once the analytic hoop stress of the
       quenched disc (E alpha (T_mean - T(R)) at the rim) has reached f_t at
       the depth of the centroids of the rim triangles (h sqrt(3)/6 and
@@ -69,12 +69,15 @@ def hollow(binary, out):
     rate = 1e-4   # C/s, prm: Temperature = 1e-4 * t
     _, st = analytic.cylinder_stress([b], E=20e9, nu=0.25, t_a=1.0)
     T_pred = 10e6 / st[0]
-    times = ",".join(str(t) for t in np.arange(7.0e5, 9.01e5, 1e4))
+    # 2 C per thermal step (the prm takes 1 C) to keep the test short: the
+    # failure temperature is located to 2.6 %
+    times = ",".join(str(t) for t in np.arange(7.0e5, 8.81e5, 2e4))
     run(binary, os.path.join(PRM, "hollow_cylinder_cracking.prm"), out,
-        "Time stepping/End time=9e5", f"Output/Times={times}", "Output/Interval=0")
+        "Time stepping/Time step=2e4", "Time stepping/End time=8.8e5",
+        f"Output/Times={times}", "Output/Interval=0")
     hist = history(out)
     onset = np.nonzero(hist["damaged_joints"] > 0)[0]
-    ok &= check(len(onset) > 0, "joints damaged by t = 9e5 s")
+    ok &= check(len(onset) > 0, "joints damaged by t = 8.8e5 s")
     if not ok:
         return False
     t_onset = hist["time"][onset[0]]
@@ -107,7 +110,7 @@ def hollow(binary, out):
 
 def shock(binary, out):
     ok = True
-    R, h_mesh = 6.5e-3, 0.25e-3
+    R, h_mesh = 6.5e-3, 0.4e-3
     E, alpha, f_t = 370e9, 7.5e-6, 180e6
     kw = dict(radius=R, conductivity=35., diffusivity=35. / (3980 * 850.), h=3e4,
               t_ambient=15.)
@@ -115,8 +118,8 @@ def shock(binary, out):
     for T0 in (300, 500):
         folder = f"{out}/T{T0}"
         run(binary, os.path.join(PRM, "thermal_shock_disc.prm"), folder,
-            f"Initial conditions/Temperature={T0}", "Time stepping/End time=0.1",
-            "Output/Times=0.005,0.01,0.02,0.05")
+            f"Initial conditions/Temperature={T0}", "Time stepping/End time=0.05",
+            "Output/Times=0.005,0.01,0.02")
         hist = history(folder)
         onset = np.nonzero(hist["damaged_joints"] > 0)[0]
         ok &= check(len(onset) > 0, f"T0 = {T0}: joints damaged")
