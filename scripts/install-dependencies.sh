@@ -4,7 +4,7 @@
 # missing.
 set -euo pipefail
 packages=(build-essential cmake libdeal.ii-dev gmsh openmpi-bin libgtest-dev
-          python3 python3-numpy python3-matplotlib)
+          python3 python3-numpy python3-matplotlib python3-scipy)
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
