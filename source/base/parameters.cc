@@ -480,6 +480,15 @@ namespace tmfdem
                       "One-step theta method: backward Euler (theta = 1, "
                       "first order, L-stable) or Crank-Nicolson (theta = 1/2, "
                       "second order).");
+    prm.declare_entry(
+      "Rannacher steps",
+      "4",
+      Patterns::Integer(0),
+      "Crank-Nicolson only: the run starts with this many backward Euler "
+      "half steps (Rannacher smoothing), which damp the high-frequency error "
+      "of non-smooth data (a Dirichlet value that differs from the initial "
+      "temperature) that Crank-Nicolson alone would carry undamped; 0 starts "
+      "with Crank-Nicolson.");
     prm.declare_entry("Start time", "0", Patterns::Double(), "Start time [s].");
     prm.declare_entry("End time", "1", Patterns::Double(), "End time [s].");
     prm.declare_entry("Time step",
@@ -494,11 +503,12 @@ namespace tmfdem
   TimeSteppingParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Time stepping");
-    mode       = prm.get("Mode") == "steady" ? Mode::steady : Mode::transient;
-    method     = prm.get("Method");
-    start_time = prm.get_double("Start time");
-    end_time   = prm.get_double("End time");
-    time_step  = prm.get_double("Time step");
+    mode   = prm.get("Mode") == "steady" ? Mode::steady : Mode::transient;
+    method = prm.get("Method");
+    rannacher_steps = prm.get_integer("Rannacher steps");
+    start_time      = prm.get_double("Start time");
+    end_time        = prm.get_double("End time");
+    time_step       = prm.get_double("Time step");
     prm.leave_subsection();
     for (const auto &[name, value] : theta_scheme_registry())
       if (name == method)

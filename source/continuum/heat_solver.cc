@@ -597,7 +597,7 @@ namespace tmfdem
 
   // ------------------------------------------------------------ initial
   void
-  HeatSolver::set_initial_condition()
+  HeatSolver::set_initial_condition(const bool hold_dirichlet)
   {
     initial_temperature->set_time(parameters.time.start_time);
     TrilinosWrappers::MPI::Vector distributed(locally_owned_dofs, communicator);
@@ -605,8 +605,21 @@ namespace tmfdem
                              *dof_handler,
                              *initial_temperature,
                              distributed);
+    // the initial temperature everywhere, Dirichlet nodes included: the
+    // boundary values act from the first step on. Holding them at t = 0
+    // would add the heat of a boundary-layer hat function to the initial
+    // data where they differ from it (a step at a heated edge); starting
+    // from the initial temperature, the first backward Euler step equals
+    // one from the L2 projection of the initial data onto the constrained
+    // space (doc/cases/plate_transient-continuum.md)
+    AffineConstraints<double> hanging_nodes;
+    hanging_nodes.reinit(locally_relevant_dofs);
+    DoFTools::make_hanging_node_constraints(*dof_handler, hanging_nodes);
+    hanging_nodes.close();
+    hanging_nodes.distribute(distributed);
     make_constraints(parameters.time.start_time);
-    constraints.distribute(distributed);
+    if (hold_dirichlet)
+      constraints.distribute(distributed);
     solution     = distributed;
     old_solution = distributed;
   }
@@ -825,14 +838,14 @@ namespace tmfdem
                  end             = time_parameters.end_time;
     const double time_tolerance  = 1e-10 * std::max(1., std::abs(end));
 
-    set_initial_condition();
     if (parameters.adaptivity.enable)
       for (unsigned int k = 0; k < parameters.adaptivity.initial_refinements;
            ++k)
         {
+          set_initial_condition(true);
           adapt_mesh(false);
-          set_initial_condition();
         }
+    set_initial_condition(false);
     compute_cell_matrices();
 
     // output times: those listed, multiples of the interval, and the end
@@ -867,7 +880,7 @@ namespace tmfdem
                               Utilities::MPI::this_mpi_process(communicator) ==
                                 0);
     HeatBalance      balance;
-    double           time = start, last_dt = -1.;
+    double           time = start, last_dt = -1., last_theta = -1.;
     unsigned long    step              = 0;
     bool             matrix_is_current = false;
     write_output(time);
@@ -875,12 +888,20 @@ namespace tmfdem
       while (time < output_time - time_tolerance)
         {
           double dt = time_parameters.time_step;
+          // Rannacher start of Crank-Nicolson: backward Euler half steps
+          theta = time_parameters.theta;
+          if (theta < 1. && step < time_parameters.rannacher_steps)
+            {
+              theta = 1.;
+              dt *= 0.5;
+            }
           // land on the output time; never leave a sliver of a step
           if (time + dt > output_time - 1e-3 * dt)
             dt = output_time - time;
           const double new_time = time + dt;
           const bool   rebuild  = !matrix_is_current || time_dependent_robin ||
-                               std::abs(dt - last_dt) > 1e-12 * dt;
+                               std::abs(dt - last_dt) > 1e-12 * dt ||
+                               theta != last_theta;
           if (time_dependent_dirichlet)
             make_constraints(new_time);
           old_solution = solution;
@@ -888,10 +909,11 @@ namespace tmfdem
           solve(rebuild);
           accumulate_heat_balance(balance);
           matrix_is_current = true;
-          time    = std::abs(new_time - output_time) < time_tolerance ?
-                      output_time :
-                      new_time;
-          last_dt = dt;
+          time       = std::abs(new_time - output_time) < time_tolerance ?
+                         output_time :
+                         new_time;
+          last_dt    = dt;
+          last_theta = theta;
           ++step;
           if (parameters.adaptivity.enable &&
               step % parameters.adaptivity.interval == 0)

@@ -1,7 +1,10 @@
 #!/usr/bin/python3
 """Paper 5.1, continuum: max abs error along 'midline' <= 0.5 C at t = 2, 10,
-20, 50 s at element size 0.05 m, against the corrected series; and the heat
-balance closes."""
+20, 50 s at element size 0.05 m, against the corrected series (P2,
+Crank-Nicolson with a Rannacher start: measured 0.015, 0.0016, 0.0006,
+0.0001 C, held to 0.02, 0.003, 0.0015, 0.0005 C); and the heat balance
+closes. The P1 limit at this size is checked in
+convergence_plate_transient.py."""
 import sys
 from common import run, summary, check
 from analytic import plate_transient, read_csv
@@ -13,10 +16,11 @@ def check_midline(folder, label):
     """Asserts max |T - T_exact| <= 0.5 C on 'midline' at the paper's times."""
     lines = read_csv(f"{folder}/lines.csv")["midline"]
     passed = True
-    for t in (2.0, 10.0, 20.0, 50.0):
+    for t, limit in ((2.0, 0.02), (10.0, 0.003), (20.0, 0.0015), (50.0, 0.0005)):
         x, y, fields = lines[t]
         error = abs(fields["T"] - plate_transient(x, t)).max()
-        passed &= check(error <= 0.5, f"{label}t = {t:4.0f} s: max |T - T_exact| = {error:.4f} C <= 0.5 C")
+        passed &= check(error <= limit, f"{label}t = {t:4.0f} s: max |T - T_exact| = {error:.5f} C "
+                        f"<= {limit} C (target 0.5 C)")
     return passed
 
 

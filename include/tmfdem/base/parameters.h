@@ -193,11 +193,13 @@ namespace tmfdem
       steady
     };
     Mode        mode = Mode::transient;
-    std::string method;           ///< name from theta_scheme_registry()
-    double      theta      = 1.;  ///< implicitness of the chosen method
-    double      start_time = 0.;  ///< [s]
-    double      end_time   = 1.;  ///< [s]
-    double      time_step  = 0.1; ///< [s]
+    std::string method;     ///< name from theta_scheme_registry()
+    double      theta = 1.; ///< implicitness of the chosen method
+    /** Backward Euler half steps that start a Crank-Nicolson run. */
+    unsigned int rannacher_steps = 4;
+    double       start_time      = 0.;  ///< [s]
+    double       end_time        = 1.;  ///< [s]
+    double       time_step       = 0.1; ///< [s]
 
     static void
     declare_parameters(ParameterHandler &prm);

@@ -43,11 +43,12 @@ namespace tmfdem
    * Time stepping with theta in [1/2, 1]:
    * (M + theta dt (K + R)) T^{n+1} = (M - (1-theta) dt (K + R)) T^n
    *                                 + dt (theta F^{n+1} + (1-theta) F^n),
-   * with M the consistent capacity matrix, K the conductivity matrix, R the
-   * Robin boundary matrix and F the sources, Neumann and Robin loads. The
-   * heat balance (stored = in through each boundary id + sources) is kept
-   * every step, the Dirichlet heat from the reaction of the discrete
-   * equations.
+   * (a Crank-Nicolson run starts with Time stepping/Rannacher steps
+   * backward Euler half steps), with M the consistent capacity matrix, K the
+   * conductivity matrix, R the Robin boundary matrix and F the sources, Neumann
+   * and Robin loads. The heat balance (stored = in through each boundary id +
+   * sources) is kept every step, the Dirichlet heat from the reaction of the
+   * discrete equations.
    */
   class HeatSolver : public Simulation
   {
@@ -119,8 +120,14 @@ namespace tmfdem
     /** Adds this step's heats to @p balance, from the recorded systems. */
     void
     accumulate_heat_balance(HeatBalance &balance) const;
+    /**
+     * Interpolates the initial temperature [C]; with @p hold_dirichlet the
+     * Dirichlet values at the start time replace it on the boundary (the
+     * field that the initial adaptive refinement estimates), without them
+     * the Dirichlet values act from the first step on (the initial state).
+     */
     void
-    set_initial_condition();
+    set_initial_condition(const bool hold_dirichlet);
     /** Kelly estimate, mark, refine and coarsen, transfer the solution. */
     void
     adapt_mesh(const bool transfer_solution);
@@ -141,7 +148,9 @@ namespace tmfdem
 
     const Parameters parameters;
     MPI_Comm         communicator;
-    const double     theta;
+    /** Theta of the current step: that of Time stepping/Method, 1 during
+     *  the Rannacher start of a Crank-Nicolson run. */
+    double theta;
 
     std::unique_ptr<parallel::TriangulationBase<2>> triangulation;
     std::unique_ptr<FiniteElement<2>>               fe;

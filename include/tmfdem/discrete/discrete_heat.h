@@ -62,8 +62,9 @@ namespace tmfdem
       DiscreteHeat(const Parameters &parameters, DiscreteModel &model);
       ~DiscreteHeat();
 
-      /** Sets T(x, y, t0) from `Initial conditions` (reference positions)
-       *  and applies Dirichlet values. */
+      /** Sets T(x, y, t0) [C] from `Initial conditions` (reference
+       *  positions) at every node, Dirichlet nodes included: the Dirichlet
+       *  values act from the first step on. */
       void
       initialise(const double time);
 
