@@ -1217,9 +1217,9 @@ namespace tmfdem
     ExplicitSolver::quasi_static_thermal_step() const
     {
       const DiscreteHeatParameters &dh = parameters.discrete_heat;
-      double dt = parameters.time.time_step *
-                  std::pow(dh.thermal_step_growth,
-                           static_cast<double>(n_thermal_steps));
+      double                        dt =
+        parameters.time.time_step *
+        std::pow(dh.thermal_step_growth, static_cast<double>(n_thermal_steps));
       if (dh.maximum_thermal_step > 0.)
         dt = std::min(dt, dh.maximum_thermal_step);
       dt = std::max(dt, parameters.time.time_step);
@@ -1320,8 +1320,7 @@ namespace tmfdem
           << balance.joint_work << ',' << balance.contact_work << ','
           << balance.friction_dissipation << ',' << balance.viscous_dissipation
           << ',' << balance.external_work << ',' << balance.balance_error()
-          << ',' << model.n_broken_joints() << ','
-          << model.n_damaged_joints();
+          << ',' << model.n_broken_joints() << ',' << model.n_damaged_joints();
       for (const auto &r : body_reaction)
         row << ',' << r[0] << ',' << r[1];
       for (const auto &r : condition_reaction)

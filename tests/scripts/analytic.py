@@ -141,17 +141,7 @@ def quenched_disc_rim_hoop_stress(t, E, alpha, **kw):
 def quenched_disc_first_crack_time(f_t, E, alpha, t_max=10.0, **kw):
     """The first time [s] at which the rim hoop stress reaches f_t, or None
     if its maximum stays below."""
-    from scipy.optimize import brentq
-    times = np.geomspace(1e-7, t_max, 400)
-    s = np.array([quenched_disc_rim_hoop_stress(t, E, alpha, **kw) for t in times])
-    above = np.nonzero(s >= f_t)[0]
-    if len(above) == 0:
-        return None
-    i = above[0]
-    if i == 0:
-        return times[0]
-    g = lambda t: quenched_disc_rim_hoop_stress(t, E, alpha, **kw) - f_t
-    return brentq(g, times[i - 1], times[i])
+    return quenched_disc_hoop_stress_time(f_t, E, alpha, kw["radius"], t_max, **kw)
 
 
 def quenched_disc_hoop_stress(r, t, E, alpha, **kw):
