@@ -18,6 +18,7 @@
 #include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/explicit_solver.h>
+#include <tmfdem/discrete/stable_step.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 #include <tmfdem/mesh/mesh_checks.h>
@@ -241,10 +242,22 @@ namespace tmfdem
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
           const MaterialProperties &m = parameters.materials[model.material[e]];
-          const double              h = std::sqrt(2. * model.reference_area[e]);
-          viscosity[e] = parameters.discrete_mechanics.damping_ratio * 2. * h *
-                         std::sqrt(m.youngs_modulus * m.density);
           const double node_mass = m.density * model.reference_area[e] / 3.;
+          // Damping ratio = zeta of the element's highest free mode
+          // (stable_step.h): eta = ratio / zeta per unit viscosity
+          const double ratio = parameters.discrete_mechanics.damping_ratio;
+          viscosity[e] =
+            ratio > 0. ?
+              ratio / highest_mode_damping_per_viscosity(
+                        {{model.x_ref[3 * e],
+                          model.x_ref[3 * e + 1],
+                          model.x_ref[3 * e + 2]}},
+                        {{model.y_ref[3 * e],
+                          model.y_ref[3 * e + 1],
+                          model.y_ref[3 * e + 2]}},
+                        solid[model.material[e]].lame,
+                        node_mass) :
+              0.;
           for (unsigned int k = 0; k < 3; ++k)
             model.mass[3 * e + k] = node_mass;
         }
@@ -576,63 +589,46 @@ namespace tmfdem
       balance.thermal_work += after - before;
     }
 
+    ElementStepInput
+    ExplicitSolver::element_step_input(const unsigned int e,
+                                       const bool         deformed) const
+    {
+      ElementStepInput in;
+      const unsigned int n0 = 3 * e;
+      const auto        &X  = deformed ? model.x : model.x_ref;
+      const auto        &Y  = deformed ? model.y : model.y_ref;
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          in.x[k] = X[n0 + k];
+          in.y[k] = Y[n0 + k];
+          // every intact joint the element's nodes belong to
+          const int code = model.edge_joint[n0 + k];
+          if (code >= 0 &&
+              model.joint_status[code / 2] == JointStatus::intact)
+            {
+              const JointConstants &jc = model.joint_constants[code / 2];
+              in.edge_joint_normal_stiffness[k]     = jc.normal_stiffness;
+              in.edge_joint_tangential_stiffness[k] = jc.tangential_stiffness;
+            }
+        }
+      in.lame      = solid[model.material[e]].lame;
+      in.viscosity = viscosity[e];
+      in.node_mass = model.mass[n0];
+      if (parameters.discrete_mechanics.contact)
+        // a node pressed into a target of altitude ~ its edge feels about
+        // 3 p_n per unit penetration (both pair directions) and at most p_t
+        // of stick stiffness
+        in.node_contact_stiffness =
+          3. * contact_penalty + contact_tangential_penalty;
+      return in;
+    }
+
     void
     ExplicitSolver::compute_stable_time_step()
     {
-      const auto &dm = parameters.discrete_mechanics;
-      double      dt = 1e300;
+      double dt = std::numeric_limits<double>::infinity();
       for (unsigned int e = 0; e < model.n_elements; ++e)
-        {
-          const SolidMaterial &m = solid[model.material[e]];
-          const double         c =
-            std::sqrt((m.lame.lambda + 2. * m.lame.mu) / m.density);
-          double longest = 0.;
-          for (unsigned int k = 0; k < 3; ++k)
-            {
-              const unsigned int a = 3 * e + k, b = 3 * e + (k + 1) % 3;
-              longest = std::max(longest,
-                                 std::hypot(model.x_ref[b] - model.x_ref[a],
-                                            model.y_ref[b] - model.y_ref[a]));
-            }
-          const double altitude = 2. * model.reference_area[e] / longest;
-          const double E =
-            parameters.materials[model.material[e]].youngs_modulus;
-          // damping ratio of the highest mode of a bar of length h
-          const double zeta =
-            viscosity[e] / (altitude * std::sqrt(E * m.density));
-          dt =
-            std::min(dt, altitude / c * (std::sqrt(1. + zeta * zeta) - zeta));
-        }
-      for (unsigned int j = 0; j < model.n_joints; ++j)
-        {
-          const double k =
-            0.5 *
-            std::max(model.joint_constants[j].normal_stiffness,
-                     model.joint_constants[j].tangential_stiffness) *
-            model.joint_length[j];
-          const double m_a   = model.mass[model.joint_nodes[4 * j]];
-          const double m_b   = model.mass[model.joint_nodes[4 * j + 2]];
-          const double omega = std::sqrt(k * (1. / m_a + 1. / m_b));
-          dt                 = std::min(dt, 2. / omega);
-        }
-      if (dm.contact)
-        {
-          double E_max = 0.;
-          for (unsigned int e = 0; e < model.n_elements; ++e)
-            E_max =
-              std::max(E_max,
-                       parameters.materials[model.material[e]].youngs_modulus);
-          const double p = dm.contact_penalty_factor * E_max;
-          for (unsigned int e = 0; e < model.n_elements; ++e)
-            {
-              // an edge of length L pressed flat into a target of altitude
-              // h ~ L feels about 3 p L / h per unit penetration per node,
-              // both pair directions counted: k ~ 3 p
-              const double k = 3. * p;
-              const double m = model.mass[3 * e];
-              dt             = std::min(dt, 2. / std::sqrt(2. * k / m));
-            }
-        }
+        dt = std::min(dt, critical_time_step(element_step_input(e, false)));
       stable_time_step = dt;
     }
 

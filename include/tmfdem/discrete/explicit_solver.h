@@ -26,6 +26,7 @@
 #include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_model.h>
 #include <tmfdem/discrete/solid.h>
+#include <tmfdem/discrete/stable_step.h>
 #include <vector>
 
 namespace tmfdem
@@ -147,6 +148,14 @@ namespace tmfdem
       evaluate_boundary_conditions();
       void
       compute_stable_time_step();
+      /**
+       * What the stable-step bound of stable_step.h needs of element @p e:
+       * its geometry (reference or @p deformed), Lame constants, viscosity,
+       * node mass, the stiffness of its intact joints and the contact
+       * springs' bound.
+       */
+      ElementStepInput
+      element_step_input(const unsigned int e, const bool deformed) const;
       void
       update_contact_candidates();
       void
