@@ -78,9 +78,12 @@ namespace tmfdem
     prm.declare_entry("Damping ratio",
                       "1",
                       Patterns::Double(0.),
-                      "Viscosity eta of the solid as a fraction of "
-                      "2 h sqrt(E rho), the critical damping of the "
-                      "highest element mode [-]; 0: undamped.");
+                      "Modal damping ratio of each element's highest "
+                      "free mode [-]: the viscosity eta of the viscous "
+                      "stress 2 eta sym(grad v) is chosen per element so "
+                      "that 1 damps that mode critically; a mode of "
+                      "frequency omega gets about ratio x omega / "
+                      "omega_max. 0: undamped (doc/theory.md 5.3).");
     prm.declare_entry("Mass damping",
                       "0",
                       Patterns::Double(0.),

@@ -35,7 +35,7 @@ namespace tmfdem
     double      contact_tangential_penalty_factor = 1.;  ///< p_ct / E [-]
     double      friction_coefficient              = 0.5; ///< mu [-]
     std::string softening_law                     = "Munjiza";
-    double      damping_ratio             = 1.; ///< eta / (2 h sqrt(E rho)) [-]
+    double      damping_ratio             = 1.; ///< modal ratio of the highest element mode [-]
     double      mass_damping              = 0.; ///< c of -c m v [1/s]
     std::vector<double> gravity           = {0., 0.}; ///< [m/s^2]
     double              contact_buffer    = 0.; ///< [m]; 0: 0.25 x smallest h
