@@ -182,6 +182,29 @@ namespace tmfdem
                 heat->stable_time_step() / time_step)) +
               ", or 0 (automatic), or implicit heat.");
           thermal_time = time;
+          if (quasi_static)
+            {
+              // motions imposed in thermal time are ramped in over the
+              // first relaxation steps of each thermal step
+              using Type        = MechanicalBoundaryCondition::Type;
+              bool imposed      = false;
+              for (const auto &c : parameters.mechanical_boundary.conditions)
+                imposed |= c.type == Type::velocity ||
+                           c.type == Type::displacement;
+              for (const auto motion : body_motion)
+                imposed |= motion == DiscreteBody::Motion::velocity;
+              quasi_static_ramp_steps = imposed ? 100 : 0;
+              if (imposed && steps_per_thermal_step <= 2 * quasi_static_ramp_steps)
+                throw InputError(
+                  "Discrete heat/Mechanical steps per thermal step = " +
+                  std::to_string(steps_per_thermal_step) +
+                  " is too few for quasi-static coupling with imposed "
+                  "velocities or displacements, which are ramped in over " +
+                  std::to_string(quasi_static_ramp_steps) +
+                  " relaxation steps; allowed is more than " +
+                  std::to_string(2 * quasi_static_ramp_steps) +
+                  " (or 0: automatic).");
+            }
           // the stress-free temperature of each element
           const Vector<double> &T = heat->temperature();
           reference_temperature.resize(model.n_elements);
@@ -506,7 +529,18 @@ namespace tmfdem
     ExplicitSolver::evaluate_boundary_conditions()
     {
       using Type         = MechanicalBoundaryCondition::Type;
-      const double t_mid = time + 0.5 * time_step, t_next = time + time_step;
+      // quasi-static coupling: the clock is the thermal time, which does not
+      // move while the mechanics relaxes: velocities at the middle of the
+      // thermal step (scaled to spread v dt_thermal over the ramp),
+      // displacements reached at the end of the ramp
+      const double t_mid  = quasi_static ? time - 0.5 * current_thermal_step :
+                                           time + 0.5 * time_step;
+      const double t_next = quasi_static ? time : time + time_step;
+      const double scale  = imposed_velocity_scale();
+      const double steps_to_target =
+        quasi_static && relaxation_step < quasi_static_ramp_steps ?
+          quasi_static_ramp_steps - relaxation_step :
+          1.;
       for (ConditionFunctions &f : conditions)
         for (unsigned int d = 0; d < 2; ++d)
           f.value[d]->set_time(f.type == Type::displacement ? t_next :
@@ -522,7 +556,7 @@ namespace tmfdem
               if (nc.prescribed[d])
                 {
                   if (f.type == Type::velocity)
-                    nc.velocity[d] = f.value[d]->value(p);
+                    nc.velocity[d] = scale * f.value[d]->value(p);
                   else if (f.type == Type::displacement)
                     {
                       // reach X + u(t + dt) at the end of the step
@@ -531,7 +565,9 @@ namespace tmfdem
                         f.value[d]->value(p);
                       const double now = d == 0 ? model.x[n] : model.y[n];
                       nc.velocity[d] =
-                        time_step > 0. ? (target - now) / time_step : 0.;
+                        time_step > 0. ?
+                          (target - now) / (steps_to_target * time_step) :
+                          0.;
                     }
                   else
                     nc.velocity[d] = 0.;
@@ -1177,9 +1213,12 @@ namespace tmfdem
           ++n_thermal_steps;
           update_thermal_stretch();
           // ... then the mechanics relaxes at these temperatures (no clock)
-          unsigned int i = 0;
+          current_thermal_step = dt;
+          unsigned int i       = 0;
+          bool         relaxed = false;
           while (i < steps_per_thermal_step)
             {
+              relaxation_step = i;
               mechanical_step();
               ++i;
               if (i % 50 == 0)
@@ -1187,12 +1226,41 @@ namespace tmfdem
                   energy();
                   last_kinetic_to_strain =
                     balance.kinetic / std::max(balance.strain, 1e-300);
-                  if (last_kinetic_to_strain <
-                      parameters.discrete_heat.relaxation_tolerance)
-                    break;
+                  if (i > quasi_static_ramp_steps &&
+                      last_kinetic_to_strain <
+                        parameters.discrete_heat.relaxation_tolerance)
+                    {
+                      relaxed = true;
+                      break;
+                    }
                 }
             }
+          relaxation_step       = quasi_static_ramp_steps + 1;
           last_relaxation_steps = i;
+          if (!relaxed)
+            {
+              ++relaxations_at_cap;
+              if (relaxations_at_cap == 1)
+                std::cerr
+                  << "[tmfdem] warning: at t = " << time
+                  << " s the relaxation reached its cap of "
+                  << steps_per_thermal_step
+                  << " mechanical steps (Discrete heat/Mechanical steps per "
+                     "thermal step) with kinetic / strain energy "
+                  << last_kinetic_to_strain << " above Relaxation tolerance = "
+                  << parameters.discrete_heat.relaxation_tolerance
+                  << ": the state is not in equilibrium. Raise the cap, "
+                     "shorten the thermal step or add Mass damping; "
+                     "summary.json counts these steps "
+                     "(relaxations_at_cap).\n";
+              if (parameters.discrete_heat.relaxation_cap_is_error)
+                guard_failure(
+                  "guard: the relaxation at t = " + Utilities::to_string(time) +
+                  " s reached its cap of " +
+                  std::to_string(steps_per_thermal_step) +
+                  " mechanical steps without reaching Relaxation tolerance "
+                  "(Discrete heat/Relaxation cap is error = true).");
+            }
           return;
         }
       mechanical_step();
@@ -1227,18 +1295,25 @@ namespace tmfdem
     void
     ExplicitSolver::mechanical_step()
     {
-      // driven bodies move with their velocity at mid step
+      // driven bodies move with their velocity at mid step; in quasi-static
+      // coupling with the velocity at the middle of the thermal step, its
+      // displacement v dt_thermal spread over the first relaxation steps
       const Point<2> mid_time(0., 0.);
+      const double   t_velocity = quasi_static ?
+                                    time - 0.5 * current_thermal_step :
+                                    time + 0.5 * time_step;
+      const double   scale      = imposed_velocity_scale();
       for (unsigned int b = 0; b < body_motion.size(); ++b)
         if (body_motion[b] == DiscreteBody::Motion::velocity)
           {
-            body_velocity[2 * b]->set_time(time + 0.5 * time_step);
-            body_velocity[2 * b + 1]->set_time(time + 0.5 * time_step);
+            body_velocity[2 * b]->set_time(t_velocity);
+            body_velocity[2 * b + 1]->set_time(t_velocity);
             body_velocity_now[b] = {
-              {body_velocity[2 * b]->value(mid_time),
-               body_velocity[2 * b + 1]->value(mid_time)}};
+              {scale * body_velocity[2 * b]->value(mid_time),
+               scale * body_velocity[2 * b + 1]->value(mid_time)}};
           }
-      if (boundary_conditions_change)
+      if (boundary_conditions_change ||
+          (quasi_static && relaxation_step <= quasi_static_ramp_steps))
         evaluate_boundary_conditions();
       if (contact_enabled)
         {
@@ -1566,6 +1641,7 @@ namespace tmfdem
           summary.add("coupling", parameters.discrete_heat.coupling)
             .add("thermal_steps", static_cast<long long>(n_thermal_steps))
             .add("last_relaxation_steps", last_relaxation_steps)
+            .add("relaxations_at_cap", relaxations_at_cap)
             .add("last_kinetic_to_strain_energy", last_kinetic_to_strain)
             .add("mechanical_steps_per_thermal_step", steps_per_thermal_step)
             .add("thermal_time_step",

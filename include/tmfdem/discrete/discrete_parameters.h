@@ -67,6 +67,7 @@ namespace tmfdem
     unsigned int mechanical_steps_per_thermal_step = 0; ///< 0: automatic
     std::string  coupling             = "dynamic"; ///< dynamic|quasi-static
     double       relaxation_tolerance = 1e-6;      ///< kinetic / strain energy
+    bool relaxation_cap_is_error = false; ///< stop when a relaxation hits the cap
     /** Quasi-static: thermal step n = Time step x growth^n [-]. */
     double thermal_step_growth = 1.;
     /** Quasi-static: cap of the growing thermal step, 0 = none [s]. */
