@@ -287,6 +287,18 @@ namespace tmfdem
       "factor^n, capped at Maximum thermal step; > 1 for a quench or a "
       "sudden heating, whose early steps must be short and whose late "
       "steps may be long [-].");
+    prm.declare_entry(
+      "Maximum utilisation change",
+      "0.01",
+      Patterns::Double(0., 1.),
+      "Quasi-static coupling: the thermal step shrinks so that the strength "
+      "utilisation of the most loaded undamaged joint (opening / peak "
+      "opening or slip / peak slip, 1 at the peak) is predicted, from its "
+      "rate over the last thermal step, to rise by at most this much per "
+      "step, and once it exceeds 1 - 10 x this value the step is at most "
+      "this fraction of the elapsed time: the time of first damage is "
+      "resolved to about this fraction whatever Time step and growth "
+      "factor say [-]. 0: off.");
     prm.declare_entry("Maximum thermal step",
                       "0",
                       Patterns::Double(0.),
@@ -311,6 +323,7 @@ namespace tmfdem
     relaxation_cap_is_error = prm.get_bool("Relaxation cap is error");
     thermal_step_growth  = prm.get_double("Thermal step growth factor");
     maximum_thermal_step = prm.get_double("Maximum thermal step");
+    maximum_utilisation_change = prm.get_double("Maximum utilisation change");
     prm.leave_subsection();
     if (thermal_step_growth > 1. && coupling != "quasi-static")
       throw InputError(

@@ -1237,6 +1237,12 @@ namespace tmfdem
             }
           relaxation_step       = quasi_static_ramp_steps + 1;
           last_relaxation_steps = i;
+          if (parameters.discrete_heat.maximum_utilisation_change > 0.)
+            {
+              const double u         = max_joint_utilisation();
+              joint_utilisation_rate = (u - joint_utilisation) / dt;
+              joint_utilisation      = u;
+            }
           if (!relaxed)
             {
               ++relaxations_at_cap;
@@ -1278,6 +1284,48 @@ namespace tmfdem
     }
 
     double
+    ExplicitSolver::max_joint_utilisation() const
+    {
+      constexpr double gauss[2] = {0.21132486540518713, 0.78867513459481287};
+      double           highest  = 0.;
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        {
+          if (model.joint_status[j] != JointStatus::intact ||
+              model.joint_damage[2 * j] > 0. ||
+              model.joint_damage[2 * j + 1] > 0.)
+            continue;
+          // the geometry of compute_joint_forces_with()
+          const unsigned int   *n   = &model.joint_nodes[4 * j];
+          const double          d0x = model.x[n[2]] - model.x[n[0]];
+          const double          d0y = model.y[n[2]] - model.y[n[0]];
+          const double          d1x = model.x[n[3]] - model.x[n[1]];
+          const double          d1y = model.y[n[3]] - model.y[n[1]];
+          const double          ex  = 0.5 * (model.x[n[1]] + model.x[n[3]] -
+                                     model.x[n[0]] - model.x[n[2]]);
+          const double          ey  = 0.5 * (model.y[n[1]] + model.y[n[3]] -
+                                     model.y[n[0]] - model.y[n[2]]);
+          const double          L   = std::sqrt(ex * ex + ey * ey);
+          const double          tx = ex / L, ty = ey / L, nx = ty, ny = -tx;
+          const JointConstants &k  = model.joint_constants[j];
+          for (const double u : gauss)
+            {
+              const double dx = (1. - u) * d0x + u * d1x;
+              const double dy = (1. - u) * d0y + u * d1y;
+              const double o  = dx * nx + dy * ny;
+              const double s  = dx * tx + dy * ty;
+              const double fs =
+                k.cohesion - (o < 0. ? k.normal_stiffness * o : 0.) *
+                               k.friction_tangent;
+              highest = std::max(
+                {highest,
+                 o * k.normal_stiffness / (2. * k.tensile_strength),
+                 std::abs(s) * k.tangential_stiffness / (2. * fs)});
+            }
+        }
+      return std::min(highest, 1.);
+    }
+
+    double
     ExplicitSolver::quasi_static_thermal_step() const
     {
       const DiscreteHeatParameters &dh = parameters.discrete_heat;
@@ -1287,6 +1335,22 @@ namespace tmfdem
       if (dh.maximum_thermal_step > 0.)
         dt = std::min(dt, dh.maximum_thermal_step);
       dt = std::max(dt, parameters.time.time_step);
+      // joints approaching their strength: at most the allowed rise of the
+      // utilisation per step, predicted from its last rate (no shorter than
+      // 1e-3 Time step, so that a jump cannot stall the run)
+      if (dh.maximum_utilisation_change > 0.)
+        {
+          double limit = dt;
+          if (joint_utilisation_rate > 0.)
+            limit = dh.maximum_utilisation_change / joint_utilisation_rate;
+          // near the peak the rate may flatten while U creeps to 1: steps of
+          // at most this fraction of the elapsed time bracket the onset
+          if (joint_utilisation > 1. - 10. * dh.maximum_utilisation_change)
+            limit = std::min(limit,
+                             dh.maximum_utilisation_change *
+                               (time - parameters.time.start_time));
+          dt = std::min(dt, std::max(1e-3 * parameters.time.time_step, limit));
+        }
       // land on the end time instead of stepping past it
       const double left = parameters.time.end_time - time;
       return left < 1.5 * dt ? left : dt;
@@ -1731,7 +1795,9 @@ namespace tmfdem
                       << last_relaxation_steps
                       << " mechanical steps, kinetic / strain energy "
                       << last_kinetic_to_strain << "\n";
-          if (time >= next_history - 0.5 * advance)
+          // quasi-static: a row after every thermal step (steps may be
+          // shorter than Time step near failure, and each is costly anyway)
+          if (quasi_static || time >= next_history - 0.5 * advance)
             {
               write_history_row();
               check_slow_guards();

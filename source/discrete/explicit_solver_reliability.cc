@@ -101,6 +101,9 @@ namespace tmfdem
       out.put<std::uint64_t>(n_thermal_steps);
       out.put(last_relaxation_steps);
       out.put(last_kinetic_to_strain);
+      out.put<std::uint64_t>(relaxations_at_cap);
+      out.put(joint_utilisation);
+      out.put(joint_utilisation_rate);
       out.put(time_step);
       // state of the nodes, elements and joints
       out.put(model.x);
@@ -170,6 +173,10 @@ namespace tmfdem
       n_thermal_steps = count;
       in.get(last_relaxation_steps);
       in.get(last_kinetic_to_strain);
+      in.get(count);
+      relaxations_at_cap = count;
+      in.get(joint_utilisation);
+      in.get(joint_utilisation_rate);
       double saved_time_step = 0.;
       in.get(saved_time_step);
       if (saved_time_step != time_step)

@@ -170,6 +170,41 @@ def shock(binary, out):
     return ok
 
 
+def step(binary, out):
+    """The time of first damage does not depend on the thermal-step settings
+    (Maximum utilisation change): the prm's growing step (5e-4 s x 1.1^n)
+    and fixed 2 ms steps bracket the onset within 2 % of each other."""
+    ok = True
+    onsets = {}
+    settings = {"growing": [],
+                "fixed_2ms": ["Discrete heat/Thermal step growth factor=1",
+                              "Time stepping/Time step=2e-3"]}
+    for name, extra in settings.items():
+        folder = f"{out}/{name}"
+        run(binary, os.path.join(PRM, "thermal_shock_disc.prm"), folder,
+            "Initial conditions/Temperature=300", "Time stepping/End time=0.04",
+            "Output/Times=0.04", *extra)
+        hist = history(folder)
+        onset = np.nonzero(hist["damaged_joints"] > 0)[0]
+        ok &= check(len(onset) > 0, f"{name}: joints damaged by 40 ms")
+        if len(onset) == 0:
+            continue
+        t_first = hist["time"][onset[0]]
+        t_prev = hist["time"][onset[0] - 1] if onset[0] > 0 else 0.
+        onsets[name] = (t_prev, t_first)
+        ok &= check(t_first - t_prev <= 0.02 * t_first,
+                    f"{name}: first damage in ({t_prev * 1e3:.3f}, "
+                    f"{t_first * 1e3:.3f}] ms, bracket "
+                    f"{100 * (t_first - t_prev) / t_first:.2f} % (<= 2 %)")
+    if len(onsets) == 2:
+        a, b = onsets["growing"][1], onsets["fixed_2ms"][1]
+        ok &= check(abs(a - b) <= 0.02 * min(a, b),
+                    f"first damage at {a * 1e3:.3f} ms (growing steps) and "
+                    f"{b * 1e3:.3f} ms (2 ms steps): {100 * abs(a - b) / min(a, b):.2f} % "
+                    f"apart (<= 2 %)")
+    return ok
+
+
 if __name__ == "__main__":
     binary, out, case = sys.argv[1:4]
-    sys.exit(0 if {"hollow": hollow, "shock": shock}[case](binary, out) else 1)
+    sys.exit(0 if {"hollow": hollow, "shock": shock, "step": step}[case](binary, out) else 1)

@@ -72,6 +72,9 @@ namespace tmfdem
     double thermal_step_growth = 1.;
     /** Quasi-static: cap of the growing thermal step, 0 = none [s]. */
     double maximum_thermal_step = 0.;
+    /** Quasi-static: largest predicted rise of the joints' strength
+     *  utilisation per thermal step [-]; 0: off. */
+    double maximum_utilisation_change = 0.01;
 
     static void
     declare_parameters(ParameterHandler &prm);

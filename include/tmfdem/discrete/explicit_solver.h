@@ -193,6 +193,18 @@ namespace tmfdem
       unsigned int                  steps_per_thermal_step = 1;
       bool                          quasi_static           = false;
       unsigned int                  last_relaxation_steps  = 0;
+      /** Quasi-static coupling: strength utilisation of the most loaded
+       *  undamaged joint after the last relaxation [-]. */
+      double joint_utilisation = 0.;
+      /** Quasi-static coupling: its rate over the last thermal step [1/s]. */
+      double joint_utilisation_rate = 0.;
+      /**
+       * The largest strength utilisation over the undamaged intact joints
+       * [-]: max over their Gauss points of opening / peak opening and
+       * |slip| / peak slip (1 at the peak of the cohesive law).
+       */
+      double
+      max_joint_utilisation() const;
       /** Quasi-static coupling: relaxations that ended at the step cap. */
       unsigned int relaxations_at_cap = 0;
       /** Quasi-static coupling: length of the current thermal step [s]. */
