@@ -156,6 +156,20 @@ namespace tmfdem
     output_hook = hook;
   }
 
+  double
+  HeatSolver::memory_estimate() const
+  {
+    const double n = fe->n_dofs_per_cell();
+    return 2. * system_matrix.memory_consumption() +
+           capacity_matrix.memory_consumption() +
+           conduction_matrix.memory_consumption() +
+           robin_matrix.memory_consumption() +
+           triangulation->n_locally_owned_active_cells() * 2. * n * n *
+             sizeof(double) +
+           16. * locally_owned_dofs.n_elements() * sizeof(double) +
+           dof_handler->memory_consumption();
+  }
+
   // ------------------------------------------------------------------ mesh
   void
   HeatSolver::make_mesh()

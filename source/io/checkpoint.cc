@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cerrno>
 #include <cstdio>
 #include <fcntl.h>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <sys/stat.h>
+#include <tmfdem/base/exceptions.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 #include <unistd.h>
@@ -370,5 +372,34 @@ namespace tmfdem
                      "since.");
     if (now > size && ::truncate(file_name.c_str(), size) != 0)
       throw RunError("--resume: cannot truncate '" + file_name + "'");
+  }
+  unsigned int
+  continue_output_times(const std::string         &file,
+                        const double               time,
+                        const double               end_time,
+                        const std::vector<double> &saved,
+                        const unsigned int         saved_next,
+                        std::vector<double>       &fresh,
+                        const double               tolerance)
+  {
+    if (!saved.empty() && std::abs(saved.back() - end_time) <= tolerance)
+      {
+        fresh = saved; // same End time: exactly as written
+        return saved_next;
+      }
+    if (end_time < time - tolerance)
+      throw InputError(
+        "--resume: Time stepping/End time = " + Utilities::to_string(end_time) +
+        " s lies before the time of the checkpoint '" + file +
+        "', t = " + Utilities::to_string(time) +
+        " s; allowed is an End time at or after it (End time may change on "
+        "--resume, to continue a run).");
+    if (saved_next == 0)
+      return 0;
+    const double last_written = saved[saved_next - 1];
+    unsigned int next         = 0;
+    while (next < fresh.size() && fresh[next] <= last_written + tolerance)
+      ++next;
+    return next;
   }
 } // namespace tmfdem

@@ -13,6 +13,11 @@ usage: reliability.py TMFDEM OUT_DIR CHECK [CASE]
                      outputs and summary.json written
   refuse             --resume refused with a clear message: no checkpoint,
                      changed input, truncated and foreign checkpoint files
+  extend CASE        continue a run to a later End time: SIGKILL a run to
+                     End time E once a checkpoint exists, --resume it with
+                     End time 2 E: every output is bitwise identical to an
+                     uninterrupted run to 2 E (Output/Times unchanged); an
+                     End time before the checkpoint is refused
 CASE: mechanics (two_blocks_collision), thermo (cut_plate, quasi-static with
 fracture and contact heat), thermo_multirate (sheet_restrained_expansion,
 shortened), heat (plate_transient, discrete heat).
@@ -130,6 +135,34 @@ if which == "kill_resume":
     ok &= check(not summary_before, "no summary.json yet (the run was cut off)")
     result = run(folder, interval, resume=True)
     ok &= check("resumed from" in result.stderr, "resumed from the checkpoint")
+    ok &= compare(reference, folder)
+elif which == "extend":
+    end = {"heat": 50.}[case]
+    longer = f"Time stepping/End time={2 * end:g}"
+    reference = fresh(os.path.join(out, "reference"))
+    run(reference, longer)
+    folder = fresh(os.path.join(out, "extended"))
+    interval = "Checkpoint/Interval (steps)=20"
+    cmd = command(folder, interval, f"Time stepping/End time={end:g}")
+    print("$", " ".join(cmd), "(SIGKILL once a checkpoint exists)", flush=True)
+    process = subprocess.Popen(cmd, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+    pattern = os.path.join(folder, "checkpoints", "checkpoint_*.tmfchk")
+    while process.poll() is None and not glob.glob(pattern):
+        time.sleep(0.005)
+    killed = process.poll() is None
+    if killed:
+        process.send_signal(signal.SIGKILL)
+    process.wait()
+    ok &= check(killed, "SIGKILL while running to End time E, after the first checkpoint")
+    # an End time before the checkpoint's time: refused (on a copy)
+    early = fresh(os.path.join(out, "early"))
+    shutil.copytree(folder, early, dirs_exist_ok=True)
+    r = run(early, interval, "Time stepping/End time=1e-6", resume=True, expect=1)
+    ok &= check("lies before the time of the checkpoint" in r.stderr,
+                "End time before the checkpoint: refused with a clear message")
+    result = run(folder, interval, longer, resume=True)
+    ok &= check("resumed from" in result.stderr, "resumed with End time 2 E")
     ok &= compare(reference, folder)
 elif which == "sigterm":
     reference = fresh(os.path.join(out, "reference"))

@@ -83,6 +83,13 @@ namespace tmfdem
      */
     void
     set_output_hook(const std::function<void(const double time)> &hook);
+    /**
+     * Memory of this process's matrices (system, capacity, conduction, an
+     * AMG hierarchy estimated as large as the system matrix), cached element
+     * matrices and vectors [bytes] (after check_input).
+     */
+    double
+    memory_estimate() const;
 
   private:
     /** Heat that crossed each boundary id and came from sources [J/m]. */
