@@ -176,8 +176,9 @@ namespace tmfdem
         where + "was written for a different input (digest " + file_digest +
         ", this input " + digest +
         "): resume with the same prm file and --set options (only Checkpoint, "
-        "Output/Directory, Output/Progress interval and Discrete "
-        "mechanics/Threads may change), or start afresh without --resume.");
+        "Output/Directory, Output/Progress interval, Discrete "
+        "mechanics/Threads and Time stepping/End time may change), or start "
+        "afresh without --resume.");
   }
 
   void
