@@ -62,9 +62,9 @@ namespace tmfdem
           // deal.II: "... The parser said: <muparser message>"
           const std::string marker = "The parser said:";
           const auto        at     = exception_text.find(marker);
-          what = at == std::string::npos ?
-                   exception_text :
-                   exception_text.substr(at + marker.size());
+          what                     = at == std::string::npos ?
+                                       exception_text :
+                                       exception_text.substr(at + marker.size());
         }
       // muparser's own "at position N" counts from 0: replaced below
       what = std::regex_replace(what,
@@ -74,14 +74,13 @@ namespace tmfdem
       if (!what.empty())
         what[0] = static_cast<char>(std::tolower(what[0]));
 
-      std::string       message = what.empty() ? "syntax error" : what;
+      std::string       message       = what.empty() ? "syntax error" : what;
       const std::string position_text = report_field(report, "Position");
       if (!position_text.empty() &&
           std::regex_match(position_text, std::regex("\\d+")))
         {
           const std::size_t position =
-            std::min<std::size_t>(std::stoul(position_text),
-                                  expression.size());
+            std::min<std::size_t>(std::stoul(position_text), expression.size());
           message += " at character " + std::to_string(position + 1) +
                      " of the expression\n    " + expression + "\n    " +
                      std::string(position, ' ') + "^";
@@ -112,9 +111,7 @@ namespace tmfdem
           "Entry '" + entry_name + "': cannot parse '" + expression +
           "' as a function of x [m], y [m], t [s] (muparser syntax, e.g. "
           "100*exp(-t/20)*sin(pi*x); pi is predefined): " +
-          describe_parse_error(expression,
-                               muparser_report.text(),
-                               info.str()));
+          describe_parse_error(expression, muparser_report.text(), info.str()));
       }
     return function;
   }

@@ -352,8 +352,8 @@ namespace tmfdem
     const unsigned int n_cells = triangulation->n_active_cells();
     cell_capacity.assign(n_cells, FullMatrix<double>());
     cell_conductivity.assign(n_cells, FullMatrix<double>());
-    capacity_matrix    = 0;
-    conduction_matrix  = 0;
+    capacity_matrix   = 0;
+    conduction_matrix = 0;
     std::vector<types::global_dof_index> dof_indices(n);
     for (const auto &cell : dof_handler->active_cell_iterators())
       if (cell->is_locally_owned())
@@ -414,14 +414,13 @@ namespace tmfdem
                                   robin);
                 cell->get_dof_indices(dof_indices);
                 conduction_matrix.add(dof_indices, robin);
-                auto weights =
-                  robin_weights.find(cell->face(f)->boundary_id());
+                auto weights = robin_weights.find(cell->face(f)->boundary_id());
                 if (weights == robin_weights.end())
-                  weights = robin_weights
-                              .emplace(cell->face(f)->boundary_id(),
-                                       RobinWeights(locally_owned_dofs,
-                                                    communicator))
-                              .first;
+                  weights =
+                    robin_weights
+                      .emplace(cell->face(f)->boundary_id(),
+                               RobinWeights(locally_owned_dofs, communicator))
+                      .first;
                 Vector<double> row_sums(n);
                 for (unsigned int i = 0; i < n; ++i)
                   for (unsigned int j = 0; j < n; ++j)
@@ -452,14 +451,13 @@ namespace tmfdem
   }
 
   void
-  HeatSolver::robin_face_matrix(
-    const DoFHandler<2>::active_cell_iterator &cell,
-    const unsigned int                                  face,
-    const BoundaryFunctions                            &functions,
-    const double                                        time,
-    const double                                        weight,
-    FEFaceValues<2>                                    &fe_face_values,
-    FullMatrix<double>                                 &matrix) const
+  HeatSolver::robin_face_matrix(const DoFHandler<2>::active_cell_iterator &cell,
+                                const unsigned int                         face,
+                                const BoundaryFunctions &functions,
+                                const double             time,
+                                const double             weight,
+                                FEFaceValues<2>         &fe_face_values,
+                                FullMatrix<double>      &matrix) const
   {
     const unsigned int n = fe->n_dofs_per_cell();
     fe_face_values.reinit(cell, face);
@@ -467,9 +465,8 @@ namespace tmfdem
     functions.heat_transfer_coefficient->set_time(time);
     for (const unsigned int q : fe_face_values.quadrature_point_indices())
       {
-        const double h =
-          functions.heat_transfer_coefficient->value(
-            fe_face_values.quadrature_point(q));
+        const double h = functions.heat_transfer_coefficient->value(
+          fe_face_values.quadrature_point(q));
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int j = 0; j < n; ++j)
             matrix(i, j) += weight * h * fe_face_values.shape_value(i, q) *
@@ -506,9 +503,9 @@ namespace tmfdem
 
     bool any_source = false;
     for (unsigned int m = 0; m < time_dependent_source.size(); ++m)
-      any_source |= (time_dependent_source[m] == time_dependent) &&
-                    Utilities::trim(
-                      parameters.materials.materials[m].heat_source) != "0";
+      any_source |=
+        (time_dependent_source[m] == time_dependent) &&
+        Utilities::trim(parameters.materials.materials[m].heat_source) != "0";
     for (auto &source : heat_sources)
       source->set_time(time);
     for (auto &functions : boundary_functions)
@@ -526,8 +523,8 @@ namespace tmfdem
           continue;
         local        = 0;
         bool touched = false;
-        if (any_source && time_dependent_source[cell->material_id()] ==
-                            time_dependent)
+        if (any_source &&
+            time_dependent_source[cell->material_id()] == time_dependent)
           {
             auto &source = *heat_sources[cell->material_id()];
             fe_values.reinit(cell);
@@ -602,14 +599,13 @@ namespace tmfdem
       if (level.valid && level.time == time)
         return level;
     // replace the level that is not the other's time (the older one)
-    Loads &level =
-      !variable_loads[0].valid ?
-        variable_loads[0] :
-        (!variable_loads[1].valid ?
-           variable_loads[1] :
-           (variable_loads[0].time < variable_loads[1].time ?
-              variable_loads[0] :
-              variable_loads[1]));
+    Loads &level = !variable_loads[0].valid ?
+                     variable_loads[0] :
+                     (!variable_loads[1].valid ?
+                        variable_loads[1] :
+                        (variable_loads[0].time < variable_loads[1].time ?
+                           variable_loads[0] :
+                           variable_loads[1]));
     assemble_loads(time, true, level);
     return level;
   }
@@ -619,9 +615,9 @@ namespace tmfdem
     const double                                time,
     std::map<types::boundary_id, RobinWeights> &weights)
   {
-    const unsigned int n = fe->n_dofs_per_cell();
-    const QGauss<1>    face_quadrature(fe->degree + 1);
-    FEFaceValues<2>    fe_face_values(*mapping,
+    const unsigned int                   n = fe->n_dofs_per_cell();
+    const QGauss<1>                      face_quadrature(fe->degree + 1);
+    FEFaceValues<2>                      fe_face_values(*mapping,
                                    *fe,
                                    face_quadrature,
                                    update_values | update_JxW_values |
@@ -706,8 +702,7 @@ namespace tmfdem
             std::none_of(dof_indices.begin(),
                          dof_indices.end(),
                          [&](const types::global_dof_index i) {
-                           return constraints.is_inhomogeneously_constrained(
-                             i);
+                           return constraints.is_inhomogeneously_constrained(i);
                          }))
           continue;
         const unsigned int index = cell->active_cell_index();
@@ -736,8 +731,11 @@ namespace tmfdem
           }
         if (assemble_matrix)
           {
-            constraints.distribute_local_to_global(
-              local_matrix, zero_rhs, dof_indices, system_matrix, lifting);
+            constraints.distribute_local_to_global(local_matrix,
+                                                   zero_rhs,
+                                                   dof_indices,
+                                                   system_matrix,
+                                                   lifting);
             for (unsigned int i = 0; i < n; ++i)
               {
                 const auto dirichlet = dirichlet_dof_ids.find(dof_indices[i]);
@@ -866,9 +864,8 @@ namespace tmfdem
   void
   HeatSolver::accumulate_heat_balance(HeatBalance &balance)
   {
-    const unsigned int n          = fe->n_dofs_per_cell();
-    const double       new_weight = last_new_weight,
-                 old_weight       = last_old_weight;
+    const unsigned int n    = fe->n_dofs_per_cell();
+    const double new_weight = last_new_weight, old_weight = last_old_weight;
     std::map<types::boundary_id, double> heat_in;
     for (const auto id : mesh_report->boundary_ids)
       heat_in[id] = 0.;

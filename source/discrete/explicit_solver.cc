@@ -1672,17 +1672,16 @@ namespace tmfdem
           if (next_output < output_times.size() &&
               time >= output_times[next_output] - 0.5 * advance)
             {
-              if (!snap_reported &&
-                  std::abs(time - output_times[next_output]) >
-                    1e-9 * std::max(1., std::abs(time)))
+              if (!snap_reported && std::abs(time - output_times[next_output]) >
+                                      1e-9 * std::max(1., std::abs(time)))
                 {
                   snap_reported = true; // once per run
-                  std::cerr << "[tmfdem] output time "
-                            << output_times[next_output]
-                            << " s requested, written at t = " << time
-                            << " s: outputs snap to the nearest "
-                            << (quasi_static ? "thermal" : "mechanical")
-                            << " step (" << advance << " s)\n";
+                  std::cerr
+                    << "[tmfdem] output time " << output_times[next_output]
+                    << " s requested, written at t = " << time
+                    << " s: outputs snap to the nearest "
+                    << (quasi_static ? "thermal" : "mechanical") << " step ("
+                    << advance << " s)\n";
                 }
               energy();
               write_output();

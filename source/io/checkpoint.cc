@@ -1,8 +1,8 @@
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <fcntl.h>
 #include <filesystem>

@@ -1,13 +1,12 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <sys/resource.h>
 #include <tmfdem/continuum/heat_solver.h>
 #include <tmfdem/discrete/discrete_heat_solver.h>
 #include <tmfdem/discrete/explicit_solver.h>
@@ -48,10 +47,10 @@ namespace tmfdem
           for (unsigned int k = 0; k < 3; ++k)
             {
               const unsigned int a = 3 * e + k, b = 3 * e + (k + 1) % 3;
-              const double       edge = std::hypot(model.x_ref[b] - model.x_ref[a],
+              const double edge = std::hypot(model.x_ref[b] - model.x_ref[a],
                                              model.y_ref[b] - model.y_ref[a]);
-              min_edge                = std::min(min_edge, edge);
-              longest                 = std::max(longest, edge);
+              min_edge          = std::min(min_edge, edge);
+              longest           = std::max(longest, edge);
             }
           const double area =
             0.5 * std::abs((model.x_ref[3 * e + 1] - model.x_ref[3 * e]) *
@@ -82,8 +81,7 @@ namespace tmfdem
     }
 
     void
-    describe_model(std::ostream                  &out,
-                   const discrete::DiscreteModel &model)
+    describe_model(std::ostream &out, const discrete::DiscreteModel &model)
     {
       const auto [edge, height] = smallest_element(model);
       out << "discrete model: " << model.n_elements << " triangles, "
@@ -105,11 +103,10 @@ namespace tmfdem
       out << "used " << used << " s";
       if (used > 0.)
         out << ", "
-            << static_cast<long long>(
-                 std::ceil((parameters.time.end_time -
-                            parameters.time.start_time) /
-                             used -
-                           1e-9))
+            << static_cast<long long>(std::ceil(
+                 (parameters.time.end_time - parameters.time.start_time) /
+                   used -
+                 1e-9))
             << " steps to End time = " << parameters.time.end_time << " s";
       out << "\n";
     }
@@ -144,8 +141,7 @@ namespace tmfdem
                        solver->get_stable_time_step(),
                        solver->get_time_step(),
                        parameters);
-        out << "  model state: " << model_bytes(model) / mebibyte
-            << " MiB\n";
+        out << "  model state: " << model_bytes(model) / mebibyte << " MiB\n";
       }
     else if (auto *solver = dynamic_cast<HeatSolver *>(&simulation))
       {

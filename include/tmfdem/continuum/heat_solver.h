@@ -147,12 +147,12 @@ namespace tmfdem
      */
     void
     robin_face_matrix(const DoFHandler<2>::active_cell_iterator &cell,
-                      const unsigned int                                  face,
-                      const BoundaryFunctions &functions,
-                      const double             time,
-                      const double             weight,
-                      FEFaceValues<2>         &fe_face_values,
-                      FullMatrix<double>      &matrix) const;
+                      const unsigned int                         face,
+                      const BoundaryFunctions                   &functions,
+                      const double                               time,
+                      const double                               weight,
+                      FEFaceValues<2>                           &fe_face_values,
+                      FullMatrix<double>                        &matrix) const;
     /**
      * Assembles the loads (sources, Neumann fluxes, Robin h T_inf) at
      * @p time into @p level: those that depend on t if @p time_dependent,
@@ -168,7 +168,7 @@ namespace tmfdem
      * at @p time into @p weights (only for coefficients that depend on t).
      */
     void
-    assemble_robin(const double                                   time,
+    assemble_robin(const double                                time,
                    std::map<types::boundary_id, RobinWeights> &weights);
     /**
      * The theta-step system matrix (if @p assemble_matrix) and the lifting
@@ -240,7 +240,7 @@ namespace tmfdem
     AffineConstraints<double>      constraints;
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;
-    TrilinosWrappers::MPI::Vector  solution;     ///< ghosted, T^{n+1}
+    TrilinosWrappers::MPI::Vector  solution; ///< ghosted, T^{n+1}
     std::unique_ptr<TrilinosWrappers::PreconditionBase> preconditioner;
 
     /** Cached per active cell index (locally owned cells only). */
@@ -267,9 +267,8 @@ namespace tmfdem
     bool                 any_time_dependent_load = false;
     /** Robin weights of the constant coefficients, or those at the old and
      *  new time levels where h depends on t. */
-    std::map<types::boundary_id, RobinWeights> robin_weights,
-      robin_weights_new;
-    bool time_dependent_robin = false;
+    std::map<types::boundary_id, RobinWeights> robin_weights, robin_weights_new;
+    bool                                       time_dependent_robin = false;
 
     /** Dirichlet rows of the local matrices of the owned cells (last
      *  assembly): the reaction heat at Dirichlet node i is sum over these
@@ -295,9 +294,9 @@ namespace tmfdem
     std::map<types::global_dof_index, types::boundary_id> dirichlet_dof_ids;
 
     std::vector<std::unique_ptr<FunctionParser<2>>> heat_sources;
-    std::vector<BoundaryFunctions>     boundary_functions;
-    std::unique_ptr<FunctionParser<2>> initial_temperature;
-    bool                               any_heat_source = false;
+    std::vector<BoundaryFunctions>                  boundary_functions;
+    std::unique_ptr<FunctionParser<2>>              initial_temperature;
+    bool                                            any_heat_source = false;
     /** Per material id: its heat source depends on t. */
     std::vector<bool> time_dependent_source;
 
