@@ -17,7 +17,9 @@ usage: reliability.py TMFDEM OUT_DIR CHECK [CASE]
                      End time E once a checkpoint exists, --resume it with
                      End time 2 E: every output is bitwise identical to an
                      uninterrupted run to 2 E (Output/Times unchanged); an
-                     End time before the checkpoint is refused
+                     End time before the checkpoint is refused. CASE heat
+                     (E = 50 s) or thermo (cut_plate, quasi-static, E = 2000 s:
+                     its history interval is the thermal step either way)
 CASE: mechanics (two_blocks_collision), thermo (cut_plate, quasi-static with
 fracture and contact heat), thermo_multirate (sheet_restrained_expansion,
 shortened), heat (plate_transient, discrete heat).
@@ -139,12 +141,12 @@ if which == "kill_resume":
     ok &= check("resumed from" in result.stderr, "resumed from the checkpoint")
     ok &= compare(reference, folder)
 elif which == "extend":
-    end = {"heat": 50.}[case]
+    end = {"heat": 50., "thermo": 2000.}[case]
     longer = f"Time stepping/End time={2 * end:g}"
     reference = fresh(os.path.join(out, "reference"))
     run(reference, longer)
     folder = fresh(os.path.join(out, "extended"))
-    interval = "Checkpoint/Interval (steps)=20"
+    interval = "Checkpoint/Interval (steps)=" + ("1" if case == "thermo" else "20")
     cmd = command(folder, interval, f"Time stepping/End time={end:g}")
     print("$", " ".join(cmd), "(SIGKILL once a checkpoint exists)", flush=True)
     process = subprocess.Popen(cmd, stdout=subprocess.DEVNULL,
