@@ -34,6 +34,11 @@ for k in range(5):
             "Time stepping/End time=10", "Output/Times=")
     print(f"{k:>11} {s['cells']:>8} {s['dofs']:>8} {s['wall_time']:>9.3f} "
           f"{s['dofs'] * s['steps'] / s['wall_time']:>12.3e} {s['element_steps_per_second']:>13.3e}")
+s = run("plate_transient-continuum.prm", "Heat solver/Polynomial degree=1",
+        "Time stepping/Method=backward Euler", "Mesh/Global refinements=4",
+        "Time stepping/End time=10", "Output/Times=", "Monitors/Probes=", "Monitors/Lines=")
+print(f"{'4, no monitors':>11} {s['cells']:>8} {s['dofs']:>8} {s['wall_time']:>9.3f} "
+      f"{s['dofs'] * s['steps'] / s['wall_time']:>12.3e} {s['element_steps_per_second']:>13.3e}")
 print("\nthick cylinder, steady, Q1: adaptive against uniform")
 s = run("thick_cylinder-continuum.prm")
 print(f"  adaptive (7 cycles): {s['dofs']} DoFs, wall {s['wall_time']:.3f} s (all cycles)")

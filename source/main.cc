@@ -12,6 +12,7 @@
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/simulation.h>
 #include <tmfdem/io/checkpoint.h>
+#include <tmfdem/io/validation_report.h>
 
 int
 main(int argc, char *argv[])
@@ -46,8 +47,11 @@ main(int argc, char *argv[])
       if (command_line.action == CommandLine::Action::validate)
         {
           simulation->check_input();
+          const std::string report =
+            validation_report(*simulation, parameters, MPI_COMM_WORLD);
           if (root)
-            std::cout << command_line.prm_file << ": valid" << std::endl;
+            std::cout << report << command_line.prm_file << ": valid"
+                      << std::endl;
           return 0;
         }
       simulation->run();

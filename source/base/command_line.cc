@@ -79,7 +79,9 @@ namespace tmfdem
      * FNV-1a 64 digest (hex) of the parameters that decide the results: all
      * entries, with those that do not (Checkpoint, Output/Directory,
      * Output/Progress interval, Discrete mechanics/Threads: results do not
-     * depend on the thread count) reset to fixed values first.
+     * depend on the thread count) reset to fixed values first, and
+     * Time stepping/End time, which --resume may extend to continue a run
+     * (checked against the checkpoint's time on loading).
      */
     std::string
     input_digest(ParameterHandler &prm)
@@ -91,7 +93,8 @@ namespace tmfdem
                    {{"Checkpoint", "Keep"}, "2"},
                    {{"Output", "Directory"}, ""},
                    {{"Output", "Progress interval"}, "2"},
-                   {{"Discrete mechanics", "Threads"}, "1"}};
+                   {{"Discrete mechanics", "Threads"}, "1"},
+                   {{"Time stepping", "End time"}, "1"}};
       for (const auto &[path, value] : neutral)
         {
           for (unsigned int i = 0; i + 1 < path.size(); ++i)

@@ -71,6 +71,8 @@ namespace tmfdem
                                      "/Volumetric heat source"));
         if (Utilities::trim(expression) != "0")
           any_heat_source = true;
+        time_dependent_source.push_back(depends_on_time(expression));
+        any_time_dependent_load |= time_dependent_source.back();
       }
     for (const auto &condition : parameters.thermal_boundary.conditions)
       {
@@ -94,6 +96,16 @@ namespace tmfdem
         functions.time_dependent_temperature =
           condition.type == ThermalBoundaryCondition::Type::dirichlet &&
           depends_on_time(condition.temperature);
+        functions.time_dependent_load =
+          (condition.type == ThermalBoundaryCondition::Type::neumann &&
+           depends_on_time(condition.heat_flux)) ||
+          (condition.type == ThermalBoundaryCondition::Type::robin &&
+           (depends_on_time(condition.heat_transfer_coefficient) ||
+            depends_on_time(condition.ambient_temperature)));
+        any_time_dependent_load |= functions.time_dependent_load;
+        time_dependent_robin |= functions.time_dependent_coefficient;
+        for (const auto id : condition.boundary_ids)
+          condition_of[id] = boundary_functions.size();
         boundary_functions.push_back(std::move(functions));
       }
     initial_temperature =
@@ -142,6 +154,20 @@ namespace tmfdem
     const std::function<void(const double time)> &hook)
   {
     output_hook = hook;
+  }
+
+  double
+  HeatSolver::memory_estimate() const
+  {
+    const double n = fe->n_dofs_per_cell();
+    return 2. * system_matrix.memory_consumption() +
+           capacity_matrix.memory_consumption() +
+           conduction_matrix.memory_consumption() +
+           robin_matrix.memory_consumption() +
+           triangulation->n_locally_owned_active_cells() * 2. * n * n *
+             sizeof(double) +
+           16. * locally_owned_dofs.n_elements() * sizeof(double) +
+           dof_handler->memory_consumption();
   }
 
   // ------------------------------------------------------------------ mesh
@@ -230,10 +256,62 @@ namespace tmfdem
                          communicator);
     system_rhs.reinit(locally_owned_dofs, communicator);
     solution.reinit(locally_owned_dofs, locally_relevant_dofs, communicator);
-    old_solution.reinit(locally_owned_dofs,
-                        locally_relevant_dofs,
-                        communicator);
     preconditioner.reset();
+
+    // the right-hand side as products of assembled matrices and vectors
+    owned_dirichlet_dofs.clear();
+    for (const auto &[dof, id] : dirichlet_dof_ids)
+      if (locally_owned_dofs.is_element(dof))
+        owned_dirichlet_dofs.emplace_back(dof, id);
+    homogeneous_constraints.clear();
+    homogeneous_constraints.reinit(locally_relevant_dofs);
+    DoFTools::make_hanging_node_constraints(*dof_handler,
+                                            homogeneous_constraints);
+    for (const auto &condition : parameters.thermal_boundary.conditions)
+      if (condition.type == ThermalBoundaryCondition::Type::dirichlet)
+        for (const auto id : condition.boundary_ids)
+          DoFTools::make_zero_boundary_constraints(*dof_handler,
+                                                   id,
+                                                   homogeneous_constraints);
+    homogeneous_constraints.close();
+
+    DynamicSparsityPattern full_sparsity(locally_relevant_dofs);
+    DoFTools::make_sparsity_pattern(*dof_handler, full_sparsity);
+    SparsityTools::distribute_sparsity_pattern(full_sparsity,
+                                               locally_owned_dofs,
+                                               communicator,
+                                               locally_relevant_dofs);
+    capacity_matrix.reinit(locally_owned_dofs,
+                           locally_owned_dofs,
+                           full_sparsity,
+                           communicator);
+    conduction_matrix.reinit(locally_owned_dofs,
+                             locally_owned_dofs,
+                             full_sparsity,
+                             communicator);
+    if (time_dependent_robin)
+      robin_matrix.reinit(locally_owned_dofs,
+                          locally_owned_dofs,
+                          full_sparsity,
+                          communicator);
+    for (auto *vector : {&capacity_row_sums,
+                         &full_rhs,
+                         &lifting,
+                         &owned_solution,
+                         &owned_old_solution,
+                         &work,
+                         &constant_loads.vector,
+                         &variable_loads[0].vector,
+                         &variable_loads[1].vector})
+      vector->reinit(locally_owned_dofs, communicator);
+    full_rhs_ghosted.reinit(locally_owned_dofs,
+                            locally_relevant_dofs,
+                            communicator);
+    for (auto &level : variable_loads)
+      level.valid = false;
+    reaction_rows.clear();
+    reaction_columns.clear();
+    reaction_values.clear();
   }
 
   void
@@ -274,8 +352,9 @@ namespace tmfdem
     const unsigned int n_cells = triangulation->n_active_cells();
     cell_capacity.assign(n_cells, FullMatrix<double>());
     cell_conductivity.assign(n_cells, FullMatrix<double>());
-    last_cell_matrix.assign(n_cells, FullMatrix<double>());
-    last_cell_rhs.assign(n_cells, Vector<double>());
+    capacity_matrix   = 0;
+    conduction_matrix = 0;
+    std::vector<types::global_dof_index> dof_indices(n);
     for (const auto &cell : dof_handler->active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -295,24 +374,113 @@ namespace tmfdem
                                         fe_values.shape_grad(j, q) *
                                         fe_values.JxW(q);
                 }
+          cell->get_dof_indices(dof_indices);
+          capacity_matrix.add(dof_indices, capacity);
+          conduction_matrix.add(dof_indices, conductivity);
           cell_capacity[cell->active_cell_index()]     = capacity;
           cell_conductivity[cell->active_cell_index()] = conductivity;
         }
+
+    // Robin matrix and weights: into K once where h does not depend on t
+    robin_weights.clear();
+    robin_weights_new.clear();
+    if (!time_dependent_robin)
+      {
+        const QGauss<1>    face_quadrature(fe->degree + 1);
+        FEFaceValues<2>    fe_face_values(*mapping,
+                                       *fe,
+                                       face_quadrature,
+                                       update_values | update_JxW_values |
+                                         update_quadrature_points);
+        FullMatrix<double> robin(n, n);
+        for (const auto &cell : dof_handler->active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (const unsigned int f : cell->face_indices())
+              {
+                if (!cell->at_boundary(f))
+                  continue;
+                const auto condition =
+                  condition_of.find(cell->face(f)->boundary_id());
+                if (condition == condition_of.end() ||
+                    parameters.thermal_boundary.conditions[condition->second]
+                        .type != ThermalBoundaryCondition::Type::robin)
+                  continue;
+                robin_face_matrix(cell,
+                                  f,
+                                  boundary_functions[condition->second],
+                                  parameters.time.start_time,
+                                  1.,
+                                  fe_face_values,
+                                  robin);
+                cell->get_dof_indices(dof_indices);
+                conduction_matrix.add(dof_indices, robin);
+                auto weights = robin_weights.find(cell->face(f)->boundary_id());
+                if (weights == robin_weights.end())
+                  weights =
+                    robin_weights
+                      .emplace(cell->face(f)->boundary_id(),
+                               RobinWeights(locally_owned_dofs, communicator))
+                      .first;
+                Vector<double> row_sums(n);
+                for (unsigned int i = 0; i < n; ++i)
+                  for (unsigned int j = 0; j < n; ++j)
+                    row_sums(i) += robin(i, j);
+                weights->second.add(dof_indices, row_sums);
+              }
+        // every Robin id on every process, for the collective compress
+        for (const auto &[id, c] : condition_of)
+          if (parameters.thermal_boundary.conditions[c].type ==
+                ThermalBoundaryCondition::Type::robin &&
+              robin_weights.count(id) == 0)
+            robin_weights.emplace(id,
+                                  RobinWeights(locally_owned_dofs,
+                                               communicator));
+        for (auto &[id, weights] : robin_weights)
+          weights.compress(VectorOperation::add);
+      }
+    capacity_matrix.compress(VectorOperation::add);
+    conduction_matrix.compress(VectorOperation::add);
+
+    // M 1: row sums of the capacity matrix
+    work = 1.;
+    capacity_matrix.vmult(capacity_row_sums, work);
+
+    assemble_loads(parameters.time.start_time, false, constant_loads);
+    for (auto &level : variable_loads)
+      level.valid = false;
   }
 
-  // ------------------------------------------------------------ assemble
   void
-  HeatSolver::assemble_system(const double old_time,
-                              const double new_time,
-                              const bool   assemble_matrix,
-                              const bool   steady)
+  HeatSolver::robin_face_matrix(const DoFHandler<2>::active_cell_iterator &cell,
+                                const unsigned int                         face,
+                                const BoundaryFunctions &functions,
+                                const double             time,
+                                const double             weight,
+                                FEFaceValues<2>         &fe_face_values,
+                                FullMatrix<double>      &matrix) const
   {
-    const unsigned int n  = fe->n_dofs_per_cell();
-    const double       dt = new_time - old_time;
-    // weights of the new and old time levels in the theta scheme
-    const double new_weight = steady ? 1. : theta * dt;
-    const double old_weight = steady ? 0. : (1. - theta) * dt;
+    const unsigned int n = fe->n_dofs_per_cell();
+    fe_face_values.reinit(cell, face);
+    matrix = 0;
+    functions.heat_transfer_coefficient->set_time(time);
+    for (const unsigned int q : fe_face_values.quadrature_point_indices())
+      {
+        const double h = functions.heat_transfer_coefficient->value(
+          fe_face_values.quadrature_point(q));
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = 0; j < n; ++j)
+            matrix(i, j) += weight * h * fe_face_values.shape_value(i, q) *
+                            fe_face_values.shape_value(j, q) *
+                            fe_face_values.JxW(q);
+      }
+  }
 
+  void
+  HeatSolver::assemble_loads(const double time,
+                             const bool   time_dependent,
+                             Loads       &level)
+  {
+    const unsigned int  n = fe->n_dofs_per_cell();
     const Quadrature<2> quadrature =
       uses_quadrilaterals() ? Quadrature<2>(QGauss<2>(fe->degree + 1)) :
                               Quadrature<2>(QGaussSimplex<2>(fe->degree + 1));
@@ -327,164 +495,318 @@ namespace tmfdem
                                    face_quadrature,
                                    update_values | update_quadrature_points |
                                      update_JxW_values);
+    level.vector = 0;
+    level.time   = time;
+    level.valid  = true;
+    level.source = 0.;
+    level.boundary.clear();
 
-    // boundary id -> condition index
-    std::map<types::boundary_id, unsigned int> condition_of;
-    for (unsigned int c = 0; c < parameters.thermal_boundary.conditions.size();
-         ++c)
-      for (const auto id :
-           parameters.thermal_boundary.conditions[c].boundary_ids)
-        condition_of[id] = c;
+    bool any_source = false;
+    for (unsigned int m = 0; m < time_dependent_source.size(); ++m)
+      any_source |=
+        (time_dependent_source[m] == time_dependent) &&
+        Utilities::trim(parameters.materials.materials[m].heat_source) != "0";
+    for (auto &source : heat_sources)
+      source->set_time(time);
+    for (auto &functions : boundary_functions)
+      {
+        functions.heat_flux->set_time(time);
+        functions.heat_transfer_coefficient->set_time(time);
+        functions.ambient_temperature->set_time(time);
+      }
 
-    if (assemble_matrix)
-      system_matrix = 0;
-    system_rhs = 0;
-    last_boundary_load.clear();
-    last_robin_faces.clear();
-    last_source_heat = 0.;
-
-    FullMatrix<double>                   local_matrix(n, n);
-    Vector<double>                       local_rhs(n), old_values(n);
+    Vector<double>                       local(n);
     std::vector<types::global_dof_index> dof_indices(n);
-    std::vector<double>                  old_at_face(face_quadrature.size());
-
     for (const auto &cell : dof_handler->active_cell_iterators())
       {
         if (!cell->is_locally_owned())
           continue;
-        const unsigned int index = cell->active_cell_index();
-        cell->get_dof_values(old_solution, old_values);
-
-        local_matrix = 0;
-        local_rhs    = 0;
-        if (steady)
-          local_matrix.add(1., cell_conductivity[index]);
-        else
-          {
-            local_matrix.add(1., cell_capacity[index]);
-            local_matrix.add(theta * dt, cell_conductivity[index]);
-            cell_capacity[index].vmult_add(local_rhs, old_values);
-            Vector<double> conducted(n);
-            cell_conductivity[index].vmult(conducted, old_values);
-            local_rhs.add(-(1. - theta) * dt, conducted);
-          }
-
-        if (any_heat_source)
+        local        = 0;
+        bool touched = false;
+        if (any_source &&
+            time_dependent_source[cell->material_id()] == time_dependent)
           {
             auto &source = *heat_sources[cell->material_id()];
             fe_values.reinit(cell);
             for (const unsigned int q : fe_values.quadrature_point_indices())
               {
-                const Point<2> &x = fe_values.quadrature_point(q);
-                source.set_time(new_time);
-                double heat = new_weight * source.value(x);
-                if (old_weight != 0.)
-                  {
-                    source.set_time(old_time);
-                    heat += old_weight * source.value(x);
-                  }
-                heat *= fe_values.JxW(q);
-                last_source_heat += heat;
+                const double heat =
+                  source.value(fe_values.quadrature_point(q)) *
+                  fe_values.JxW(q);
+                level.source += heat;
                 for (unsigned int i = 0; i < n; ++i)
-                  local_rhs(i) += heat * fe_values.shape_value(i, q);
+                  local(i) += heat * fe_values.shape_value(i, q);
               }
+            touched = true;
           }
-
         for (const unsigned int f : cell->face_indices())
           {
             if (!cell->at_boundary(f))
               continue;
-            const auto condition_index =
-              condition_of.find(cell->face(f)->boundary_id());
-            if (condition_index == condition_of.end())
+            const types::boundary_id id        = cell->face(f)->boundary_id();
+            const auto               condition = condition_of.find(id);
+            if (condition == condition_of.end())
               continue;
-            const auto &condition =
-              parameters.thermal_boundary.conditions[condition_index->second];
-            if (condition.type == ThermalBoundaryCondition::Type::dirichlet)
+            const auto &type =
+              parameters.thermal_boundary.conditions[condition->second].type;
+            const auto &functions = boundary_functions[condition->second];
+            if (type == ThermalBoundaryCondition::Type::dirichlet ||
+                functions.time_dependent_load != time_dependent)
               continue;
-            const types::boundary_id id = cell->face(f)->boundary_id();
-            auto &functions = boundary_functions[condition_index->second];
             fe_face_values.reinit(cell, f);
             double load = 0.;
-            if (condition.type == ThermalBoundaryCondition::Type::neumann)
+            for (const unsigned int q :
+                 fe_face_values.quadrature_point_indices())
               {
-                for (const unsigned int q :
-                     fe_face_values.quadrature_point_indices())
-                  {
-                    const Point<2> &x = fe_face_values.quadrature_point(q);
-                    functions.heat_flux->set_time(new_time);
-                    double flux = new_weight * functions.heat_flux->value(x);
-                    if (old_weight != 0.)
-                      {
-                        functions.heat_flux->set_time(old_time);
-                        flux += old_weight * functions.heat_flux->value(x);
-                      }
-                    flux *= fe_face_values.JxW(q);
-                    load += flux;
-                    for (unsigned int i = 0; i < n; ++i)
-                      local_rhs(i) += flux * fe_face_values.shape_value(i, q);
-                  }
+                const Point<2> &x = fe_face_values.quadrature_point(q);
+                // Neumann: inward flux; Robin: the known part h T_inf
+                const double flux =
+                  (type == ThermalBoundaryCondition::Type::neumann ?
+                     functions.heat_flux->value(x) :
+                     functions.heat_transfer_coefficient->value(x) *
+                       functions.ambient_temperature->value(x)) *
+                  fe_face_values.JxW(q);
+                load += flux;
+                for (unsigned int i = 0; i < n; ++i)
+                  local(i) += flux * fe_face_values.shape_value(i, q);
               }
-            else // robin: inward flux h (T_inf - T)
-              {
-                fe_face_values.get_function_values(old_solution, old_at_face);
-                FullMatrix<double> robin(n, n);
-                for (const unsigned int q :
-                     fe_face_values.quadrature_point_indices())
-                  {
-                    const Point<2> &x = fe_face_values.quadrature_point(q);
-                    functions.heat_transfer_coefficient->set_time(new_time);
-                    functions.ambient_temperature->set_time(new_time);
-                    const double h_new =
-                      functions.heat_transfer_coefficient->value(x);
-                    double known = new_weight * h_new *
-                                   functions.ambient_temperature->value(x);
-                    if (old_weight != 0.)
-                      {
-                        functions.heat_transfer_coefficient->set_time(old_time);
-                        functions.ambient_temperature->set_time(old_time);
-                        known += old_weight *
-                                 functions.heat_transfer_coefficient->value(x) *
-                                 (functions.ambient_temperature->value(x) -
-                                  old_at_face[q]);
-                      }
-                    known *= fe_face_values.JxW(q);
-                    load += known;
-                    for (unsigned int i = 0; i < n; ++i)
-                      {
-                        local_rhs(i) +=
-                          known * fe_face_values.shape_value(i, q);
-                        for (unsigned int j = 0; j < n; ++j)
-                          robin(i, j) += new_weight * h_new *
-                                         fe_face_values.shape_value(i, q) *
-                                         fe_face_values.shape_value(j, q) *
-                                         fe_face_values.JxW(q);
-                      }
-                  }
-                local_matrix.add(1., robin);
-                last_robin_faces.push_back({index, id, robin});
-              }
-            last_boundary_load[id] += load;
+            level.boundary[id] += load;
+            touched = true;
           }
+        if (touched)
+          {
+            cell->get_dof_indices(dof_indices);
+            level.vector.add(dof_indices, local);
+          }
+      }
+    level.vector.compress(VectorOperation::add);
+    level.source = Utilities::MPI::sum(level.source, communicator);
+    // the same ids on every process: all Neumann/Robin ids of this kind
+    for (const auto &[id, c] : condition_of)
+      {
+        const auto &type = parameters.thermal_boundary.conditions[c].type;
+        if (type != ThermalBoundaryCondition::Type::dirichlet &&
+            boundary_functions[c].time_dependent_load == time_dependent)
+          level.boundary[id] =
+            Utilities::MPI::sum(level.boundary[id], communicator);
+      }
+  }
 
-        last_cell_matrix[index] = local_matrix;
-        last_cell_rhs[index]    = local_rhs;
+  const HeatSolver::Loads &
+  HeatSolver::time_dependent_loads(const double time)
+  {
+    for (const auto &level : variable_loads)
+      if (level.valid && level.time == time)
+        return level;
+    // replace the level that is not the other's time (the older one)
+    Loads &level = !variable_loads[0].valid ?
+                     variable_loads[0] :
+                     (!variable_loads[1].valid ?
+                        variable_loads[1] :
+                        (variable_loads[0].time < variable_loads[1].time ?
+                           variable_loads[0] :
+                           variable_loads[1]));
+    assemble_loads(time, true, level);
+    return level;
+  }
+
+  void
+  HeatSolver::assemble_robin(
+    const double                                time,
+    std::map<types::boundary_id, RobinWeights> &weights)
+  {
+    const unsigned int                   n = fe->n_dofs_per_cell();
+    const QGauss<1>                      face_quadrature(fe->degree + 1);
+    FEFaceValues<2>                      fe_face_values(*mapping,
+                                   *fe,
+                                   face_quadrature,
+                                   update_values | update_JxW_values |
+                                     update_quadrature_points);
+    FullMatrix<double>                   robin(n, n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    robin_matrix = 0;
+    for (const auto &[id, c] : condition_of)
+      if (parameters.thermal_boundary.conditions[c].type ==
+          ThermalBoundaryCondition::Type::robin)
+        {
+          auto &w = weights[id];
+          if (w.size() != dof_handler->n_dofs())
+            w.reinit(locally_owned_dofs, communicator);
+          w = 0;
+        }
+    for (const auto &cell : dof_handler->active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          {
+            if (!cell->at_boundary(f))
+              continue;
+            const auto condition =
+              condition_of.find(cell->face(f)->boundary_id());
+            if (condition == condition_of.end() ||
+                parameters.thermal_boundary.conditions[condition->second]
+                    .type != ThermalBoundaryCondition::Type::robin)
+              continue;
+            robin_face_matrix(cell,
+                              f,
+                              boundary_functions[condition->second],
+                              time,
+                              1.,
+                              fe_face_values,
+                              robin);
+            cell->get_dof_indices(dof_indices);
+            robin_matrix.add(dof_indices, robin);
+            Vector<double> row_sums(n);
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                row_sums(i) += robin(i, j);
+            weights[cell->face(f)->boundary_id()].add(dof_indices, row_sums);
+          }
+    robin_matrix.compress(VectorOperation::add);
+    for (auto &[id, w] : weights)
+      w.compress(VectorOperation::add);
+  }
+
+  // ------------------------------------------------------------ assemble
+  void
+  HeatSolver::assemble_matrix_and_lifting(const double new_time,
+                                          const double mass_weight,
+                                          const double stiffness_weight,
+                                          const bool   assemble_matrix)
+  {
+    const unsigned int n = fe->n_dofs_per_cell();
+    const QGauss<1>    face_quadrature(fe->degree + 1);
+    FEFaceValues<2>    fe_face_values(*mapping,
+                                   *fe,
+                                   face_quadrature,
+                                   update_values | update_quadrature_points |
+                                     update_JxW_values);
+    if (assemble_matrix)
+      {
+        system_matrix = 0;
+        reaction_rows.clear();
+        reaction_columns.clear();
+        reaction_values.clear();
+      }
+    lifting = 0;
+
+    FullMatrix<double>                   local_matrix(n, n), robin(n, n);
+    const Vector<double>                 zero_rhs(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    for (const auto &cell : dof_handler->active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
         cell->get_dof_indices(dof_indices);
+        // without a new matrix only the cells with Dirichlet values lift
+        if (!assemble_matrix &&
+            std::none_of(dof_indices.begin(),
+                         dof_indices.end(),
+                         [&](const types::global_dof_index i) {
+                           return constraints.is_inhomogeneously_constrained(i);
+                         }))
+          continue;
+        const unsigned int index = cell->active_cell_index();
+        local_matrix             = 0;
+        if (mass_weight != 0.)
+          local_matrix.add(mass_weight, cell_capacity[index]);
+        local_matrix.add(stiffness_weight, cell_conductivity[index]);
+        for (const unsigned int f : cell->face_indices())
+          {
+            if (!cell->at_boundary(f))
+              continue;
+            const auto condition =
+              condition_of.find(cell->face(f)->boundary_id());
+            if (condition == condition_of.end() ||
+                parameters.thermal_boundary.conditions[condition->second]
+                    .type != ThermalBoundaryCondition::Type::robin)
+              continue;
+            robin_face_matrix(cell,
+                              f,
+                              boundary_functions[condition->second],
+                              new_time,
+                              stiffness_weight,
+                              fe_face_values,
+                              robin);
+            local_matrix.add(1., robin);
+          }
         if (assemble_matrix)
-          constraints.distribute_local_to_global(local_matrix,
-                                                 local_rhs,
-                                                 dof_indices,
-                                                 system_matrix,
-                                                 system_rhs);
+          {
+            constraints.distribute_local_to_global(local_matrix,
+                                                   zero_rhs,
+                                                   dof_indices,
+                                                   system_matrix,
+                                                   lifting);
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                const auto dirichlet = dirichlet_dof_ids.find(dof_indices[i]);
+                if (dirichlet == dirichlet_dof_ids.end())
+                  continue;
+                reaction_rows.push_back(
+                  {dirichlet->second,
+                   static_cast<unsigned int>(reaction_columns.size())});
+                for (unsigned int j = 0; j < n; ++j)
+                  {
+                    reaction_columns.push_back(dof_indices[j]);
+                    reaction_values.push_back(local_matrix(i, j));
+                  }
+              }
+          }
         else
-          constraints.distribute_local_to_global(local_rhs,
+          constraints.distribute_local_to_global(zero_rhs,
                                                  dof_indices,
-                                                 system_rhs,
+                                                 lifting,
                                                  local_matrix);
       }
     if (assemble_matrix)
       system_matrix.compress(VectorOperation::add);
-    system_rhs.compress(VectorOperation::add);
+    lifting.compress(VectorOperation::add);
+  }
+
+  void
+  HeatSolver::assemble_rhs(const double old_time,
+                           const double new_time,
+                           const bool   steady)
+  {
+    const double dt = new_time - old_time;
+    // weights of the new and old time levels in the theta scheme [s]
+    const double new_weight = steady ? 1. : theta * dt;
+    const double old_weight = steady ? 0. : (1. - theta) * dt;
+    last_new_weight         = new_weight;
+    last_old_weight         = old_weight;
+    last_new_time           = new_time;
+    last_old_time           = old_time;
+
+    // M T^n - (1-theta) dt (K + R^n) T^n
+    if (steady)
+      full_rhs = 0;
+    else
+      capacity_matrix.vmult(full_rhs, owned_old_solution);
+    if (old_weight != 0.)
+      {
+        conduction_matrix.vmult(work, owned_old_solution);
+        full_rhs.add(-old_weight, work);
+        if (time_dependent_robin)
+          {
+            assemble_robin(old_time, robin_weights);
+            robin_matrix.vmult(work, owned_old_solution);
+            full_rhs.add(-old_weight, work);
+          }
+      }
+    // + dt (theta F^{n+1} + (1-theta) F^n)
+    full_rhs.add(new_weight + old_weight, constant_loads.vector);
+    if (any_time_dependent_load)
+      {
+        full_rhs.add(new_weight, time_dependent_loads(new_time).vector);
+        if (old_weight != 0.)
+          full_rhs.add(old_weight, time_dependent_loads(old_time).vector);
+      }
+    if (time_dependent_robin)
+      assemble_robin(new_time, robin_weights_new);
+
+    // condense onto the unconstrained DoFs, add the Dirichlet lifting
+    full_rhs_ghosted = full_rhs;
+    homogeneous_constraints.condense(full_rhs_ghosted, system_rhs);
+    system_rhs += lifting;
   }
 
   unsigned int
@@ -511,9 +833,8 @@ namespace tmfdem
             preconditioner = std::move(jacobi);
           }
       }
-    TrilinosWrappers::MPI::Vector distributed(locally_owned_dofs, communicator);
-    distributed = solution;
-    constraints.set_zero(distributed);
+    owned_solution = solution;
+    constraints.set_zero(owned_solution);
     const double  rhs_norm = system_rhs.l2_norm();
     SolverControl control(
       parameters.heat_solver.max_iterations,
@@ -521,7 +842,7 @@ namespace tmfdem
     SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
     try
       {
-        cg.solve(system_matrix, distributed, system_rhs, *preconditioner);
+        cg.solve(system_matrix, owned_solution, system_rhs, *preconditioner);
       }
     catch (const SolverControl::NoConvergence &failure)
       {
@@ -534,65 +855,72 @@ namespace tmfdem
                    "properties and time step.";
         throw RunError(message.str());
       }
-    constraints.distribute(distributed);
-    solution = distributed;
+    constraints.distribute(owned_solution);
+    solution = owned_solution;
     total_linear_iterations += control.last_step();
     return control.last_step();
   }
 
   void
-  HeatSolver::accumulate_heat_balance(HeatBalance &balance) const
+  HeatSolver::accumulate_heat_balance(HeatBalance &balance)
   {
-    const unsigned int                   n = fe->n_dofs_per_cell();
+    const unsigned int n    = fe->n_dofs_per_cell();
+    const double new_weight = last_new_weight, old_weight = last_old_weight;
     std::map<types::boundary_id, double> heat_in;
     for (const auto id : mesh_report->boundary_ids)
       heat_in[id] = 0.;
-    double         stored = 0.;
-    Vector<double> new_values(n), old_values(n), residual(n), change(n),
-      stored_local(n);
-    std::vector<types::global_dof_index>                 dof_indices(n);
-    std::multimap<unsigned int, const RobinFaceRecord *> robin_faces_of_cell;
-    for (const auto &face : last_robin_faces)
-      robin_faces_of_cell.emplace(face.cell_index, &face);
-    for (const auto &cell : dof_handler->active_cell_iterators())
+
+    // reaction of the discrete equations: the heat the Dirichlet boundary
+    // supplies to each of its nodes during this step, (A T^{n+1} - b)_i
+    for (const auto &row : reaction_rows)
       {
-        if (!cell->is_locally_owned())
-          continue;
-        const unsigned int index = cell->active_cell_index();
-        cell->get_dof_values(solution, new_values);
-        cell->get_dof_values(old_solution, old_values);
-        cell->get_dof_indices(dof_indices);
-        // the implicit part of the Robin flux, -theta dt h T^{n+1}
-        const auto robin_range = robin_faces_of_cell.equal_range(index);
-        for (auto face = robin_range.first; face != robin_range.second; ++face)
+        double product = 0.;
+        for (unsigned int j = row.start; j < row.start + n; ++j)
+          product += reaction_values[j] * solution(reaction_columns[j]);
+        heat_in[row.boundary_id] += product;
+      }
+    for (const auto &[dof, id] : owned_dirichlet_dofs)
+      heat_in[id] -= full_rhs(dof);
+    for (auto &[id, heat] : heat_in)
+      heat = Utilities::MPI::sum(heat, communicator);
+
+    // Robin: -h T at both time levels (dot products are global)
+    const auto &weights_new =
+      time_dependent_robin ? robin_weights_new : robin_weights;
+    for (const auto &[id, weights] : weights_new)
+      heat_in[id] -= new_weight * (weights * owned_solution);
+    if (old_weight != 0.)
+      for (const auto &[id, weights] : robin_weights)
+        heat_in[id] -= old_weight * (weights * owned_old_solution);
+
+    // Neumann fluxes, Robin h T_inf and sources (sums are global)
+    double source = (new_weight + old_weight) * constant_loads.source;
+    for (const auto &[id, load] : constant_loads.boundary)
+      heat_in[id] += (new_weight + old_weight) * load;
+    if (any_time_dependent_load)
+      {
+        const Loads &at_new = time_dependent_loads(last_new_time);
+        source += new_weight * at_new.source;
+        for (const auto &[id, load] : at_new.boundary)
+          heat_in[id] += new_weight * load;
+        if (old_weight != 0.)
           {
-            face->second->matrix.vmult(residual, new_values);
-            heat_in[face->second->boundary_id] -= residual.mean_value() * n;
-          }
-        // reaction of the discrete equations: the heat the Dirichlet
-        // boundary supplies to each of its nodes during this step
-        last_cell_matrix[index].vmult(residual, new_values);
-        residual -= last_cell_rhs[index];
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            const auto dirichlet = dirichlet_dof_ids.find(dof_indices[i]);
-            if (dirichlet != dirichlet_dof_ids.end())
-              heat_in[dirichlet->second] += residual(i);
-          }
-        if (parameters.time.mode == TimeSteppingParameters::Mode::transient)
-          {
-            change = new_values;
-            change -= old_values;
-            cell_capacity[index].vmult(stored_local, change);
-            stored += stored_local.mean_value() * n;
+            const Loads &at_old = time_dependent_loads(last_old_time);
+            source += old_weight * at_old.source;
+            for (const auto &[id, load] : at_old.boundary)
+              heat_in[id] += old_weight * load;
           }
       }
-    for (const auto &[id, load] : last_boundary_load)
-      heat_in[id] += load;
-    for (auto &[id, heat] : heat_in)
-      balance.boundary_heat_in[id] += Utilities::MPI::sum(heat, communicator);
-    balance.source_heat += Utilities::MPI::sum(last_source_heat, communicator);
-    balance.stored_heat += Utilities::MPI::sum(stored, communicator);
+
+    for (const auto &[id, heat] : heat_in)
+      balance.boundary_heat_in[id] += heat;
+    balance.source_heat += source;
+    if (parameters.time.mode == TimeSteppingParameters::Mode::transient)
+      {
+        work = owned_solution;
+        work -= owned_old_solution;
+        balance.stored_heat += capacity_row_sums * work;
+      }
   }
 
   // ------------------------------------------------------------ initial
@@ -620,8 +948,9 @@ namespace tmfdem
     make_constraints(parameters.time.start_time);
     if (hold_dirichlet)
       constraints.distribute(distributed);
-    solution     = distributed;
-    old_solution = distributed;
+    solution           = distributed;
+    owned_solution     = distributed;
+    owned_old_solution = distributed;
   }
 
   void
@@ -650,8 +979,9 @@ namespace tmfdem
                                                   communicator);
         transfer.interpolate(distributed);
         constraints.distribute(distributed);
-        solution     = distributed;
-        old_solution = distributed;
+        solution           = distributed;
+        owned_solution     = distributed;
+        owned_old_solution = distributed;
       }
   }
 
@@ -811,9 +1141,10 @@ namespace tmfdem
         else
           compute_cell_matrices();
         make_constraints(time);
-        old_solution = 0;
-        solution     = 0;
-        assemble_system(time, time, true, true);
+        owned_old_solution = 0;
+        solution           = 0;
+        assemble_matrix_and_lifting(time, 0., 1., true);
+        assemble_rhs(time, time, true);
         const unsigned int iterations = solve(true);
         std::ostringstream record;
         record << triangulation->n_global_active_cells() << " "
@@ -867,12 +1198,9 @@ namespace tmfdem
                                    }),
                        output_times.end());
 
-    bool time_dependent_dirichlet = false, time_dependent_robin = false;
+    bool time_dependent_dirichlet = false;
     for (const auto &functions : boundary_functions)
-      {
-        time_dependent_dirichlet |= functions.time_dependent_temperature;
-        time_dependent_robin |= functions.time_dependent_coefficient;
-      }
+      time_dependent_dirichlet |= functions.time_dependent_temperature;
 
     ProgressReporter progress(parameters.output.progress_interval,
                               start,
@@ -904,8 +1232,10 @@ namespace tmfdem
                                theta != last_theta;
           if (time_dependent_dirichlet)
             make_constraints(new_time);
-          old_solution = solution;
-          assemble_system(time, new_time, rebuild, false);
+          owned_old_solution = owned_solution;
+          if (rebuild || time_dependent_dirichlet)
+            assemble_matrix_and_lifting(new_time, 1., theta * dt, rebuild);
+          assemble_rhs(time, new_time, false);
           solve(rebuild);
           accumulate_heat_balance(balance);
           matrix_is_current = true;

@@ -179,10 +179,20 @@ namespace tmfdem
           in.get(count);
           cg_iterations = count;
           in.get(next_output);
-          in.get(output_times);
-          if (next_output > output_times.size())
+          std::vector<double> saved_output_times;
+          in.get(saved_output_times);
+          if (next_output > saved_output_times.size())
             throw InputError("the checkpoint '" + file +
                              "' is corrupt (output counter).");
+          // End time may have changed (a run continued): this input's
+          // output times from the next unwritten one on
+          next_output = continue_output_times(file,
+                                              time,
+                                              end,
+                                              saved_output_times,
+                                              next_output,
+                                              output_times,
+                                              0.5 * time_step);
           in.get(count);
           if (count > 100000000)
             throw InputError("the checkpoint '" + file +

@@ -1785,6 +1785,7 @@ namespace tmfdem
       keep_good_state();
       CheckpointSchedule checkpoints(parameters.checkpoint);
       checkpoints.written(step_number);
+      bool snap_reported = false;
       while (time < end - 0.5 * advance &&
              (max_steps == 0 || step_number < max_steps))
         {
@@ -1809,6 +1810,17 @@ namespace tmfdem
           if (next_output < output_times.size() &&
               time >= output_times[next_output] - 0.5 * advance)
             {
+              if (!snap_reported && std::abs(time - output_times[next_output]) >
+                                      1e-9 * std::max(1., std::abs(time)))
+                {
+                  snap_reported = true; // once per run
+                  std::cerr
+                    << "[tmfdem] output time " << output_times[next_output]
+                    << " s requested, written at t = " << time
+                    << " s: outputs snap to the nearest "
+                    << (quasi_static ? "thermal" : "mechanical") << " step ("
+                    << advance << " s)\n";
+                }
               energy();
               write_output();
               while (next_output < output_times.size() &&

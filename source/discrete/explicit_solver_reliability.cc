@@ -215,10 +215,22 @@ namespace tmfdem
       in.get(next_output);
       in.get(next_history);
       in.get(history_interval);
-      in.get(output_times);
-      if (next_output > output_times.size())
+      std::vector<double> saved_output_times;
+      in.get(saved_output_times);
+      if (next_output > saved_output_times.size())
         throw InputError("the checkpoint '" + file +
                          "' is corrupt (output counter).");
+      // End time may have changed (a run continued): the output times of
+      // this input from the next unwritten one on; the history keeps the
+      // checkpoint's interval
+      next_output = continue_output_times(
+        file,
+        time,
+        parameters.time.end_time,
+        saved_output_times,
+        next_output,
+        output_times,
+        1e-9 * std::max(1., std::abs(parameters.time.end_time)));
       const Records solution_records = get_records(in);
       const Records crack_records    = get_records(in);
       std::uint64_t csv_bytes[3];

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <sys/stat.h>
+#include <tmfdem/base/exceptions.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 #include <unistd.h>
@@ -174,8 +176,9 @@ namespace tmfdem
         where + "was written for a different input (digest " + file_digest +
         ", this input " + digest +
         "): resume with the same prm file and --set options (only Checkpoint, "
-        "Output/Directory, Output/Progress interval and Discrete "
-        "mechanics/Threads may change), or start afresh without --resume.");
+        "Output/Directory, Output/Progress interval, Discrete "
+        "mechanics/Threads and Time stepping/End time may change), or start "
+        "afresh without --resume.");
   }
 
   void
@@ -370,5 +373,34 @@ namespace tmfdem
                      "since.");
     if (now > size && ::truncate(file_name.c_str(), size) != 0)
       throw RunError("--resume: cannot truncate '" + file_name + "'");
+  }
+  unsigned int
+  continue_output_times(const std::string         &file,
+                        const double               time,
+                        const double               end_time,
+                        const std::vector<double> &saved,
+                        const unsigned int         saved_next,
+                        std::vector<double>       &fresh,
+                        const double               tolerance)
+  {
+    if (!saved.empty() && std::abs(saved.back() - end_time) <= tolerance)
+      {
+        fresh = saved; // same End time: exactly as written
+        return saved_next;
+      }
+    if (end_time < time - tolerance)
+      throw InputError(
+        "--resume: Time stepping/End time = " + Utilities::to_string(end_time) +
+        " s lies before the time of the checkpoint '" + file +
+        "', t = " + Utilities::to_string(time) +
+        " s; allowed is an End time at or after it (End time may change on "
+        "--resume, to continue a run).");
+    if (saved_next == 0)
+      return 0;
+    const double last_written = saved[saved_next - 1];
+    unsigned int next         = 0;
+    while (next < fresh.size() && fresh[next] <= last_written + tolerance)
+      ++next;
+    return next;
   }
 } // namespace tmfdem

@@ -4,6 +4,7 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/lac/vector.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -72,8 +73,13 @@ namespace tmfdem
           {
             if (!cell->is_locally_owned())
               continue;
-            const auto   box    = cell->bounding_box();
-            const double margin = 1e-6 * cell->diameter();
+            const auto box = cell->bounding_box();
+            // tolerance from the box's size (cheaper than the diameter,
+            // which measures every vertex pair: this loop runs over all
+            // cells for every point at every output)
+            const double margin =
+              1e-6 * std::max(box.upper_bound(0) - box.lower_bound(0),
+                              box.upper_bound(1) - box.lower_bound(1));
             if (p[0] < box.lower_bound(0) - margin ||
                 p[0] > box.upper_bound(0) + margin ||
                 p[1] < box.lower_bound(1) - margin ||

@@ -13,6 +13,13 @@ usage: reliability.py TMFDEM OUT_DIR CHECK [CASE]
                      outputs and summary.json written
   refuse             --resume refused with a clear message: no checkpoint,
                      changed input, truncated and foreign checkpoint files
+  extend CASE        continue a run to a later End time: SIGKILL a run to
+                     End time E once a checkpoint exists, --resume it with
+                     End time 2 E: every output is bitwise identical to an
+                     uninterrupted run to 2 E (Output/Times unchanged); an
+                     End time before the checkpoint is refused. CASE heat
+                     (E = 50 s) or thermo (cut_plate, quasi-static, E = 2000 s:
+                     its history interval is the thermal step either way)
 CASE: mechanics (two_blocks_collision), thermo (cut_plate, quasi-static with
 fracture and contact heat), thermo_multirate (sheet_restrained_expansion,
 shortened), heat (plate_transient, discrete heat).
@@ -40,7 +47,9 @@ CASES = {
     "thermo_multirate": ("sheet_restrained_expansion.prm",
                          ["Time stepping/End time=0.002"]),
     "heat": ("plate_transient.prm", []),
-    "continuum": ("plate_transient-continuum.prm", []),
+    # refined so that the run is still in its time loop when the signal
+    # comes (the unrefined case takes well under a second)
+    "continuum": ("plate_transient-continuum.prm", ["Mesh/Global refinements=2"]),
 }
 prm, case_settings = CASES[case]
 prm = os.path.join(prm_dir, prm)
@@ -130,6 +139,34 @@ if which == "kill_resume":
     ok &= check(not summary_before, "no summary.json yet (the run was cut off)")
     result = run(folder, interval, resume=True)
     ok &= check("resumed from" in result.stderr, "resumed from the checkpoint")
+    ok &= compare(reference, folder)
+elif which == "extend":
+    end = {"heat": 50., "thermo": 2000.}[case]
+    longer = f"Time stepping/End time={2 * end:g}"
+    reference = fresh(os.path.join(out, "reference"))
+    run(reference, longer)
+    folder = fresh(os.path.join(out, "extended"))
+    interval = "Checkpoint/Interval (steps)=" + ("1" if case == "thermo" else "20")
+    cmd = command(folder, interval, f"Time stepping/End time={end:g}")
+    print("$", " ".join(cmd), "(SIGKILL once a checkpoint exists)", flush=True)
+    process = subprocess.Popen(cmd, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+    pattern = os.path.join(folder, "checkpoints", "checkpoint_*.tmfchk")
+    while process.poll() is None and not glob.glob(pattern):
+        time.sleep(0.005)
+    killed = process.poll() is None
+    if killed:
+        process.send_signal(signal.SIGKILL)
+    process.wait()
+    ok &= check(killed, "SIGKILL while running to End time E, after the first checkpoint")
+    # an End time before the checkpoint's time: refused (on a copy)
+    early = fresh(os.path.join(out, "early"))
+    shutil.copytree(folder, early, dirs_exist_ok=True)
+    r = run(early, interval, "Time stepping/End time=1e-6", resume=True, expect=1)
+    ok &= check("lies before the time of the checkpoint" in r.stderr,
+                "End time before the checkpoint: refused with a clear message")
+    result = run(folder, interval, longer, resume=True)
+    ok &= check("resumed from" in result.stderr, "resumed with End time 2 E")
     ok &= compare(reference, folder)
 elif which == "sigterm":
     reference = fresh(os.path.join(out, "reference"))

@@ -88,4 +88,26 @@ s = summary(f"{out}/cooling")["heat"]
 ok &= check(s["stored_heat"] < 0 and s["relative_imbalance"] < 1e-8,
             f"transient Robin balance: stored {s['stored_heat']:.2f} J/m, in {s['total_heat_in']:.2f} J/m, "
             f"relative imbalance {s['relative_imbalance']:.1e}")
+
+# transient, Crank-Nicolson with its Rannacher start, every kind of term
+# depending on t: Dirichlet 10 + t, Robin ambient 20 + 10 t, Neumann flux
+# 500 t [W/m^2] on the top edge (length L). The Neumann heat is the exact
+# time integral of the prescribed flux, 500 * 5^2 / 2 * L = 6250 J/m (the
+# theta rule integrates a linear flux exactly; the 4 backward Euler half
+# steps at the start add 500 L (dt/2)^2 / 2 per step, 1e-4 of it); the
+# balance closes to the solver tolerance
+B = "Thermal boundary conditions/Condition "
+run(binary, prm, f"{out}/time_dependent", "Time stepping/Mode=transient",
+    "Time stepping/End time=5", "Time stepping/Time step=0.05",
+    "Time stepping/Method=Crank-Nicolson", "Initial conditions/Temperature=10",
+    "Materials/Material 0/Volumetric heat source=0",
+    B + "1/Temperature=10+t", B + "2/Ambient temperature=20+10*t",
+    B + "3/Boundary ids=3", B + "3/Type=neumann", B + "3/Heat flux=500*t")
+s = summary(f"{out}/time_dependent")["heat"]
+neumann = s["boundary_heat_in"]["3"]
+exact = 500 * 5 ** 2 / 2 * L
+ok &= check(abs(neumann - exact) < 1e-3 * exact,
+            f"time-dependent Neumann heat {neumann:.4f} J/m, exact {exact:.4f} J/m (< 1e-3 relative)")
+ok &= check(s["relative_imbalance"] < 1e-8,
+            f"time-dependent Dirichlet/Robin/Neumann balance: relative imbalance {s['relative_imbalance']:.1e}")
 sys.exit(0 if ok else 1)

@@ -15,6 +15,7 @@
 #include <deal.II/distributed/tria_base.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/full_matrix.h>
@@ -23,6 +24,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <array>
 #include <functional>
 #include <map>
 #include <memory>
@@ -81,6 +83,13 @@ namespace tmfdem
      */
     void
     set_output_hook(const std::function<void(const double time)> &hook);
+    /**
+     * Memory of this process's matrices (system, capacity, conduction, an
+     * AMG hierarchy estimated as large as the system matrix), cached element
+     * matrices and vectors [bytes] (after check_input).
+     */
+    double
+    memory_estimate() const;
 
   private:
     /** Heat that crossed each boundary id and came from sources [J/m]. */
@@ -90,6 +99,29 @@ namespace tmfdem
       double                               source_heat = 0.;
       double                               stored_heat = 0.;
     };
+    /** Per boundary condition: functions for its value entries. */
+    struct BoundaryFunctions
+    {
+      std::unique_ptr<FunctionParser<2>> temperature, heat_flux,
+        heat_transfer_coefficient, ambient_temperature;
+      bool time_dependent_coefficient = false;
+      bool time_dependent_temperature = false;
+      /** Neumann flux or Robin h T_inf depends on t. */
+      bool time_dependent_load = false;
+    };
+    /** Load vector at one time [W/m] with its parts per boundary id and from
+     *  sources (summed over processes) [W/m]. */
+    struct Loads
+    {
+      double                               time  = 0.;
+      bool                                 valid = false;
+      TrilinosWrappers::MPI::Vector        vector;
+      std::map<types::boundary_id, double> boundary;
+      double                               source = 0.;
+    };
+    /** Per Robin boundary id: w_i = integral of h phi_i [W/(m K)], so that
+     *  w . T is the heat rate that h T draws. */
+    using RobinWeights = TrilinosWrappers::MPI::Vector;
 
     /** Builds the mesh, checks it, and everything that depends on it. */
     void
@@ -101,25 +133,70 @@ namespace tmfdem
     /** Hanging nodes and Dirichlet values at @p time. */
     void
     make_constraints(const double time);
-    /** Per-cell capacity and conductivity matrices (cached). */
+    /**
+     * Per-cell capacity and conductivity matrices (cached), the assembled
+     * capacity matrix M and conduction matrix K (plus the Robin matrix R
+     * where its coefficient does not depend on t), the capacity row sums, and
+     * the loads that do not depend on t. Called after every mesh change.
+     */
     void
     compute_cell_matrices();
     /**
-     * Assembles the theta-step system from @p old_time to @p new_time, the
-     * matrix only if @p assemble_matrix, and records the local systems for
-     * the heat balance. With @p steady the system is K + R = F.
+     * The Robin matrix of one face at @p time, times @p weight
+     * (weight \f$\int h \phi_i \phi_j\f$, in the units of weight W/(m K)).
      */
     void
-    assemble_system(const double old_time,
-                    const double new_time,
-                    const bool   assemble_matrix,
-                    const bool   steady);
+    robin_face_matrix(const DoFHandler<2>::active_cell_iterator &cell,
+                      const unsigned int                         face,
+                      const BoundaryFunctions                   &functions,
+                      const double                               time,
+                      const double                               weight,
+                      FEFaceValues<2>                           &fe_face_values,
+                      FullMatrix<double>                        &matrix) const;
+    /**
+     * Assembles the loads (sources, Neumann fluxes, Robin h T_inf) at
+     * @p time into @p level: those that depend on t if @p time_dependent,
+     * else those that do not.
+     */
+    void
+    assemble_loads(const double time, const bool time_dependent, Loads &level);
+    /** The loads that depend on t at @p time, from a two-level cache. */
+    const Loads &
+    time_dependent_loads(const double time);
+    /**
+     * The Robin matrix at @p time into robin_matrix and the Robin weights
+     * at @p time into @p weights (only for coefficients that depend on t).
+     */
+    void
+    assemble_robin(const double                                time,
+                   std::map<types::boundary_id, RobinWeights> &weights);
+    /**
+     * The theta-step system matrix (if @p assemble_matrix) and the lifting
+     * vector of the Dirichlet values at @p new_time; @p mass_weight is 1 for
+     * a time step, 0 for the steady problem. Records the Dirichlet rows of
+     * the local matrices for the heat balance when @p assemble_matrix.
+     */
+    void
+    assemble_matrix_and_lifting(const double new_time,
+                                const double mass_weight,
+                                const double stiffness_weight,
+                                const bool   assemble_matrix);
+    /**
+     * The right-hand side from @p old_time to @p new_time from the assembled
+     * matrices and load vectors (no cell loop): full_rhs unconstrained,
+     * system_rhs condensed with the lifting added. With @p steady the
+     * system is K + R = F.
+     */
+    void
+    assemble_rhs(const double old_time,
+                 const double new_time,
+                 const bool   steady);
     /** Solves system_matrix T = system_rhs; returns CG iterations. */
     unsigned int
     solve(const bool rebuild_preconditioner);
-    /** Adds this step's heats to @p balance, from the recorded systems. */
+    /** Adds this step's heats to @p balance, from the assembled vectors. */
     void
-    accumulate_heat_balance(HeatBalance &balance) const;
+    accumulate_heat_balance(HeatBalance &balance);
     /**
      * Interpolates the initial temperature [C]; with @p hold_dirichlet the
      * Dirichlet values at the start time replace it on the boundary (the
@@ -163,41 +240,65 @@ namespace tmfdem
     AffineConstraints<double>      constraints;
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;
-    TrilinosWrappers::MPI::Vector  solution;     ///< ghosted, T^{n+1}
-    TrilinosWrappers::MPI::Vector  old_solution; ///< ghosted, T^n
+    TrilinosWrappers::MPI::Vector  solution; ///< ghosted, T^{n+1}
     std::unique_ptr<TrilinosWrappers::PreconditionBase> preconditioner;
 
     /** Cached per active cell index (locally owned cells only). */
     std::vector<FullMatrix<double>> cell_capacity, cell_conductivity;
-    /** The local systems of the last assembly, for the heat balance. */
-    std::vector<FullMatrix<double>> last_cell_matrix;
-    std::vector<Vector<double>>     last_cell_rhs;
-    /** Robin/Neumann heat of the last step that is known before solving,
-     *  and the Robin matrices that multiply T^{n+1} [J/m]. */
-    std::map<types::boundary_id, double> last_boundary_load;
-    struct RobinFaceRecord
+    /** Hanging nodes and zero Dirichlet values (condenses right-hand sides). */
+    AffineConstraints<double> homogeneous_constraints;
+    /** Assembled without constraints: capacity M [J/(m K)], conduction
+     *  K [W/(m K)] (plus R where h does not depend on t), and R at the old
+     *  time level where h depends on t. */
+    TrilinosWrappers::SparseMatrix capacity_matrix, conduction_matrix,
+      robin_matrix;
+    /** M 1 [J/(m K)]: the stored heat of a change is its dot product. */
+    TrilinosWrappers::MPI::Vector capacity_row_sums;
+    /** The constrained right-hand side is the condensed full_rhs plus the
+     *  lifting of the Dirichlet values. */
+    TrilinosWrappers::MPI::Vector full_rhs, full_rhs_ghosted, lifting;
+    /** Owned copies of T^{n+1} and T^n, and work space. */
+    TrilinosWrappers::MPI::Vector owned_solution, owned_old_solution, work;
+
+    /** The loads that do not depend on t, and a two-level cache of those
+     *  that do. */
+    Loads                constant_loads;
+    std::array<Loads, 2> variable_loads;
+    bool                 any_time_dependent_load = false;
+    /** Robin weights of the constant coefficients, or those at the old and
+     *  new time levels where h depends on t. */
+    std::map<types::boundary_id, RobinWeights> robin_weights, robin_weights_new;
+    bool                                       time_dependent_robin = false;
+
+    /** Dirichlet rows of the local matrices of the owned cells (last
+     *  assembly): the reaction heat at Dirichlet node i is sum over these
+     *  rows of row . T^{n+1} minus the full right-hand side at i. */
+    struct ReactionRow
     {
-      unsigned int       cell_index;
       types::boundary_id boundary_id;
-      FullMatrix<double> matrix;
+      unsigned int       start;
     };
-    std::vector<RobinFaceRecord> last_robin_faces;
-    double                       last_source_heat = 0.;
+    std::vector<ReactionRow>             reaction_rows;
+    std::vector<types::global_dof_index> reaction_columns;
+    std::vector<double>                  reaction_values;
+    /** Owned Dirichlet DoFs with their boundary ids. */
+    std::vector<std::pair<types::global_dof_index, types::boundary_id>>
+      owned_dirichlet_dofs;
+    /** Weights of the new and old time levels of the last assembly [s]. */
+    double last_new_weight = 1., last_old_weight = 0.;
+    /** Times of the new and old levels of the last assembly [s]. */
+    double last_new_time = 0., last_old_time = 0.;
+    /** Boundary ids of the thermal conditions -> condition index. */
+    std::map<types::boundary_id, unsigned int> condition_of;
     /** Dirichlet DoF -> boundary id. */
     std::map<types::global_dof_index, types::boundary_id> dirichlet_dof_ids;
 
     std::vector<std::unique_ptr<FunctionParser<2>>> heat_sources;
-    /** Per boundary condition: functions for its value entries. */
-    struct BoundaryFunctions
-    {
-      std::unique_ptr<FunctionParser<2>> temperature, heat_flux,
-        heat_transfer_coefficient, ambient_temperature;
-      bool time_dependent_coefficient = false;
-      bool time_dependent_temperature = false;
-    };
-    std::vector<BoundaryFunctions>     boundary_functions;
-    std::unique_ptr<FunctionParser<2>> initial_temperature;
-    bool                               any_heat_source = false;
+    std::vector<BoundaryFunctions>                  boundary_functions;
+    std::unique_ptr<FunctionParser<2>>              initial_temperature;
+    bool                                            any_heat_source = false;
+    /** Per material id: its heat source depends on t. */
+    std::vector<bool> time_dependent_source;
 
     std::unique_ptr<Monitors>         monitors;
     std::unique_ptr<SolutionSeries>   solution_series;

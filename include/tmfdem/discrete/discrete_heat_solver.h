@@ -37,6 +37,26 @@ namespace tmfdem
       void
       run() override;
 
+      /** The exploded mesh (after check_input). */
+      const DiscreteModel &
+      get_model() const
+      {
+        return model;
+      }
+      /** The thermal step in use [s]. */
+      double
+      get_time_step() const
+      {
+        return time_step;
+      }
+      /** Stable explicit thermal step [s]; 0 with implicit integration
+       *  (after check_input). */
+      double
+      get_stable_time_step() const
+      {
+        return heat && !heat->implicit() ? heat->stable_time_step() : 0.;
+      }
+
     private:
       const Parameters             &parameters;
       MPI_Comm                      communicator;

@@ -237,6 +237,26 @@ namespace tmfdem
   /** Size of @p file_name in bytes, 0 if it does not exist. */
   std::uint64_t
   file_size(const std::string &file_name);
+
+  /**
+   * --resume with another Time stepping/End time (the only entry that may
+   * change besides Checkpoint, Output/Directory, Output/Progress interval and
+   * Discrete mechanics/Threads): the output times of the checkpoint
+   * @p saved, of which the first @p saved_next were written, and the output
+   * times @p fresh of this input (its End time). Throws InputError naming
+   * @p file if End time [s] lies before the checkpoint's @p time [s]. Returns
+   * the index into @p fresh of the next output: the entries up to the last
+   * written one (within @p tolerance [s]) count as written. With the same
+   * End time @p fresh is replaced by @p saved and @p saved_next returned.
+   */
+  unsigned int
+  continue_output_times(const std::string         &file,
+                        const double               time,
+                        const double               end_time,
+                        const std::vector<double> &saved,
+                        const unsigned int         saved_next,
+                        std::vector<double>       &fresh,
+                        const double               tolerance);
 } // namespace tmfdem
 
 #endif

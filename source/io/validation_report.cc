@@ -1,0 +1,171 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <sys/resource.h>
+#include <tmfdem/continuum/heat_solver.h>
+#include <tmfdem/discrete/discrete_heat_solver.h>
+#include <tmfdem/discrete/explicit_solver.h>
+#include <tmfdem/io/validation_report.h>
+
+namespace tmfdem
+{
+  namespace
+  {
+    constexpr double mebibyte = 1024. * 1024.;
+
+    /** Bytes held by a vector. */
+    template <typename T>
+    double
+    bytes(const std::vector<T> &vector)
+    {
+      return static_cast<double>(vector.capacity() * sizeof(T));
+    }
+
+    /** Peak resident memory of this process so far [bytes]. */
+    double
+    resident_bytes()
+    {
+      rusage usage{};
+      getrusage(RUSAGE_SELF, &usage);
+      return static_cast<double>(usage.ru_maxrss) * 1024.;
+    }
+
+    /** Shortest edge and smallest height over the triangles [m]. */
+    std::pair<double, double>
+    smallest_element(const discrete::DiscreteModel &model)
+    {
+      double min_edge   = std::numeric_limits<double>::max();
+      double min_height = std::numeric_limits<double>::max();
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          double longest = 0.;
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              const unsigned int a = 3 * e + k, b = 3 * e + (k + 1) % 3;
+              const double edge = std::hypot(model.x_ref[b] - model.x_ref[a],
+                                             model.y_ref[b] - model.y_ref[a]);
+              min_edge          = std::min(min_edge, edge);
+              longest           = std::max(longest, edge);
+            }
+          const double area =
+            0.5 * std::abs((model.x_ref[3 * e + 1] - model.x_ref[3 * e]) *
+                             (model.y_ref[3 * e + 2] - model.y_ref[3 * e]) -
+                           (model.x_ref[3 * e + 2] - model.x_ref[3 * e]) *
+                             (model.y_ref[3 * e + 1] - model.y_ref[3 * e]));
+          if (longest > 0.)
+            min_height = std::min(min_height, 2. * area / longest);
+        }
+      return {min_edge, min_height};
+    }
+
+    /** Bytes of the per-element, per-node and per-joint state. */
+    double
+    model_bytes(const discrete::DiscreteModel &model)
+    {
+      return bytes(model.x) + bytes(model.y) + bytes(model.x_ref) +
+             bytes(model.y_ref) + bytes(model.vx) + bytes(model.vy) +
+             bytes(model.mass) + bytes(model.node_vertex) +
+             bytes(model.inverse_basis) + bytes(model.reference_area) +
+             bytes(model.material) + bytes(model.body) +
+             bytes(model.thermal_stretch) + bytes(model.stress) +
+             bytes(model.edge_joint) + bytes(model.edge_boundary) +
+             bytes(model.joint_nodes) + bytes(model.joint_elements) +
+             bytes(model.joint_constants) + bytes(model.joint_length) +
+             bytes(model.joint_damage) + bytes(model.joint_status) +
+             bytes(model.joint_break_time) + bytes(model.joint_force);
+    }
+
+    void
+    describe_model(std::ostream &out, const discrete::DiscreteModel &model)
+    {
+      const auto [edge, height] = smallest_element(model);
+      out << "discrete model: " << model.n_elements << " triangles, "
+          << model.n_nodes << " nodes, " << model.n_joints << " joints\n"
+          << "  smallest element: shortest edge " << edge
+          << " m, smallest height " << height << " m\n";
+    }
+
+    void
+    describe_steps(std::ostream      &out,
+                   const std::string &what,
+                   const double       stable,
+                   const double       used,
+                   const Parameters  &parameters)
+    {
+      out << "  " << what << ": ";
+      if (stable > 0.)
+        out << "stable " << stable << " s, ";
+      out << "used " << used << " s";
+      if (used > 0.)
+        out << ", "
+            << static_cast<long long>(std::ceil(
+                 (parameters.time.end_time - parameters.time.start_time) /
+                   used -
+                 1e-9))
+            << " steps to End time = " << parameters.time.end_time << " s";
+      out << "\n";
+    }
+  } // namespace
+
+  std::string
+  validation_report(Simulation       &simulation,
+                    const Parameters &parameters,
+                    MPI_Comm          communicator)
+  {
+    std::ostringstream out;
+    out << std::setprecision(4);
+    if (auto *solver = dynamic_cast<discrete::ExplicitSolver *>(&simulation))
+      {
+        const auto &model = solver->get_model();
+        describe_model(out, model);
+        describe_steps(out,
+                       "mechanical time step",
+                       solver->get_stable_time_step(),
+                       solver->get_time_step(),
+                       parameters);
+        out << "  model state: " << model_bytes(model) / mebibyte
+            << " MiB (contact lists grow with fragmentation)\n";
+      }
+    else if (auto *solver =
+               dynamic_cast<discrete::DiscreteHeatSolver *>(&simulation))
+      {
+        const auto &model = solver->get_model();
+        describe_model(out, model);
+        describe_steps(out,
+                       "thermal time step",
+                       solver->get_stable_time_step(),
+                       solver->get_time_step(),
+                       parameters);
+        out << "  model state: " << model_bytes(model) / mebibyte << " MiB\n";
+      }
+    else if (auto *solver = dynamic_cast<HeatSolver *>(&simulation))
+      {
+        double smallest = std::numeric_limits<double>::max();
+        for (const auto &cell :
+             solver->get_triangulation().active_cell_iterators())
+          if (cell->is_locally_owned())
+            smallest = std::min(smallest, cell->minimum_vertex_distance());
+        smallest = Utilities::MPI::min(smallest, communicator);
+        out << "continuum heat: smallest cell " << smallest << " m\n";
+        if (parameters.time.mode == TimeSteppingParameters::Mode::transient)
+          describe_steps(out,
+                         "time step",
+                         0.,
+                         parameters.time.time_step,
+                         parameters);
+        out << "  matrices, element matrices and vectors: about "
+            << Utilities::MPI::sum(solver->memory_estimate(), communicator) /
+                 mebibyte
+            << " MiB (before adaptive refinement)\n";
+      }
+    out << "  resident memory after the checks: "
+        << Utilities::MPI::max(resident_bytes(), communicator) / mebibyte
+        << " MiB per process\n";
+    return out.str();
+  }
+} // namespace tmfdem
