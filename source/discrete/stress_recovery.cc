@@ -262,12 +262,50 @@ namespace tmfdem
                 }
               if (!solved)
                 {
-                  sigma[0] = sigma[1] = sigma[2] = 0.;
+                  // smooth boundary: mean of the edges' components in their
+                  // own frames (n_i, s_i), composed in the vertex frame
+                  // (n = normalised sum of the n_i): on a polygon that
+                  // approximates a curve the stress follows the boundary
+                  double nx = 0., ny = 0., nn = 0., ns = 0., ss = 0.;
                   for (const EdgeValue &ev : known)
                     {
-                      sigma[0] += ev.sigma.xx / known.size();
-                      sigma[1] += ev.sigma.yy / known.size();
-                      sigma[2] += ev.sigma.xy / known.size();
+                      const double sx = -ev.ny, sy = ev.nx;
+                      const double sn[2] = {ev.sigma.xx * ev.nx +
+                                              ev.sigma.xy * ev.ny,
+                                            ev.sigma.xy * ev.nx +
+                                              ev.sigma.yy * ev.ny};
+                      nn += sn[0] * ev.nx + sn[1] * ev.ny;
+                      ns += sn[0] * sx + sn[1] * sy;
+                      ss += ev.sigma.xx * sx * sx + 2. * ev.sigma.xy * sx * sy +
+                            ev.sigma.yy * sy * sy;
+                      nx += ev.nx;
+                      ny += ev.ny;
+                    }
+                  const double norm = std::hypot(nx, ny);
+                  if (norm > 0.5)
+                    {
+                      nx /= norm;
+                      ny /= norm;
+                      nn /= known.size();
+                      ns /= known.size();
+                      ss /= known.size();
+                      const double sx = -ny, sy = nx;
+                      sigma[0] =
+                        nn * nx * nx + 2. * ns * nx * sx + ss * sx * sx;
+                      sigma[1] =
+                        nn * ny * ny + 2. * ns * ny * sy + ss * sy * sy;
+                      sigma[2] =
+                        nn * nx * ny + ns * (nx * sy + ny * sx) + ss * sx * sy;
+                    }
+                  else // normals nearly opposite (a sliver): Cartesian mean
+                    {
+                      sigma[0] = sigma[1] = sigma[2] = 0.;
+                      for (const EdgeValue &ev : known)
+                        {
+                          sigma[0] += ev.sigma.xx / known.size();
+                          sigma[1] += ev.sigma.yy / known.size();
+                          sigma[2] += ev.sigma.xy / known.size();
+                        }
                     }
                 }
             }

@@ -60,10 +60,11 @@ namespace tmfdem
      * has fewer than six triangles). Boundary vertex with edges of known
      * traction: each such edge gives the full tensor at its midpoint
      * (sigma_nn, sigma_ns from the Cauchy traction, sigma_ss from the
-     * edge's stretch and Eq. 44 solved for the normal stretch); these are
-     * averaged on a smooth boundary, while at a corner (known edges whose
-     * normals differ by more than 30 degrees) the tractions alone give
-     * sigma by least squares. Edges with one known component then project
+     * edge's stretch and Eq. 44 solved for the normal stretch); on a smooth
+     * boundary the vertex takes the mean of the edges' (nn, ns, ss)
+     * components in the frame of the mean normal, while at a corner (known
+     * edges whose normals differ by more than 30 degrees) the tractions alone
+     * give sigma by least squares. Edges with one known component then project
      * the value onto sigma n . e_i = t_i.
      */
     std::vector<double>
