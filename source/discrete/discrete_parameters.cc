@@ -78,9 +78,12 @@ namespace tmfdem
     prm.declare_entry("Damping ratio",
                       "1",
                       Patterns::Double(0.),
-                      "Viscosity eta of the solid as a fraction of "
-                      "2 h sqrt(E rho), the critical damping of the "
-                      "highest element mode [-]; 0: undamped.");
+                      "Modal damping ratio of each element's highest "
+                      "free mode [-]: the viscosity eta of the viscous "
+                      "stress 2 eta sym(grad v) is chosen per element so "
+                      "that 1 damps that mode critically; a mode of "
+                      "frequency omega gets about ratio x omega / "
+                      "omega_max. 0: undamped (doc/theory.md 5.3).");
     prm.declare_entry("Mass damping",
                       "0",
                       Patterns::Double(0.),
@@ -259,13 +262,23 @@ namespace tmfdem
       "slow heating or cooling, each thermal step of Time stepping/Time step "
       "is followed by up to Mechanical steps per thermal step damped "
       "mechanical steps (no physical time) until kinetic / strain energy < "
-      "Relaxation tolerance; outputs in thermal (physical) time.");
+      "Relaxation tolerance; imposed velocities and displacements follow the "
+      "thermal time (their motion over a thermal step is spread over the "
+      "first 100 relaxation steps); outputs in thermal (physical) time.");
     prm.declare_entry("Relaxation tolerance",
                       "1e-6",
                       Patterns::Double(0.),
                       "Quasi-static coupling: relaxation stops when the "
                       "kinetic energy falls below this fraction of the "
                       "strain energy [-] (checked every 50 steps).");
+    prm.declare_entry("Relaxation cap is error",
+                      "false",
+                      Patterns::Bool(),
+                      "Quasi-static coupling: a relaxation that reaches "
+                      "Mechanical steps per thermal step without reaching "
+                      "Relaxation tolerance stops the run (exit 2, results "
+                      "kept) instead of a warning; summary.json counts "
+                      "such steps as relaxations_at_cap either way.");
     prm.declare_entry(
       "Thermal step growth factor",
       "1",
@@ -295,6 +308,7 @@ namespace tmfdem
       prm.get_integer("Mechanical steps per thermal step");
     coupling             = prm.get("Coupling");
     relaxation_tolerance = prm.get_double("Relaxation tolerance");
+    relaxation_cap_is_error = prm.get_bool("Relaxation cap is error");
     thermal_step_growth  = prm.get_double("Thermal step growth factor");
     maximum_thermal_step = prm.get_double("Maximum thermal step");
     prm.leave_subsection();

@@ -18,6 +18,7 @@
 #include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/explicit_solver.h>
+#include <tmfdem/discrete/stable_step.h>
 #include <tmfdem/discrete/stress_recovery.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
@@ -182,6 +183,29 @@ namespace tmfdem
                 heat->stable_time_step() / time_step)) +
               ", or 0 (automatic), or implicit heat.");
           thermal_time = time;
+          if (quasi_static)
+            {
+              // motions imposed in thermal time are ramped in over the
+              // first relaxation steps of each thermal step
+              using Type        = MechanicalBoundaryCondition::Type;
+              bool imposed      = false;
+              for (const auto &c : parameters.mechanical_boundary.conditions)
+                imposed |= c.type == Type::velocity ||
+                           c.type == Type::displacement;
+              for (const auto motion : body_motion)
+                imposed |= motion == DiscreteBody::Motion::velocity;
+              quasi_static_ramp_steps = imposed ? 100 : 0;
+              if (imposed && steps_per_thermal_step <= 2 * quasi_static_ramp_steps)
+                throw InputError(
+                  "Discrete heat/Mechanical steps per thermal step = " +
+                  std::to_string(steps_per_thermal_step) +
+                  " is too few for quasi-static coupling with imposed "
+                  "velocities or displacements, which are ramped in over " +
+                  std::to_string(quasi_static_ramp_steps) +
+                  " relaxation steps; allowed is more than " +
+                  std::to_string(2 * quasi_static_ramp_steps) +
+                  " (or 0: automatic).");
+            }
           // the stress-free temperature of each element
           const Vector<double> &T = heat->temperature();
           reference_temperature.resize(model.n_elements);
@@ -242,10 +266,22 @@ namespace tmfdem
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
           const MaterialProperties &m = parameters.materials[model.material[e]];
-          const double              h = std::sqrt(2. * model.reference_area[e]);
-          viscosity[e] = parameters.discrete_mechanics.damping_ratio * 2. * h *
-                         std::sqrt(m.youngs_modulus * m.density);
           const double node_mass = m.density * model.reference_area[e] / 3.;
+          // Damping ratio = zeta of the element's highest free mode
+          // (stable_step.h): eta = ratio / zeta per unit viscosity
+          const double ratio = parameters.discrete_mechanics.damping_ratio;
+          viscosity[e] =
+            ratio > 0. ?
+              ratio / highest_mode_damping_per_viscosity(
+                        {{model.x_ref[3 * e],
+                          model.x_ref[3 * e + 1],
+                          model.x_ref[3 * e + 2]}},
+                        {{model.y_ref[3 * e],
+                          model.y_ref[3 * e + 1],
+                          model.y_ref[3 * e + 2]}},
+                        solid[model.material[e]].lame,
+                        node_mass) :
+              0.;
           for (unsigned int k = 0; k < 3; ++k)
             model.mass[3 * e + k] = node_mass;
         }
@@ -494,7 +530,18 @@ namespace tmfdem
     ExplicitSolver::evaluate_boundary_conditions()
     {
       using Type         = MechanicalBoundaryCondition::Type;
-      const double t_mid = time + 0.5 * time_step, t_next = time + time_step;
+      // quasi-static coupling: the clock is the thermal time, which does not
+      // move while the mechanics relaxes: velocities at the middle of the
+      // thermal step (scaled to spread v dt_thermal over the ramp),
+      // displacements reached at the end of the ramp
+      const double t_mid  = quasi_static ? time - 0.5 * current_thermal_step :
+                                           time + 0.5 * time_step;
+      const double t_next = quasi_static ? time : time + time_step;
+      const double scale  = imposed_velocity_scale();
+      const double steps_to_target =
+        quasi_static && relaxation_step < quasi_static_ramp_steps ?
+          quasi_static_ramp_steps - relaxation_step :
+          1.;
       for (ConditionFunctions &f : conditions)
         for (unsigned int d = 0; d < 2; ++d)
           f.value[d]->set_time(f.type == Type::displacement ? t_next :
@@ -510,7 +557,7 @@ namespace tmfdem
               if (nc.prescribed[d])
                 {
                   if (f.type == Type::velocity)
-                    nc.velocity[d] = f.value[d]->value(p);
+                    nc.velocity[d] = scale * f.value[d]->value(p);
                   else if (f.type == Type::displacement)
                     {
                       // reach X + u(t + dt) at the end of the step
@@ -519,7 +566,9 @@ namespace tmfdem
                         f.value[d]->value(p);
                       const double now = d == 0 ? model.x[n] : model.y[n];
                       nc.velocity[d] =
-                        time_step > 0. ? (target - now) / time_step : 0.;
+                        time_step > 0. ?
+                          (target - now) / (steps_to_target * time_step) :
+                          0.;
                     }
                   else
                     nc.velocity[d] = 0.;
@@ -577,63 +626,46 @@ namespace tmfdem
       balance.thermal_work += after - before;
     }
 
+    ElementStepInput
+    ExplicitSolver::element_step_input(const unsigned int e,
+                                       const bool         deformed) const
+    {
+      ElementStepInput in;
+      const unsigned int n0 = 3 * e;
+      const auto        &X  = deformed ? model.x : model.x_ref;
+      const auto        &Y  = deformed ? model.y : model.y_ref;
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          in.x[k] = X[n0 + k];
+          in.y[k] = Y[n0 + k];
+          // every intact joint the element's nodes belong to
+          const int code = model.edge_joint[n0 + k];
+          if (code >= 0 &&
+              model.joint_status[code / 2] == JointStatus::intact)
+            {
+              const JointConstants &jc = model.joint_constants[code / 2];
+              in.edge_joint_normal_stiffness[k]     = jc.normal_stiffness;
+              in.edge_joint_tangential_stiffness[k] = jc.tangential_stiffness;
+            }
+        }
+      in.lame      = solid[model.material[e]].lame;
+      in.viscosity = viscosity[e];
+      in.node_mass = model.mass[n0];
+      if (parameters.discrete_mechanics.contact)
+        // a node pressed into a target of altitude ~ its edge feels about
+        // 3 p_n per unit penetration (both pair directions) and at most p_t
+        // of stick stiffness
+        in.node_contact_stiffness =
+          3. * contact_penalty + contact_tangential_penalty;
+      return in;
+    }
+
     void
     ExplicitSolver::compute_stable_time_step()
     {
-      const auto &dm = parameters.discrete_mechanics;
-      double      dt = 1e300;
+      double dt = std::numeric_limits<double>::infinity();
       for (unsigned int e = 0; e < model.n_elements; ++e)
-        {
-          const SolidMaterial &m = solid[model.material[e]];
-          const double         c =
-            std::sqrt((m.lame.lambda + 2. * m.lame.mu) / m.density);
-          double longest = 0.;
-          for (unsigned int k = 0; k < 3; ++k)
-            {
-              const unsigned int a = 3 * e + k, b = 3 * e + (k + 1) % 3;
-              longest = std::max(longest,
-                                 std::hypot(model.x_ref[b] - model.x_ref[a],
-                                            model.y_ref[b] - model.y_ref[a]));
-            }
-          const double altitude = 2. * model.reference_area[e] / longest;
-          const double E =
-            parameters.materials[model.material[e]].youngs_modulus;
-          // damping ratio of the highest mode of a bar of length h
-          const double zeta =
-            viscosity[e] / (altitude * std::sqrt(E * m.density));
-          dt =
-            std::min(dt, altitude / c * (std::sqrt(1. + zeta * zeta) - zeta));
-        }
-      for (unsigned int j = 0; j < model.n_joints; ++j)
-        {
-          const double k =
-            0.5 *
-            std::max(model.joint_constants[j].normal_stiffness,
-                     model.joint_constants[j].tangential_stiffness) *
-            model.joint_length[j];
-          const double m_a   = model.mass[model.joint_nodes[4 * j]];
-          const double m_b   = model.mass[model.joint_nodes[4 * j + 2]];
-          const double omega = std::sqrt(k * (1. / m_a + 1. / m_b));
-          dt                 = std::min(dt, 2. / omega);
-        }
-      if (dm.contact)
-        {
-          double E_max = 0.;
-          for (unsigned int e = 0; e < model.n_elements; ++e)
-            E_max =
-              std::max(E_max,
-                       parameters.materials[model.material[e]].youngs_modulus);
-          const double p = dm.contact_penalty_factor * E_max;
-          for (unsigned int e = 0; e < model.n_elements; ++e)
-            {
-              // an edge of length L pressed flat into a target of altitude
-              // h ~ L feels about 3 p L / h per unit penetration per node,
-              // both pair directions counted: k ~ 3 p
-              const double k = 3. * p;
-              const double m = model.mass[3 * e];
-              dt             = std::min(dt, 2. / std::sqrt(2. * k / m));
-            }
-        }
+        dt = std::min(dt, critical_time_step(element_step_input(e, false)));
       stable_time_step = dt;
     }
 
@@ -1182,9 +1214,12 @@ namespace tmfdem
           ++n_thermal_steps;
           update_thermal_stretch();
           // ... then the mechanics relaxes at these temperatures (no clock)
-          unsigned int i = 0;
+          current_thermal_step = dt;
+          unsigned int i       = 0;
+          bool         relaxed = false;
           while (i < steps_per_thermal_step)
             {
+              relaxation_step = i;
               mechanical_step();
               ++i;
               if (i % 50 == 0)
@@ -1192,12 +1227,41 @@ namespace tmfdem
                   energy();
                   last_kinetic_to_strain =
                     balance.kinetic / std::max(balance.strain, 1e-300);
-                  if (last_kinetic_to_strain <
-                      parameters.discrete_heat.relaxation_tolerance)
-                    break;
+                  if (i > quasi_static_ramp_steps &&
+                      last_kinetic_to_strain <
+                        parameters.discrete_heat.relaxation_tolerance)
+                    {
+                      relaxed = true;
+                      break;
+                    }
                 }
             }
+          relaxation_step       = quasi_static_ramp_steps + 1;
           last_relaxation_steps = i;
+          if (!relaxed)
+            {
+              ++relaxations_at_cap;
+              if (relaxations_at_cap == 1)
+                std::cerr
+                  << "[tmfdem] warning: at t = " << time
+                  << " s the relaxation reached its cap of "
+                  << steps_per_thermal_step
+                  << " mechanical steps (Discrete heat/Mechanical steps per "
+                     "thermal step) with kinetic / strain energy "
+                  << last_kinetic_to_strain << " above Relaxation tolerance = "
+                  << parameters.discrete_heat.relaxation_tolerance
+                  << ": the state is not in equilibrium. Raise the cap, "
+                     "shorten the thermal step or add Mass damping; "
+                     "summary.json counts these steps "
+                     "(relaxations_at_cap).\n";
+              if (parameters.discrete_heat.relaxation_cap_is_error)
+                guard_failure(
+                  "guard: the relaxation at t = " + Utilities::to_string(time) +
+                  " s reached its cap of " +
+                  std::to_string(steps_per_thermal_step) +
+                  " mechanical steps without reaching Relaxation tolerance "
+                  "(Discrete heat/Relaxation cap is error = true).");
+            }
           return;
         }
       mechanical_step();
@@ -1232,18 +1296,25 @@ namespace tmfdem
     void
     ExplicitSolver::mechanical_step()
     {
-      // driven bodies move with their velocity at mid step
+      // driven bodies move with their velocity at mid step; in quasi-static
+      // coupling with the velocity at the middle of the thermal step, its
+      // displacement v dt_thermal spread over the first relaxation steps
       const Point<2> mid_time(0., 0.);
+      const double   t_velocity = quasi_static ?
+                                    time - 0.5 * current_thermal_step :
+                                    time + 0.5 * time_step;
+      const double   scale      = imposed_velocity_scale();
       for (unsigned int b = 0; b < body_motion.size(); ++b)
         if (body_motion[b] == DiscreteBody::Motion::velocity)
           {
-            body_velocity[2 * b]->set_time(time + 0.5 * time_step);
-            body_velocity[2 * b + 1]->set_time(time + 0.5 * time_step);
+            body_velocity[2 * b]->set_time(t_velocity);
+            body_velocity[2 * b + 1]->set_time(t_velocity);
             body_velocity_now[b] = {
-              {body_velocity[2 * b]->value(mid_time),
-               body_velocity[2 * b + 1]->value(mid_time)}};
+              {scale * body_velocity[2 * b]->value(mid_time),
+               scale * body_velocity[2 * b + 1]->value(mid_time)}};
           }
-      if (boundary_conditions_change)
+      if (boundary_conditions_change ||
+          (quasi_static && relaxation_step <= quasi_static_ramp_steps))
         evaluate_boundary_conditions();
       if (contact_enabled)
         {
@@ -1582,6 +1653,7 @@ namespace tmfdem
           summary.add("coupling", parameters.discrete_heat.coupling)
             .add("thermal_steps", static_cast<long long>(n_thermal_steps))
             .add("last_relaxation_steps", last_relaxation_steps)
+            .add("relaxations_at_cap", relaxations_at_cap)
             .add("last_kinetic_to_strain_energy", last_kinetic_to_strain)
             .add("mechanical_steps_per_thermal_step", steps_per_thermal_step)
             .add("thermal_time_step",

@@ -411,40 +411,23 @@ namespace tmfdem
         }
       if (parameters.guards.stability_check)
         {
-          // the element limit of compute_stable_time_step() on the current
-          // geometry; joints and contacts do not depend on it
-          double       dt_min = 1e300, ratio = 1.;
-          unsigned int worst = 0;
+          // the bound of compute_stable_time_step() on the current geometry
+          // and the joints still intact
+          double       dt_min = std::numeric_limits<double>::infinity();
+          double       ratio  = 1.;
+          unsigned int worst  = 0;
           for (unsigned int e = 0; e < model.n_elements; ++e)
             {
-              const SolidMaterial &m = solid[model.material[e]];
-              const double         c =
-                std::sqrt((m.lame.lambda + 2. * m.lame.mu) / m.density);
-              const unsigned int n0   = 3 * e;
-              const double       area = 0.5 * ((model.x[n0 + 1] - model.x[n0]) *
-                                           (model.y[n0 + 2] - model.y[n0]) -
-                                         (model.x[n0 + 2] - model.x[n0]) *
-                                           (model.y[n0 + 1] - model.y[n0]));
-              double             longest = 0.;
-              for (unsigned int k = 0; k < 3; ++k)
-                {
-                  const unsigned int a = n0 + k, b = n0 + (k + 1) % 3;
-                  longest = std::max(longest,
-                                     std::hypot(model.x[b] - model.x[a],
-                                                model.y[b] - model.y[a]));
-                }
-              const double altitude = 2. * area / longest;
-              const double E =
-                parameters.materials[model.material[e]].youngs_modulus;
-              const double zeta =
-                viscosity[e] / (altitude * std::sqrt(E * m.density));
-              const double dt =
-                altitude / c * (std::sqrt(1. + zeta * zeta) - zeta);
+              const ElementStepInput in = element_step_input(e, true);
+              const double           dt = critical_time_step(in);
               if (dt < dt_min)
                 {
                   dt_min = dt;
                   worst  = e;
-                  ratio  = area / model.reference_area[e];
+                  ratio  = 0.5 *
+                          ((in.x[1] - in.x[0]) * (in.y[2] - in.y[0]) -
+                           (in.x[2] - in.x[0]) * (in.y[1] - in.y[0])) /
+                          model.reference_area[e];
                 }
             }
           if (time_step > dt_min)

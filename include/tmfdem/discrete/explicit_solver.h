@@ -26,6 +26,7 @@
 #include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_model.h>
 #include <tmfdem/discrete/solid.h>
+#include <tmfdem/discrete/stable_step.h>
 #include <vector>
 
 namespace tmfdem
@@ -147,6 +148,14 @@ namespace tmfdem
       evaluate_boundary_conditions();
       void
       compute_stable_time_step();
+      /**
+       * What the stable-step bound of stable_step.h needs of element @p e:
+       * its geometry (reference or @p deformed), Lame constants, viscosity,
+       * node mass, the stiffness of its intact joints and the contact
+       * springs' bound.
+       */
+      ElementStepInput
+      element_step_input(const unsigned int e, const bool deformed) const;
       void
       update_contact_candidates();
       void
@@ -184,6 +193,31 @@ namespace tmfdem
       unsigned int                  steps_per_thermal_step = 1;
       bool                          quasi_static           = false;
       unsigned int                  last_relaxation_steps  = 0;
+      /** Quasi-static coupling: relaxations that ended at the step cap. */
+      unsigned int relaxations_at_cap = 0;
+      /** Quasi-static coupling: length of the current thermal step [s]. */
+      double current_thermal_step = 0.;
+      /** Quasi-static coupling: index of the relaxation step under way. */
+      unsigned int relaxation_step = 0;
+      /**
+       * Quasi-static coupling: the motion imposed over one thermal step
+       * (velocity conditions and driven bodies: v dt_thermal; displacement
+       * conditions: u(t) - u(t - dt_thermal)) is spread evenly over the
+       * first this many relaxation steps; 0 where nothing is imposed.
+       */
+      unsigned int quasi_static_ramp_steps = 0;
+      /** Factor from a physical velocity to the velocity of a relaxation
+       *  step: 1 in dynamic runs, dt_thermal / (ramp dt) during the ramp
+       *  of a quasi-static relaxation, 0 after it. */
+      double
+      imposed_velocity_scale() const
+      {
+        if (!quasi_static)
+          return 1.;
+        return relaxation_step < quasi_static_ramp_steps ?
+                 current_thermal_step / (quasi_static_ramp_steps * time_step) :
+                 0.;
+      }
       double                        last_kinetic_to_strain = 0.;
       unsigned long                 n_thermal_steps        = 0;
       /** Stress-free temperature per element [C]. */
