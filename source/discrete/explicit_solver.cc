@@ -19,6 +19,7 @@
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/explicit_solver.h>
 #include <tmfdem/discrete/stable_step.h>
+#include <tmfdem/discrete/stress_recovery.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 #include <tmfdem/mesh/mesh_checks.h>
@@ -1480,96 +1481,107 @@ namespace tmfdem
             solution_series->write(time, discrete_solution_vtu(model));
           crack_series->write(time, crack_vtu(model));
         }
-      // monitor stresses: recovered at the mesh vertices by a linear
-      // least-squares fit to the triangles' constant stresses at their
-      // centroids over the vertex's patch (widened by the neighbours'
-      // patches where it has fewer than six triangles, as at boundaries),
-      // then interpolated linearly: O(h^2) instead of the O(h) error of the
-      // raw element values (vtu files hold the raw values)
-      unsigned int n_vertices = 0;
-      for (const auto v : model.node_vertex)
-        n_vertices = std::max(n_vertices, v + 1);
-      std::vector<unsigned int> patch_start(n_vertices + 1, 0), patch;
-      for (unsigned int n = 0; n < model.n_nodes; ++n)
-        ++patch_start[model.node_vertex[n] + 1];
-      for (unsigned int v = 0; v < n_vertices; ++v)
-        patch_start[v + 1] += patch_start[v];
-      patch.resize(model.n_nodes);
+      // monitor stresses: recovered at the mesh vertices (vtu files hold
+      // the raw element values); stress_recovery.h. What is known on each
+      // boundary edge: the traction (free edges: zero; traction
+      // conditions: the applied one), one component (rollers) or nothing
+      // (supports, driven bodies, contact)
+      std::vector<BoundaryEdgeKnowledge> boundary(3 * model.n_elements);
       {
-        std::vector<unsigned int> fill(patch_start.begin(),
-                                       patch_start.end() - 1);
-        for (unsigned int n = 0; n < model.n_nodes; ++n)
-          patch[fill[model.node_vertex[n]]++] = n / 3;
-      }
-      std::vector<double> vertex_stress(3 * n_vertices, 0.);
-      std::vector<double> vertex_x(n_vertices), vertex_y(n_vertices);
-      for (unsigned int n = 0; n < model.n_nodes; ++n)
-        {
-          vertex_x[model.node_vertex[n]] = model.x_ref[n];
-          vertex_y[model.node_vertex[n]] = model.y_ref[n];
-        }
-      std::vector<unsigned int> elements;
-      for (unsigned int v = 0; v < n_vertices; ++v)
-        {
-          elements.assign(patch.begin() + patch_start[v],
-                          patch.begin() + patch_start[v + 1]);
-          if (elements.size() < 6)
-            {
-              const std::size_t own = elements.size();
-              for (std::size_t i = 0; i < own; ++i)
+        using Type = MechanicalBoundaryCondition::Type;
+        std::vector<int> condition_of_id(256, -1);
+        const auto      &mechanical = parameters.mechanical_boundary.conditions;
+        for (unsigned int c = 0; c < mechanical.size(); ++c)
+          for (const auto id : mechanical[c].boundary_ids)
+            if (id < condition_of_id.size())
+              condition_of_id[id] = c;
+        for (unsigned int e = 0; e < model.n_elements; ++e)
+          {
+            if (model.body[e] != 255 &&
+                body_motion[model.body[e]] != DiscreteBody::Motion::free)
+              continue;
+            // in contact: contact forces on the element above 1e-3 of its
+            // internal forces (|sigma| times the perimeter; elements that
+            // share only a vertex exchange tiny forces in an intact mesh)
+            if (!pairs.empty())
+              {
+                double f[6] = {0., 0., 0., 0., 0., 0.};
+                for (unsigned int p = element_pair_start[e];
+                     p < element_pair_start[e + 1];
+                     ++p)
+                  {
+                    const unsigned int entry = element_pair_entries[p];
+                    const double      *pf =
+                      &pair_force[12 * (entry / 2) + 6 * (entry % 2)];
+                    for (unsigned int i = 0; i < 6; ++i)
+                      f[i] += pf[i];
+                  }
+                double contact = 0., perimeter = 0.;
                 for (unsigned int k = 0; k < 3; ++k)
                   {
-                    const unsigned int w =
-                      model.node_vertex[3 * elements[i] + k];
-                    elements.insert(elements.end(),
-                                    patch.begin() + patch_start[w],
-                                    patch.begin() + patch_start[w + 1]);
+                    contact += std::hypot(f[2 * k], f[2 * k + 1]);
+                    perimeter += std::hypot(model.x[3 * e + (k + 1) % 3] -
+                                              model.x[3 * e + k],
+                                            model.y[3 * e + (k + 1) % 3] -
+                                              model.y[3 * e + k]);
                   }
-              std::sort(elements.begin(), elements.end());
-              elements.erase(std::unique(elements.begin(), elements.end()),
-                             elements.end());
-            }
-          // normal equations of sigma = c0 + c1 (x - xv) + c2 (y - yv)
-          double A[3][3]   = {{0., 0., 0.}, {0., 0., 0.}, {0., 0., 0.}};
-          double rhs[3][3] = {{0., 0., 0.}, {0., 0., 0.}, {0., 0., 0.}};
-          for (const unsigned int e : elements)
-            {
-              const double px[3] = {
-                1.,
-                (model.x_ref[3 * e] + model.x_ref[3 * e + 1] +
-                 model.x_ref[3 * e + 2]) /
-                    3. -
-                  vertex_x[v],
-                (model.y_ref[3 * e] + model.y_ref[3 * e + 1] +
-                 model.y_ref[3 * e + 2]) /
-                    3. -
-                  vertex_y[v]};
-              for (unsigned int i = 0; i < 3; ++i)
-                {
-                  for (unsigned int j = 0; j < 3; ++j)
-                    A[i][j] += px[i] * px[j];
-                  for (unsigned int c = 0; c < 3; ++c)
-                    rhs[c][i] += px[i] * model.stress[3 * e + c];
-                }
-            }
-          const double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
-                             A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
-                             A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
-          const double scale = A[1][1] + A[2][2];
-          for (unsigned int c = 0; c < 3; ++c)
-            {
-              if (elements.size() >= 3 &&
-                  std::abs(det) > 1e-12 * scale * scale * A[0][0])
-                // c0 by Cramer's rule: the value at the vertex
-                vertex_stress[3 * v + c] =
-                  (rhs[c][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
-                   A[0][1] * (rhs[c][1] * A[2][2] - A[1][2] * rhs[c][2]) +
-                   A[0][2] * (rhs[c][1] * A[2][1] - A[1][1] * rhs[c][2])) /
-                  det;
-              else
-                vertex_stress[3 * v + c] = rhs[c][0] / A[0][0]; // mean
-            }
-        }
+                const double stress =
+                  std::max({std::abs(model.stress[3 * e]),
+                            std::abs(model.stress[3 * e + 1]),
+                            std::abs(model.stress[3 * e + 2])});
+                if (contact > 1e-3 * stress * perimeter)
+                  continue;
+              }
+            const MaterialProperties &m =
+              parameters.materials[model.material[e]];
+            for (unsigned int k = 0; k < 3; ++k)
+              {
+                const types::boundary_id id = model.edge_boundary[3 * e + k];
+                if (id == numbers::internal_face_boundary_id)
+                  continue;
+                const unsigned int     a = 3 * e + k, b = 3 * e + (k + 1) % 3;
+                BoundaryEdgeKnowledge &edge = boundary[a];
+                edge.lame                   = solid[model.material[e]].lame;
+                edge.thermal_stretch        = model.thermal_stretch[e];
+                if (with_heat)
+                  edge.thermal_stretch =
+                    thermal_stretch(m.thermal_expansion,
+                                    m.poisson_ratio,
+                                    0.5 * (heat->temperature()[a] +
+                                           heat->temperature()[b]) -
+                                      reference_temperature[e],
+                                    idealisation);
+                const int c =
+                  id < condition_of_id.size() ? condition_of_id[id] : -1;
+                if (c < 0)
+                  edge.kind = BoundaryEdgeKnowledge::Kind::traction;
+                else if (conditions[c].type == Type::traction)
+                  {
+                    edge.kind = BoundaryEdgeKnowledge::Kind::traction;
+                    for (unsigned int d = 0; d < 2; ++d)
+                      {
+                        conditions[c].value[d]->set_time(time);
+                        // the mean of the ends, as the nodal loads
+                        edge.traction[d] =
+                          0.5 * (conditions[c].value[d]->value(
+                                   Point<2>(model.x_ref[a], model.y_ref[a])) +
+                                 conditions[c].value[d]->value(
+                                   Point<2>(model.x_ref[b], model.y_ref[b])));
+                      }
+                  }
+                else if (conditions[c].type == Type::roller_x ||
+                         conditions[c].type == Type::roller_y)
+                  {
+                    // roller x holds u_x: no traction along y, and v.v.
+                    edge.kind = BoundaryEdgeKnowledge::Kind::component;
+                    edge.component =
+                      conditions[c].type == Type::roller_x ? 1 : 0;
+                  }
+              }
+          }
+      }
+      const std::vector<double> vertex_stress =
+        recover_vertex_stress(model, boundary);
       auto rows = [&](const std::vector<ReferenceSample> &samples) {
         std::ostringstream out;
         out << std::setprecision(10);
