@@ -11,6 +11,7 @@
 #include <tmfdem/base/command_line.h>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/simulation.h>
+#include <tmfdem/base/threads.h>
 #include <tmfdem/io/checkpoint.h>
 
 int
@@ -18,8 +19,11 @@ main(int argc, char *argv[])
 {
   using namespace tmfdem;
   tmfdem::install_signal_handlers(); // SIGINT/SIGTERM during start-up too
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const bool                               root =
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(
+    argc, argv, dealii::numbers::invalid_unsigned_int);
+  // ranks x threads <= cores (include/tmfdem/base/threads.h)
+  tmfdem::set_thread_limit(tmfdem::core_share(MPI_COMM_WORLD).cores_per_rank);
+  const bool root =
     dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   dealii::deal_II_exceptions::disable_abort_on_exception();
   try

@@ -78,8 +78,9 @@ namespace tmfdem
     /**
      * FNV-1a 64 digest (hex) of the parameters that decide the results: all
      * entries, with those that do not (Checkpoint, Output/Directory,
-     * Output/Progress interval, Discrete mechanics/Threads: results do not
-     * depend on the thread count) reset to fixed values first.
+     * Output/Progress interval, Discrete mechanics/Threads and Allow
+     * oversubscription: results do not depend on the thread count) reset to
+     * fixed values first.
      */
     std::string
     input_digest(ParameterHandler &prm)
@@ -91,7 +92,9 @@ namespace tmfdem
                    {{"Checkpoint", "Keep"}, "2"},
                    {{"Output", "Directory"}, ""},
                    {{"Output", "Progress interval"}, "2"},
-                   {{"Discrete mechanics", "Threads"}, "1"}};
+                   {{"Discrete mechanics", "Threads"}, "1"},
+                   {{"Discrete mechanics", "Allow oversubscription"},
+                    "false"}};
       for (const auto &[path, value] : neutral)
         {
           for (unsigned int i = 0; i + 1 < path.size(); ++i)
