@@ -1,6 +1,11 @@
 #include <deal.II/base/multithread_info.h>
 
 #include <atomic>
+#include <dirent.h>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <unistd.h>
 #include <chrono>
 #include <map>
 #include <mutex>
@@ -102,5 +107,57 @@ namespace tmfdem
     getrusage(RUSAGE_SELF, &usage);
     return usage.ru_utime.tv_sec + 1e-6 * usage.ru_utime.tv_usec +
            usage.ru_stime.tv_sec + 1e-6 * usage.ru_stime.tv_usec;
+  }
+
+  std::map<long, double>
+  thread_cpu_times()
+  {
+    std::map<long, double> times;
+    DIR                   *dir = opendir("/proc/self/task");
+    if (dir == nullptr)
+      return times;
+    const double tick = static_cast<double>(sysconf(_SC_CLK_TCK));
+    while (const dirent *entry = readdir(dir))
+      {
+        if (entry->d_name[0] < '0' || entry->d_name[0] > '9')
+          continue;
+        std::ifstream file(std::string("/proc/self/task/") + entry->d_name +
+                           "/stat");
+        std::string   line;
+        if (!std::getline(file, line))
+          continue;
+        // fields after the command name in parentheses: state is field 3,
+        // utime 14, stime 15
+        const std::size_t close = line.rfind(')');
+        if (close == std::string::npos)
+          continue;
+        std::istringstream rest(line.substr(close + 2));
+        std::string        field;
+        double             utime = 0., stime = 0.;
+        for (unsigned int k = 3; k <= 15 && (rest >> field); ++k)
+          if (k == 14)
+            utime = std::stod(field);
+          else if (k == 15)
+            stime = std::stod(field);
+        times[std::stol(entry->d_name)] = (utime + stime) / tick;
+      }
+    closedir(dir);
+    return times;
+  }
+
+  std::vector<double>
+  thread_cpu_time_differences(const std::map<long, double> &before,
+                              const std::map<long, double> &after)
+  {
+    std::vector<double> differences;
+    for (const auto &[id, t] : after)
+      {
+        const auto   old = before.find(id);
+        const double d   = t - (old == before.end() ? 0. : old->second);
+        if (d >= 0.01)
+          differences.push_back(d);
+      }
+    std::sort(differences.begin(), differences.end(), std::greater<>());
+    return differences;
   }
 } // namespace tmfdem

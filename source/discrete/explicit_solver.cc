@@ -1584,6 +1584,15 @@ namespace tmfdem
         .add("threads_used", threads_used)
         .add("cpu_time_s", loop_cpu_time)
         .add("wall_time_s", loop_wall_time)
+        .add("cpu_time_busiest_thread_s",
+             loop_thread_cpu_times.empty() ? 0. : loop_thread_cpu_times[0])
+        .add("cpu_time_other_threads_s",
+             [this] {
+               double other = 0.;
+               for (std::size_t k = 1; k < loop_thread_cpu_times.size(); ++k)
+                 other += loop_thread_cpu_times[k];
+               return other;
+             }())
         .add("wall_time", wall_time)
         .add("element_steps_per_second",
              wall_time > 0. ?
@@ -1708,6 +1717,7 @@ namespace tmfdem
       keep_good_state();
       CheckpointSchedule checkpoints(parameters.checkpoint);
       checkpoints.written(step_number);
+      const auto   threads_start   = thread_cpu_times();
       const double loop_cpu_start  = process_cpu_time();
       const auto   loop_wall_start = std::chrono::steady_clock::now();
       while (time < end - 0.5 * advance &&
@@ -1750,6 +1760,8 @@ namespace tmfdem
         }
       wall_time      = progress.elapsed() + resumed_wall_time;
       loop_cpu_time  = process_cpu_time() - loop_cpu_start;
+      loop_thread_cpu_times =
+        thread_cpu_time_differences(threads_start, thread_cpu_times());
       loop_wall_time = std::chrono::duration<double>(
                          std::chrono::steady_clock::now() - loop_wall_start)
                          .count();

@@ -20,10 +20,12 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <vector>
 
 namespace tmfdem
 {
@@ -69,6 +71,18 @@ namespace tmfdem
   /** CPU time of this process, all threads, user + system [s]. */
   double
   process_cpu_time();
+
+  /** CPU time, user + system, of each thread of this process now, by
+   *  thread id (/proc/self/task; empty where that is unreadable) [s]. */
+  std::map<long, double>
+  thread_cpu_times();
+
+  /** Per-thread CPU time between the snapshots @p before and @p after
+   *  (thread_cpu_times()), largest first, threads under 10 ms left out
+   *  [s]. */
+  std::vector<double>
+  thread_cpu_time_differences(const std::map<long, double> &before,
+                              const std::map<long, double> &after);
 
   /**
    * Runs @p body(chunk_begin, chunk_end, chunk_index) over the fixed chunks

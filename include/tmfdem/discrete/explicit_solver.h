@@ -294,6 +294,8 @@ namespace tmfdem
       unsigned int  threads_used = 1; ///< measured concurrency of the arena
       double        loop_cpu_time  = 0.; ///< process CPU, time loop [s]
       double        loop_wall_time = 0.; ///< wall, time loop, this run [s]
+      /// CPU time of each thread in the time loop, largest first [s]
+      std::vector<double> loop_thread_cpu_times;
 
       // bookkeeping: per chunk sums, summed in chunk order (thread-count
       // independent)
