@@ -31,8 +31,8 @@ main(int argc, char *argv[])
       setenv("OMPI_MCA_pml", "ob1", 0);
       setenv("OMPI_MCA_btl", "self,vader", 0);
     }
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(
-    argc, argv, dealii::numbers::invalid_unsigned_int);
+  dealii::Utilities::MPI::MPI_InitFinalize
+    mpi(argc, argv, dealii::numbers::invalid_unsigned_int);
   // ranks x threads <= cores (include/tmfdem/base/threads.h)
   tmfdem::set_thread_limit(tmfdem::core_share(MPI_COMM_WORLD).cores_per_rank);
   const bool root =

@@ -93,8 +93,7 @@ namespace tmfdem
                    {{"Output", "Directory"}, ""},
                    {{"Output", "Progress interval"}, "2"},
                    {{"Discrete mechanics", "Threads"}, "1"},
-                   {{"Discrete mechanics", "Allow oversubscription"},
-                    "false"}};
+                   {{"Discrete mechanics", "Allow oversubscription"}, "false"}};
       for (const auto &[path, value] : neutral)
         {
           for (unsigned int i = 0; i + 1 < path.size(); ++i)

@@ -1,20 +1,20 @@
 #include <deal.II/base/multithread_info.h>
 
 #include <atomic>
+#include <chrono>
 #include <dirent.h>
 #include <fstream>
 #include <functional>
-#include <sstream>
-#include <unistd.h>
-#include <chrono>
 #include <map>
 #include <mutex>
 #include <sched.h>
 #include <set>
+#include <sstream>
 #include <sys/resource.h>
 #include <tbb/global_control.h>
 #include <thread>
 #include <tmfdem/base/threads.h>
+#include <unistd.h>
 
 namespace tmfdem
 {
@@ -25,20 +25,23 @@ namespace tmfdem
     share.node_cores = std::max(1u, std::thread::hardware_concurrency());
     cpu_set_t mask;
     CPU_ZERO(&mask);
-    share.affinity_cores =
-      sched_getaffinity(0, sizeof(mask), &mask) == 0 ?
-        std::max(1, CPU_COUNT(&mask)) :
-        share.node_cores;
+    share.affinity_cores = sched_getaffinity(0, sizeof(mask), &mask) == 0 ?
+                             std::max(1, CPU_COUNT(&mask)) :
+                             share.node_cores;
     MPI_Comm node;
-    MPI_Comm_split_type(
-      communicator, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+    MPI_Comm_split_type(communicator,
+                        MPI_COMM_TYPE_SHARED,
+                        0,
+                        MPI_INFO_NULL,
+                        &node);
     int ranks = 1;
     MPI_Comm_size(node, &ranks);
     MPI_Comm_free(&node);
-    share.ranks_on_node  = static_cast<unsigned int>(std::max(1, ranks));
-    share.cores_per_rank = std::max(
-      1u,
-      std::min(share.affinity_cores, share.node_cores / share.ranks_on_node));
+    share.ranks_on_node = static_cast<unsigned int>(std::max(1, ranks));
+    share.cores_per_rank =
+      std::max(1u,
+               std::min(share.affinity_cores,
+                        share.node_cores / share.ranks_on_node));
     return share;
   }
 
@@ -72,10 +75,10 @@ namespace tmfdem
     const int slots = arena.max_concurrency();
     if (slots <= 1)
       return 1;
-    std::atomic<int>            inside{0};
-    std::mutex                  mutex;
-    std::set<std::thread::id>   together;
-    const auto                  deadline =
+    std::atomic<int>          inside{0};
+    std::mutex                mutex;
+    std::set<std::thread::id> together;
+    const auto                deadline =
       std::chrono::steady_clock::now() +
       std::chrono::duration_cast<std::chrono::steady_clock::duration>(
         std::chrono::duration<double>(timeout_s));

@@ -48,26 +48,27 @@ namespace tmfdem
       // transfers in parallel, handed to f in pair order
       std::vector<ContactHeatTransfer> transfers(contact_pairs.size());
       std::vector<char>                overlapping(contact_pairs.size(), 0);
-      for_each_chunk(
-        arena_for(n_threads),
-        contact_pairs.size(),
-        64,
-        [&](const std::size_t begin, const std::size_t end, const std::size_t) {
-          for (std::size_t p = begin; p < end; ++p)
-            {
-              const auto [c, t] = contact_pairs[p];
-              OverlapPolygon overlap;
-              overlapping[p]    = contact_heat(&model.x[3 * c],
-                                            &model.y[3 * c],
-                                            T.begin() + 3 * c,
-                                            &model.x[3 * t],
-                                            &model.y[3 * t],
-                                            T.begin() + 3 * t,
-                                            contact_conductance,
-                                            overlap,
-                                            transfers[p]);
-            }
-        });
+      for_each_chunk(arena_for(n_threads),
+                     contact_pairs.size(),
+                     64,
+                     [&](const std::size_t begin,
+                         const std::size_t end,
+                         const std::size_t) {
+                       for (std::size_t p = begin; p < end; ++p)
+                         {
+                           const auto [c, t] = contact_pairs[p];
+                           OverlapPolygon overlap;
+                           overlapping[p] = contact_heat(&model.x[3 * c],
+                                                         &model.y[3 * c],
+                                                         T.begin() + 3 * c,
+                                                         &model.x[3 * t],
+                                                         &model.y[3 * t],
+                                                         T.begin() + 3 * t,
+                                                         contact_conductance,
+                                                         overlap,
+                                                         transfers[p]);
+                         }
+                     });
       for (std::size_t p = 0; p < contact_pairs.size(); ++p)
         if (overlapping[p])
           f(contact_pairs[p].first, contact_pairs[p].second, transfers[p]);
@@ -294,8 +295,7 @@ namespace tmfdem
         });
       for (std::size_t p = 0; p < candidates.size(); ++p)
         if (touching[p])
-          contact_pairs.emplace_back(candidates[p].first,
-                                     candidates[p].second);
+          contact_pairs.emplace_back(candidates[p].first, candidates[p].second);
     }
 
     double
@@ -385,24 +385,25 @@ namespace tmfdem
       rate.reinit(model.n_nodes);
       tbb::task_arena &arena = arena_for(n_threads);
       // conduction inside the triangles (each writes its own nodes)
-      for_each_chunk(
-        arena,
-        model.n_elements,
-        512,
-        [&](const std::size_t begin, const std::size_t end, const std::size_t) {
-          for (std::size_t e = begin; e < end; ++e)
-            {
-              double K[3][3];
-              conductivity_matrix(model, e, conductivity[e], K);
-              for (unsigned int a = 0; a < 3; ++a)
-                {
-                  double q = 0.;
-                  for (unsigned int b = 0; b < 3; ++b)
-                    q -= K[a][b] * T[3 * e + b];
-                  rate[3 * e + a] += q;
-                }
-            }
-        });
+      for_each_chunk(arena,
+                     model.n_elements,
+                     512,
+                     [&](const std::size_t begin,
+                         const std::size_t end,
+                         const std::size_t) {
+                       for (std::size_t e = begin; e < end; ++e)
+                         {
+                           double K[3][3];
+                           conductivity_matrix(model, e, conductivity[e], K);
+                           for (unsigned int a = 0; a < 3; ++a)
+                             {
+                               double q = 0.;
+                               for (unsigned int b = 0; b < 3; ++b)
+                                 q -= K[a][b] * T[3 * e + b];
+                               rate[3 * e + a] += q;
+                             }
+                         }
+                     });
       // intact joints: fluxes in parallel, added in joint order
       std::vector<double> joint_flux(2 * model.n_joints);
       for_each_chunk(

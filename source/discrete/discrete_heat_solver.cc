@@ -50,7 +50,7 @@ namespace tmfdem
         const auto        &dm        = parameters.discrete_mechanics;
         const unsigned int available = core_share(communicator).cores_per_rank;
         const unsigned int threads =
-          dm.threads == 0 ? available :
+          dm.threads == 0                                      ? available :
           dm.threads > available && !dm.allow_oversubscription ? available :
                                                                  dm.threads;
         if (threads > thread_limit())

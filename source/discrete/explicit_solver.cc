@@ -1758,8 +1758,8 @@ namespace tmfdem
             }
           after_step(checkpoints);
         }
-      wall_time      = progress.elapsed() + resumed_wall_time;
-      loop_cpu_time  = process_cpu_time() - loop_cpu_start;
+      wall_time     = progress.elapsed() + resumed_wall_time;
+      loop_cpu_time = process_cpu_time() - loop_cpu_start;
       loop_thread_cpu_times =
         thread_cpu_time_differences(threads_start, thread_cpu_times());
       loop_wall_time = std::chrono::duration<double>(

@@ -16,12 +16,11 @@
 #ifndef tmfdem_base_threads_h
 #define tmfdem_base_threads_h
 
-#include <mpi.h>
-
 #include <algorithm>
 #include <cstddef>
 #include <map>
 #include <memory>
+#include <mpi.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>

@@ -274,14 +274,16 @@ namespace tmfdem
         arena,
         n,
         chunk,
-        [&](const std::size_t begin, const std::size_t end, const std::size_t c) {
+        [&](const std::size_t begin,
+            const std::size_t end,
+            const std::size_t c) {
           std::vector<ContactPair> &found = chunk_pairs[c];
           found.clear();
           for (std::size_t i = begin; i < end; ++i)
             {
               const std::size_t first = found.size();
-              const std::size_t cx = item_cell[i] % nc[0],
-                                cy = item_cell[i] / nc[0];
+              const std::size_t cx    = item_cell[i] % nc[0],
+                                cy    = item_cell[i] / nc[0];
               for (int dy = -1; dy <= 1; ++dy)
                 for (int dx = -1; dx <= 1; ++dx)
                   {

@@ -218,8 +218,8 @@ namespace tmfdem
 
       /** Conducting pairs: (contactor, target) triangles. */
       std::vector<std::pair<unsigned int, unsigned int>> contact_pairs;
-      double contact_conductance = 0.;
-      unsigned int n_threads     = 1;
+      double       contact_conductance = 0.;
+      unsigned int n_threads           = 1;
       /** Calls @p f(contactor, target, transfer) for every overlapping
        *  pair at the current temperatures. */
       template <typename Function>
