@@ -44,7 +44,8 @@ def check_parallel(s, threads=2, load_before=None, min_wall=0.5):
     `threads` -- fewer fails clearly, not vacuously -- and the concurrency
     measured at start-up (threads_used: `threads` threads inside the arena
     together) equals `threads`. For a time loop of at least min_wall
-    seconds, the work must also have been shared: process CPU time > 1.2 x
+    seconds over more than one chunk (512) of triangles, the work must also
+    have been shared: process CPU time > 1.2 x
     wall time and the other threads' CPU time >= 0.25 x the busiest
     thread's. Those two depend on the machine having the cores free; if
     they fail while other processes kept at least one core busy
@@ -67,6 +68,13 @@ def check_parallel(s, threads=2, load_before=None, min_wall=0.5):
     cpu, wall = s.get("cpu_time_s", 0.0), s.get("wall_time_s", 0.0)
     busiest = s.get("cpu_time_busiest_thread_s", 0.0)
     others = s.get("cpu_time_other_threads_s", 0.0)
+    if s.get("elements", 0) <= 512:
+        print(f"note: {s.get('elements')} triangles fill one chunk of 512 of "
+              "the node update (fixed chunks: include/tmfdem/base/threads.h), "
+              "so this loop cannot run in parallel: CPU/wall "
+              f"({cpu:.3f}/{wall:.3f} s) not asserted, only threads_used",
+              flush=True)
+        return "pass"
     if wall < min_wall:
         print(f"note: time loop {wall:.3f} s < {min_wall} s: CPU/wall "
               f"({cpu:.3f}/{wall:.3f} s) not asserted", flush=True)
