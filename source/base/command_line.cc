@@ -78,10 +78,11 @@ namespace tmfdem
     /**
      * FNV-1a 64 digest (hex) of the parameters that decide the results: all
      * entries, with those that do not (Checkpoint, Output/Directory,
-     * Output/Progress interval, Discrete mechanics/Threads: results do not
-     * depend on the thread count) reset to fixed values first, and
-     * Time stepping/End time, which --resume may extend to continue a run
-     * (checked against the checkpoint's time on loading).
+     * Output/Progress interval, Discrete mechanics/Threads and Allow
+     * oversubscription: results do not depend on the thread count) reset to
+     * fixed values first, and Time stepping/End time, which --resume may
+     * extend to continue a run (checked against the checkpoint's time on
+     * loading).
      */
     std::string
     input_digest(ParameterHandler &prm)
@@ -94,6 +95,7 @@ namespace tmfdem
                    {{"Output", "Directory"}, ""},
                    {{"Output", "Progress interval"}, "2"},
                    {{"Discrete mechanics", "Threads"}, "1"},
+                   {{"Discrete mechanics", "Allow oversubscription"}, "false"},
                    {{"Time stepping", "End time"}, "1"}};
       for (const auto &[path, value] : neutral)
         {

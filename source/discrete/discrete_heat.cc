@@ -9,6 +9,7 @@
 #include <set>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/function_expression.h>
+#include <tmfdem/base/threads.h>
 #include <tmfdem/discrete/contact.h>
 #include <tmfdem/discrete/contact_heat.h>
 #include <tmfdem/discrete/discrete_heat.h>
@@ -44,21 +45,33 @@ namespace tmfdem
     void
     DiscreteHeat::for_each_contact_transfer(const Function &f) const
     {
-      for (const auto &[c, t] : contact_pairs)
-        {
-          OverlapPolygon      overlap;
-          ContactHeatTransfer transfer;
-          if (contact_heat(&model.x[3 * c],
-                           &model.y[3 * c],
-                           T.begin() + 3 * c,
-                           &model.x[3 * t],
-                           &model.y[3 * t],
-                           T.begin() + 3 * t,
-                           contact_conductance,
-                           overlap,
-                           transfer))
-            f(c, t, transfer);
-        }
+      // transfers in parallel, handed to f in pair order
+      std::vector<ContactHeatTransfer> transfers(contact_pairs.size());
+      std::vector<char>                overlapping(contact_pairs.size(), 0);
+      for_each_chunk(arena_for(n_threads),
+                     contact_pairs.size(),
+                     64,
+                     [&](const std::size_t begin,
+                         const std::size_t end,
+                         const std::size_t) {
+                       for (std::size_t p = begin; p < end; ++p)
+                         {
+                           const auto [c, t] = contact_pairs[p];
+                           OverlapPolygon overlap;
+                           overlapping[p] = contact_heat(&model.x[3 * c],
+                                                         &model.y[3 * c],
+                                                         T.begin() + 3 * c,
+                                                         &model.x[3 * t],
+                                                         &model.y[3 * t],
+                                                         T.begin() + 3 * t,
+                                                         contact_conductance,
+                                                         overlap,
+                                                         transfers[p]);
+                         }
+                     });
+      for (std::size_t p = 0; p < contact_pairs.size(); ++p)
+        if (overlapping[p])
+          f(contact_pairs[p].first, contact_pairs[p].second, transfers[p]);
     }
 
     namespace
@@ -260,18 +273,29 @@ namespace tmfdem
         [&](const unsigned int a, const unsigned int b) {
           return model.joined(a, b);
         },
-        candidates);
-      for (const ContactPair &c : candidates)
-        {
-          OverlapPolygon overlap;
-          if (triangle_overlap(&model.x[3 * c.first],
-                               &model.y[3 * c.first],
-                               &model.x[3 * c.second],
-                               &model.y[3 * c.second],
-                               overlap) &&
-              overlap.contact_length > 0.)
-            contact_pairs.emplace_back(c.first, c.second);
-        }
+        candidates,
+        arena_for(n_threads));
+      std::vector<char> touching(candidates.size(), 0);
+      for_each_chunk(
+        arena_for(n_threads),
+        candidates.size(),
+        256,
+        [&](const std::size_t begin, const std::size_t end, const std::size_t) {
+          for (std::size_t p = begin; p < end; ++p)
+            {
+              const ContactPair &c = candidates[p];
+              OverlapPolygon     overlap;
+              touching[p] = triangle_overlap(&model.x[3 * c.first],
+                                             &model.y[3 * c.first],
+                                             &model.x[3 * c.second],
+                                             &model.y[3 * c.second],
+                                             overlap) &&
+                            overlap.contact_length > 0.;
+            }
+        });
+      for (std::size_t p = 0; p < candidates.size(); ++p)
+        if (touching[p])
+          contact_pairs.emplace_back(candidates[p].first, candidates[p].second);
     }
 
     double
@@ -359,27 +383,51 @@ namespace tmfdem
       double                               &source_rate) const
     {
       rate.reinit(model.n_nodes);
-      // conduction inside the triangles
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        {
-          double K[3][3];
-          conductivity_matrix(model, e, conductivity[e], K);
-          for (unsigned int a = 0; a < 3; ++a)
-            {
-              double q = 0.;
-              for (unsigned int b = 0; b < 3; ++b)
-                q -= K[a][b] * T[3 * e + b];
-              rate[3 * e + a] += q;
-            }
-        }
-      // intact joints
+      tbb::task_arena &arena = arena_for(n_threads);
+      // conduction inside the triangles (each writes its own nodes)
+      for_each_chunk(arena,
+                     model.n_elements,
+                     512,
+                     [&](const std::size_t begin,
+                         const std::size_t end,
+                         const std::size_t) {
+                       for (std::size_t e = begin; e < end; ++e)
+                         {
+                           double K[3][3];
+                           conductivity_matrix(model, e, conductivity[e], K);
+                           for (unsigned int a = 0; a < 3; ++a)
+                             {
+                               double q = 0.;
+                               for (unsigned int b = 0; b < 3; ++b)
+                                 q -= K[a][b] * T[3 * e + b];
+                               rate[3 * e + a] += q;
+                             }
+                         }
+                     });
+      // intact joints: fluxes in parallel, added in joint order
+      std::vector<double> joint_flux(2 * model.n_joints);
+      for_each_chunk(
+        arena,
+        model.n_joints,
+        512,
+        [&](const std::size_t begin, const std::size_t end, const std::size_t) {
+          for (std::size_t j = begin; j < end; ++j)
+            if (model.joint_status[j] == JointStatus::intact)
+              for (unsigned int side = 0; side < 2; ++side)
+                {
+                  const unsigned int a = model.joint_nodes[4 * j + side];
+                  const unsigned int b = model.joint_nodes[4 * j + 2 + side];
+                  joint_flux[2 * j + side] =
+                    joint_conductance[j] * (T[b] - T[a]);
+                }
+        });
       for (unsigned int j = 0; j < model.n_joints; ++j)
         if (model.joint_status[j] == JointStatus::intact)
           for (unsigned int end = 0; end < 2; ++end)
             {
               const unsigned int a = model.joint_nodes[4 * j + end];
               const unsigned int b = model.joint_nodes[4 * j + 2 + end];
-              const double       q = joint_conductance[j] * (T[b] - T[a]);
+              const double       q = joint_flux[2 * j + end];
               rate[a] += q;
               rate[b] -= q;
             }

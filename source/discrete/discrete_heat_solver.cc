@@ -2,6 +2,7 @@
 #include <iomanip>
 #include <sstream>
 #include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/threads.h>
 #include <tmfdem/discrete/discrete_heat_solver.h>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/io/checkpoint.h>
@@ -43,6 +44,19 @@ namespace tmfdem
                           fe,
                           model);
       heat = std::make_unique<DiscreteHeat>(parameters, model);
+      {
+        // Discrete mechanics/Threads, capped at the cores of this process
+        // unless oversubscription is allowed (include/tmfdem/base/threads.h)
+        const auto        &dm        = parameters.discrete_mechanics;
+        const unsigned int available = core_share(communicator).cores_per_rank;
+        const unsigned int threads =
+          dm.threads == 0                                      ? available :
+          dm.threads > available && !dm.allow_oversubscription ? available :
+                                                                 dm.threads;
+        if (threads > thread_limit())
+          set_thread_limit(threads);
+        heat->set_threads(threads);
+      }
       heat->initialise(parameters.time.start_time); // T0, contact pairs
       locate_monitors(parameters.monitors, model, probe_samples, line_samples);
       const auto &ts = parameters.time;

@@ -118,8 +118,19 @@ namespace tmfdem
     prm.declare_entry("Threads",
                       "0",
                       Patterns::Integer(0, 1024),
-                      "Threads of the explicit loop; 0: all cores. Results "
-                      "do not depend on it.");
+                      "Threads of the discrete layer (explicit loop, joint "
+                      "and contact forces, contact search, discrete heat) "
+                      "[-]; 0: all cores this process may use (its affinity "
+                      "mask, the node's cores shared among the MPI ranks on "
+                      "the node). More than that is capped to it unless "
+                      "Allow oversubscription is true. Results do not "
+                      "depend on it.");
+    prm.declare_entry("Allow oversubscription",
+                      "false",
+                      Patterns::Bool(),
+                      "true: run Threads threads even where they exceed "
+                      "the cores this process may use (threads then share "
+                      "cores; slower); false: cap Threads at those cores.");
     prm.declare_entry("Heterogeneity",
                       "none",
                       Patterns::Selection("none|Weibull|normal"),
@@ -169,6 +180,7 @@ namespace tmfdem
     contact_buffer           = prm.get_double("Contact buffer");
     contact                  = prm.get_bool("Contact");
     threads                  = prm.get_integer("Threads");
+    allow_oversubscription   = prm.get_bool("Allow oversubscription");
     heterogeneity            = prm.get("Heterogeneity");
     weibull_modulus          = prm.get_double("Weibull modulus");
     coefficient_of_variation = prm.get_double("Coefficient of variation");

@@ -3,18 +3,17 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <random>
 #include <set>
 #include <sstream>
 #include <sys/resource.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 #include <thread>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/function_expression.h>
+#include <tmfdem/base/threads.h>
 #include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/explicit_solver.h>
@@ -48,40 +47,6 @@ namespace tmfdem
                                                   communicator,
                                                   true);
         });
-
-      /** Runs @p body(chunk_begin, chunk_end, chunk_index) over fixed chunks
-       *  of @p n items on @p threads threads. */
-      template <typename Body>
-      void
-      for_each_chunk(tbb::task_arena  &arena,
-                     const std::size_t n,
-                     const std::size_t chunk,
-                     const Body       &body)
-      {
-        const std::size_t n_chunks = (n + chunk - 1) / chunk;
-        arena.execute([&] {
-          tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_chunks),
-                            [&](const tbb::blocked_range<std::size_t> &r) {
-                              for (std::size_t c = r.begin(); c != r.end(); ++c)
-                                body(c * chunk,
-                                     std::min(n, (c + 1) * chunk),
-                                     c);
-                            });
-        });
-      }
-
-      tbb::task_arena &
-      arena_for(const unsigned int threads)
-      {
-        static std::unique_ptr<tbb::task_arena> arena;
-        static unsigned int                     arena_threads = 0;
-        if (!arena || arena_threads != threads)
-          {
-            arena         = std::make_unique<tbb::task_arena>(threads);
-            arena_threads = threads;
-          }
-        return *arena;
-      }
     } // namespace
 
     double
@@ -239,9 +204,25 @@ namespace tmfdem
         dm.contact_buffer > 0. ? dm.contact_buffer : 0.25 * min_h;
       friction_coefficient = dm.friction_coefficient;
 
-      n_threads = dm.threads > 0 ?
-                    dm.threads :
-                    std::max(1u, std::thread::hardware_concurrency());
+      // threads: Discrete mechanics/Threads, capped at the cores this
+      // process may use (include/tmfdem/base/threads.h)
+      threads_available = core_share(communicator).cores_per_rank;
+      threads_requested = dm.threads;
+      n_threads         = dm.threads > 0 ? dm.threads : threads_available;
+      if (n_threads > threads_available && !dm.allow_oversubscription)
+        {
+          std::cerr << "[tmfdem] Discrete mechanics/Threads = " << n_threads
+                    << " exceeds the " << threads_available
+                    << " core(s) this process may use: running "
+                    << threads_available
+                    << " (Allow oversubscription = true runs them all)\n";
+          n_threads = threads_available;
+        }
+      if (n_threads > thread_limit())
+        set_thread_limit(n_threads);
+      threads_used = measure_concurrency(arena_for(n_threads));
+      if (heat)
+        heat->set_threads(n_threads);
 
       locate_monitors(parameters.monitors, model, probe_samples, line_samples);
       input_checked = true;
@@ -707,7 +688,8 @@ namespace tmfdem
                            active_elements,
                            contact_buffer,
                            excluded,
-                           pairs);
+                           pairs,
+                           arena_for(n_threads));
       index_contact_pairs();
       travel_since_search   = 0.;
       contact_search_needed = false;
@@ -1673,6 +1655,20 @@ namespace tmfdem
         .add("time_step", time_step)
         .add("stable_time_step", stable_time_step)
         .add("threads", n_threads)
+        .add("threads_requested", threads_requested)
+        .add("threads_available", threads_available)
+        .add("threads_used", threads_used)
+        .add("cpu_time_s", loop_cpu_time)
+        .add("wall_time_s", loop_wall_time)
+        .add("cpu_time_busiest_thread_s",
+             loop_thread_cpu_times.empty() ? 0. : loop_thread_cpu_times[0])
+        .add("cpu_time_other_threads_s",
+             [this] {
+               double other = 0.;
+               for (std::size_t k = 1; k < loop_thread_cpu_times.size(); ++k)
+                 other += loop_thread_cpu_times[k];
+               return other;
+             }())
         .add("wall_time", wall_time)
         .add("element_steps_per_second",
              wall_time > 0. ?
@@ -1797,7 +1793,10 @@ namespace tmfdem
       keep_good_state();
       CheckpointSchedule checkpoints(parameters.checkpoint);
       checkpoints.written(step_number);
-      bool snap_reported = false;
+      bool         snap_reported   = false;
+      const auto   threads_start   = thread_cpu_times();
+      const double loop_cpu_start  = process_cpu_time();
+      const auto   loop_wall_start = std::chrono::steady_clock::now();
       while (time < end - 0.5 * advance &&
              (max_steps == 0 || step_number < max_steps))
         {
@@ -1849,7 +1848,13 @@ namespace tmfdem
             }
           after_step(checkpoints);
         }
-      wall_time = progress.elapsed() + resumed_wall_time;
+      wall_time     = progress.elapsed() + resumed_wall_time;
+      loop_cpu_time = process_cpu_time() - loop_cpu_start;
+      loop_thread_cpu_times =
+        thread_cpu_time_differences(threads_start, thread_cpu_times());
+      loop_wall_time = std::chrono::duration<double>(
+                         std::chrono::steady_clock::now() - loop_wall_start)
+                         .count();
       energy();
       write_history_row();
       if (next_output < output_times.size())

@@ -4,7 +4,8 @@
              within 1 % (mu = 0.3) and does not slide for mu = 0.6 >= tan 30.
   collision: two blocks collide and fracture: momentum conserved to
              round-off, energy balance error below 1 %.
-  threads:   the collision with 1 and 2 threads gives identical outputs.
+  threads:   the collision with 1 and 2 threads gives identical outputs,
+             and the 2-thread run really ran 2 threads in parallel.
   traction:  a jointed plate on rollers pulled by a traction carries the
              applied stress uniformly; the rollers react with the load.
   brazilian: a disc between arc-seated jaws splits along the loaded
@@ -16,11 +17,12 @@ import sys
 
 import numpy as np
 
-from common import run, summary, check
+from common import run, summary, check, check_parallel, SKIP
 
 binary, out, which = sys.argv[1], sys.argv[2], sys.argv[3]
 prm_dir = os.path.join(os.path.dirname(__file__), "..", "..", "prm")
 ok = True
+skipped = False
 
 if which == "incline":
     g, theta = 9.81, math.radians(30.0)
@@ -67,6 +69,7 @@ elif which == "collision":
     ok &= check(rel < 0.01, f"energy balance error {100 * rel:.5f} % (< 1 %)")
 
 elif which == "threads":
+    load_before = os.getloadavg()[0]
     folders = []
     for threads in (1, 2):
         folder = os.path.join(out, f"threads_{threads}")
@@ -82,6 +85,10 @@ elif which == "threads":
                 f"{len(names)} output files identical with 1 and 2 threads")
     ok &= check(s1["energy"] == s2["energy"] and s1["broken_joints"] == s2["broken_joints"],
                 "summary energies and broken joints identical")
+    ok &= check(s1["threads_used"] == 1, f"1-thread run: threads_used = {s1['threads_used']}")
+    parallel = check_parallel(s2, 2, load_before)
+    ok &= parallel != "fail"
+    skipped = parallel == "skip"
 elif which == "brazilian":
     import glob
     import re
@@ -130,4 +137,4 @@ elif which == "traction":
     reaction = h["condition1_fx"][-1]
     ok &= check(abs(reaction / (-sigma0 * 0.1) - 1) < 0.01,
                 f"left rollers react with {reaction / 1e3:.3f} kN/m vs -100 kN/m (< 1 %)")
-sys.exit(0 if ok else 1)
+sys.exit(1 if not ok else SKIP if skipped else 0)

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tmfdem/base/threads.h>
 #include <vector>
 
 namespace tmfdem
@@ -157,6 +158,9 @@ namespace tmfdem
        * @p x, @p y (node 3e+k is node k of element e), the list of active
        * elements, and the predicate @p excluded(i, j) (intact joint between
        * i and j). Friction history of pairs present in the old list is kept.
+       * The pair search runs in @p arena over fixed chunks of the active
+       * elements; the list does not depend on the thread count.
+       * @p excluded must be safe to call from several threads.
        */
       template <typename Excluded>
       void
@@ -165,7 +169,21 @@ namespace tmfdem
               const std::vector<unsigned int> &active_elements,
               const double                     buffer,
               const Excluded                  &excluded,
-              std::vector<ContactPair>        &pairs);
+              std::vector<ContactPair>        &pairs,
+              tbb::task_arena                 &arena);
+
+      /** The same on one thread. */
+      template <typename Excluded>
+      void
+      rebuild(const std::vector<double>       &x,
+              const std::vector<double>       &y,
+              const std::vector<unsigned int> &active_elements,
+              const double                     buffer,
+              const Excluded                  &excluded,
+              std::vector<ContactPair>        &pairs)
+      {
+        rebuild(x, y, active_elements, buffer, excluded, pairs, arena_for(1));
+      }
 
     private:
       std::vector<double>       box;        // xmin, ymin, xmax, ymax per active
@@ -173,6 +191,8 @@ namespace tmfdem
       std::vector<unsigned int> cell_items;
       std::vector<unsigned int> item_cell;
       std::vector<ContactPair>  new_pairs;
+      /// pairs found per chunk of active elements, joined in chunk order
+      std::vector<std::vector<ContactPair>> chunk_pairs;
     };
 
     template <typename Excluded>
@@ -182,7 +202,8 @@ namespace tmfdem
                               const std::vector<unsigned int> &active,
                               const double                     buffer,
                               const Excluded                  &excluded,
-                              std::vector<ContactPair>        &pairs)
+                              std::vector<ContactPair>        &pairs,
+                              tbb::task_arena                 &arena)
     {
       const std::size_t n = active.size();
       new_pairs.clear();
@@ -240,45 +261,80 @@ namespace tmfdem
           cell_items[fill[item_cell[i]]++] = static_cast<unsigned int>(i);
       }
       // boxes start in their own cell (lower-left corner) and span at most
-      // two cells per direction: look at the cell and its 8 neighbours
-      for (std::size_t i = 0; i < n; ++i)
-        {
-          const std::size_t cx = item_cell[i] % nc[0],
-                            cy = item_cell[i] / nc[0];
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx)
-              {
-                const long long ncx = static_cast<long long>(cx) + dx;
-                const long long ncy = static_cast<long long>(cy) + dy;
-                if (ncx < 0 || ncy < 0 ||
-                    ncx >= static_cast<long long>(nc[0]) ||
-                    ncy >= static_cast<long long>(nc[1]))
-                  continue;
-                const std::size_t c = ncy * nc[0] + ncx;
-                for (unsigned int p = cell_start[c]; p < cell_start[c + 1]; ++p)
+      // two cells per direction: look at the cell and its 8 neighbours.
+      // Pairs (active[i], active[j] > active[i]) of item i, sorted by the
+      // second element: with ascending active elements the pairs of
+      // consecutive items joined in order are sorted by (first, second).
+      const bool ascending = std::is_sorted(active.begin(), active.end());
+      constexpr std::size_t chunk    = 256;
+      const std::size_t     n_chunks = (n + chunk - 1) / chunk;
+      if (chunk_pairs.size() < n_chunks)
+        chunk_pairs.resize(n_chunks);
+      for_each_chunk(
+        arena,
+        n,
+        chunk,
+        [&](const std::size_t begin,
+            const std::size_t end,
+            const std::size_t c) {
+          std::vector<ContactPair> &found = chunk_pairs[c];
+          found.clear();
+          for (std::size_t i = begin; i < end; ++i)
+            {
+              const std::size_t first = found.size();
+              const std::size_t cx    = item_cell[i] % nc[0],
+                                cy    = item_cell[i] / nc[0];
+              for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx)
                   {
-                    const unsigned int j = cell_items[p];
-                    if (active[j] <= active[i])
+                    const long long ncx = static_cast<long long>(cx) + dx;
+                    const long long ncy = static_cast<long long>(cy) + dy;
+                    if (ncx < 0 || ncy < 0 ||
+                        ncx >= static_cast<long long>(nc[0]) ||
+                        ncy >= static_cast<long long>(nc[1]))
                       continue;
-                    const double *bi = &box[4 * i], *bj = &box[4 * j];
-                    if (bi[0] > bj[2] || bj[0] > bi[2] || bi[1] > bj[3] ||
-                        bj[1] > bi[3])
-                      continue;
-                    if (excluded(active[i], active[j]))
-                      continue;
-                    ContactPair pair;
-                    pair.first  = active[i];
-                    pair.second = active[j];
-                    new_pairs.push_back(pair);
+                    const std::size_t cell_index = ncy * nc[0] + ncx;
+                    for (unsigned int p = cell_start[cell_index];
+                         p < cell_start[cell_index + 1];
+                         ++p)
+                      {
+                        const unsigned int j = cell_items[p];
+                        if (active[j] <= active[i])
+                          continue;
+                        const double *bi = &box[4 * i], *bj = &box[4 * j];
+                        if (bi[0] > bj[2] || bj[0] > bi[2] || bi[1] > bj[3] ||
+                            bj[1] > bi[3])
+                          continue;
+                        if (excluded(active[i], active[j]))
+                          continue;
+                        ContactPair pair;
+                        pair.first  = active[i];
+                        pair.second = active[j];
+                        found.push_back(pair);
+                      }
                   }
-              }
-        }
-      std::sort(new_pairs.begin(),
-                new_pairs.end(),
-                [](const ContactPair &a, const ContactPair &b) {
-                  return a.first < b.first ||
-                         (a.first == b.first && a.second < b.second);
-                });
+              std::sort(found.begin() + first,
+                        found.end(),
+                        [](const ContactPair &a, const ContactPair &b) {
+                          return a.second < b.second;
+                        });
+            }
+        });
+      std::size_t total = 0;
+      for (std::size_t c = 0; c < n_chunks; ++c)
+        total += chunk_pairs[c].size();
+      new_pairs.reserve(total);
+      for (std::size_t c = 0; c < n_chunks; ++c)
+        new_pairs.insert(new_pairs.end(),
+                         chunk_pairs[c].begin(),
+                         chunk_pairs[c].end());
+      if (!ascending)
+        std::sort(new_pairs.begin(),
+                  new_pairs.end(),
+                  [](const ContactPair &a, const ContactPair &b) {
+                    return a.first < b.first ||
+                           (a.first == b.first && a.second < b.second);
+                  });
       // keep the friction history of surviving pairs (both lists sorted)
       std::size_t old = 0;
       for (ContactPair &p : new_pairs)

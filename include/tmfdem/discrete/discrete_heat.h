@@ -19,6 +19,7 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <tmfdem/base/parameters.h>
@@ -61,6 +62,14 @@ namespace tmfdem
        */
       DiscreteHeat(const Parameters &parameters, DiscreteModel &model);
       ~DiscreteHeat();
+
+      /** Threads of the heat rates and the contact search (results do not
+       *  depend on it). */
+      void
+      set_threads(const unsigned int threads)
+      {
+        n_threads = std::max(1u, threads);
+      }
 
       /** Sets T(x, y, t0) [C] from `Initial conditions` (reference
        *  positions) at every node, Dirichlet nodes included: the Dirichlet
@@ -209,7 +218,8 @@ namespace tmfdem
 
       /** Conducting pairs: (contactor, target) triangles. */
       std::vector<std::pair<unsigned int, unsigned int>> contact_pairs;
-      double contact_conductance = 0.;
+      double       contact_conductance = 0.;
+      unsigned int n_threads           = 1;
       /** Calls @p f(contactor, target, transfer) for every overlapping
        *  pair at the current temperatures. */
       template <typename Function>

@@ -40,8 +40,9 @@ namespace tmfdem
     std::vector<double> gravity           = {0., 0.}; ///< [m/s^2]
     double              contact_buffer    = 0.; ///< [m]; 0: 0.25 x smallest h
     unsigned int        threads           = 0;  ///< 0: all cores
-    std::string         heterogeneity     = "none"; ///< none|Weibull|normal
-    double              weibull_modulus   = 10.;    ///< m [-]
+    bool         allow_oversubscription   = false; ///< threads beyond the cores
+    std::string  heterogeneity            = "none"; ///< none|Weibull|normal
+    double       weibull_modulus          = 10.;    ///< m [-]
     double       coefficient_of_variation = 0.1;    ///< normal: std/mean [-]
     unsigned int random_seed              = 1;
     unsigned int max_steps                = 0; ///< 0: no limit

@@ -296,11 +296,18 @@ namespace tmfdem
       unsigned long             n_contact_searches = 0;
 
       // time
-      double        time             = 0.;
-      double        time_step        = 0.;
-      double        stable_time_step = 0.;
-      unsigned long step_number      = 0;
-      unsigned int  n_threads        = 1;
+      double        time              = 0.;
+      double        time_step         = 0.;
+      double        stable_time_step  = 0.;
+      unsigned long step_number       = 0;
+      unsigned int  n_threads         = 1;
+      unsigned int  threads_requested = 0; ///< Discrete mechanics/Threads
+      unsigned int  threads_available = 1; ///< cores this process may use
+      unsigned int  threads_used   = 1;  ///< measured concurrency of the arena
+      double        loop_cpu_time  = 0.; ///< process CPU, time loop [s]
+      double        loop_wall_time = 0.; ///< wall, time loop, this run [s]
+      /// CPU time of each thread in the time loop, largest first [s]
+      std::vector<double> loop_thread_cpu_times;
 
       // bookkeeping: per chunk sums, summed in chunk order (thread-count
       // independent)
