@@ -1,5 +1,6 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/thread_local_storage.h>
 #include <deal.II/distributed/grid_refinement.h>
 #include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/distributed/tria.h>
@@ -268,25 +269,27 @@ namespace tmfdem
     const TrilinosWrappers::MPI::Vector &temperature)
   {
     // FEValues cached for the last set of unit points (the quadrature
-    // points during assembly), rebuilt when they change
+    // points during assembly), rebuilt when they change; one cache per
+    // thread: assembly and DataOut's postprocessor call this from TBB tasks
     struct Cache
     {
       std::vector<Point<2>>        unit_points;
       std::unique_ptr<FEValues<2>> fe_values;
     };
-    auto cache = std::make_shared<Cache>();
+    auto caches = std::make_shared<Threads::ThreadLocalStorage<Cache>>();
     temperature_field =
       [&temperature_dofs,
        &temperature_mapping,
        &temperature,
-       cache](const Triangulation<2>::active_cell_iterator &cell,
+       caches](const Triangulation<2>::active_cell_iterator &cell,
               const std::vector<Point<2>>                  &unit_points,
               const std::vector<Point<2>> &,
               std::vector<double> &temperatures) {
-        if (!cache->fe_values || cache->unit_points != unit_points)
+        Cache &cache = caches->get();
+        if (!cache.fe_values || cache.unit_points != unit_points)
           {
-            cache->unit_points = unit_points;
-            cache->fe_values =
+            cache.unit_points = unit_points;
+            cache.fe_values =
               std::make_unique<FEValues<2>>(temperature_mapping,
                                             temperature_dofs.get_fe(),
                                             Quadrature<2>(unit_points),
@@ -297,8 +300,8 @@ namespace tmfdem
           cell->level(),
           cell->index(),
           &temperature_dofs);
-        cache->fe_values->reinit(temperature_cell);
-        cache->fe_values->get_function_values(temperature, temperatures);
+        cache.fe_values->reinit(temperature_cell);
+        cache.fe_values->get_function_values(temperature, temperatures);
       };
   }
 

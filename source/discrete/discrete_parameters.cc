@@ -283,6 +283,14 @@ namespace tmfdem
                       "Quasi-static coupling: relaxation stops when the "
                       "kinetic energy falls below this fraction of the "
                       "strain energy [-] (checked every 50 steps).");
+    prm.declare_entry("Relaxation force tolerance",
+                      "1e-3",
+                      Patterns::Double(0.),
+                      "Quasi-static coupling: relaxation also requires the "
+                      "out-of-balance force (net static force on the free "
+                      "node components) below this fraction of the "
+                      "internal element forces (both as Euclidean norms "
+                      "over the nodes) [-].");
     prm.declare_entry("Relaxation cap is error",
                       "false",
                       Patterns::Bool(),
@@ -333,6 +341,7 @@ namespace tmfdem
     coupling             = prm.get("Coupling");
     relaxation_tolerance = prm.get_double("Relaxation tolerance");
     relaxation_cap_is_error = prm.get_bool("Relaxation cap is error");
+    relaxation_force_tolerance = prm.get_double("Relaxation force tolerance");
     thermal_step_growth  = prm.get_double("Thermal step growth factor");
     maximum_thermal_step = prm.get_double("Maximum thermal step");
     maximum_utilisation_change = prm.get_double("Maximum utilisation change");

@@ -965,6 +965,9 @@ namespace tmfdem
           double *sums      = &chunk_sums[c * stride];
           double  w_elastic = 0., w_viscous = 0., w_joint = 0., w_contact = 0.,
                  w_external = 0., max_speed = 0.;
+          // out-of-balance force (free components, no viscous part) and the
+          // scale of the internal forces, both squared
+          double unbalanced = 0., internal = 0.;
           // guards: first non-finite node and first inverted element
           double bad_node = -1., inverted = -1.;
           for (std::size_t e = begin; e < end; ++e)
@@ -1065,6 +1068,11 @@ namespace tmfdem
                       double               gx = fx + tx, gy = fy + ty;
                       vx_new    = damp_a * vx_old + damp_b * gx / mass;
                       vy_new    = damp_a * vy_old + damp_b * gy / mass;
+                      if (!nc.prescribed[0])
+                        unbalanced += (gx - f_v[2 * k]) * (gx - f_v[2 * k]);
+                      if (!nc.prescribed[1])
+                        unbalanced +=
+                          (gy - f_v[2 * k + 1]) * (gy - f_v[2 * k + 1]);
                       double rx = 0., ry = 0.;
                       if (nc.prescribed[0])
                         {
@@ -1089,6 +1097,8 @@ namespace tmfdem
                     {
                       vx_new = damp_a * vx_old + damp_b * fx / mass;
                       vy_new = damp_a * vy_old + damp_b * fy / mass;
+                      const double ux = fx - f_v[2 * k], uy = fy - f_v[2 * k + 1];
+                      unbalanced += ux * ux + uy * uy;
                     }
                   else
                     {
@@ -1111,6 +1121,8 @@ namespace tmfdem
                   const double ax = 0.5 * dt * (vx_old + vx_new);
                   const double ay = 0.5 * dt * (vy_old + vy_new);
                   w_elastic += f_el[2 * k] * ax + f_el[2 * k + 1] * ay;
+                  internal += f_el[2 * k] * f_el[2 * k] +
+                              f_el[2 * k + 1] * f_el[2 * k + 1];
                   w_viscous += f_v[2 * k] * ax + f_v[2 * k + 1] * ay;
                   if (c_damp > 0. && (b == 255 || body_motion[b] ==
                                                     DiscreteBody::Motion::free))
@@ -1137,6 +1149,8 @@ namespace tmfdem
                     bad_node = node;
                 }
             }
+          sums[8] = unbalanced;
+          sums[9] = internal;
           sums[0] = w_elastic;
           sums[1] = w_viscous;
           sums[2] = w_joint;
@@ -1146,7 +1160,7 @@ namespace tmfdem
           sums[6] = bad_node;
           sums[7] = inverted;
         });
-      double max_speed = 0.;
+      double max_speed = 0., unbalanced_sq = 0., internal_sq = 0.;
       for (auto &r : body_reaction)
         r = {{0., 0.}};
       condition_reaction.assign(conditions.size(), {{0., 0.}});
@@ -1159,6 +1173,8 @@ namespace tmfdem
           balance.contact_work -= sums[3];
           balance.external_work += sums[4];
           max_speed = std::max(max_speed, sums[5]);
+          unbalanced_sq += sums[8];
+          internal_sq += sums[9];
           // chunks in element order: the first flagged is the lowest index
           if (first_nonfinite_node < 0 && sums[6] >= 0.)
             first_nonfinite_node = static_cast<long long>(sums[6]);
@@ -1176,6 +1192,8 @@ namespace tmfdem
                 sums[n_sums + 2 * max_bodies + 2 * k + 1];
             }
         }
+      relative_unbalanced_force =
+        std::sqrt(unbalanced_sq / std::max(internal_sq, 1e-300));
       travel_since_search += std::sqrt(max_speed) * dt;
       if (2. * travel_since_search > contact_buffer)
         contact_search_needed = true;
@@ -1211,7 +1229,9 @@ namespace tmfdem
                     balance.kinetic / std::max(balance.strain, 1e-300);
                   if (i > quasi_static_ramp_steps &&
                       last_kinetic_to_strain <
-                        parameters.discrete_heat.relaxation_tolerance)
+                        parameters.discrete_heat.relaxation_tolerance &&
+                      relative_unbalanced_force <=
+                        parameters.discrete_heat.relaxation_force_tolerance)
                     {
                       relaxed = true;
                       break;
@@ -1714,6 +1734,7 @@ namespace tmfdem
             .add("thermal_steps", static_cast<long long>(n_thermal_steps))
             .add("last_relaxation_steps", last_relaxation_steps)
             .add("relaxations_at_cap", relaxations_at_cap)
+            .add("last_relative_unbalanced_force", relative_unbalanced_force)
             .add("last_kinetic_to_strain_energy", last_kinetic_to_strain)
             .add("mechanical_steps_per_thermal_step", steps_per_thermal_step)
             .add("thermal_time_step",
@@ -1806,7 +1827,8 @@ namespace tmfdem
             std::cerr << "[tmfdem] t = " << time << " s: relaxed in "
                       << last_relaxation_steps
                       << " mechanical steps, kinetic / strain energy "
-                      << last_kinetic_to_strain << "\n";
+                      << last_kinetic_to_strain << ", out-of-balance force "
+                      << relative_unbalanced_force << "\n";
           // quasi-static: a row after every thermal step (steps may be
           // shorter than Time step near failure, and each is costly anyway)
           if (quasi_static || time >= next_history - 0.5 * advance)

@@ -69,6 +69,7 @@ namespace tmfdem
     std::string  coupling             = "dynamic"; ///< dynamic|quasi-static
     double       relaxation_tolerance = 1e-6;      ///< kinetic / strain energy
     bool relaxation_cap_is_error = false; ///< stop when a relaxation hits the cap
+    double relaxation_force_tolerance = 1e-3; ///< |out-of-balance| / |internal|
     /** Quasi-static: thermal step n = Time step x growth^n [-]. */
     double thermal_step_growth = 1.;
     /** Quasi-static: cap of the growing thermal step, 0 = none [s]. */

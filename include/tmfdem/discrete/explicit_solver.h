@@ -205,6 +205,9 @@ namespace tmfdem
        */
       double
       max_joint_utilisation() const;
+      /** |out-of-balance force| / |internal element forces| over the free
+       *  node components after the last step (viscous force left out) [-]. */
+      double relative_unbalanced_force = 0.;
       /** Quasi-static coupling: relaxations that ended at the step cap. */
       unsigned int relaxations_at_cap = 0;
       /** Quasi-static coupling: length of the current thermal step [s]. */
@@ -312,7 +315,7 @@ namespace tmfdem
       // bookkeeping: per chunk sums, summed in chunk order (thread-count
       // independent)
       static constexpr unsigned int      chunk_size = 512;
-      static constexpr unsigned int      n_sums     = 8;
+      static constexpr unsigned int      n_sums     = 10;
       static constexpr unsigned int      max_bodies = 8;
       std::vector<double>                chunk_sums; ///< n_sums + 2 max_bodies
       EnergyBalance                      balance;
