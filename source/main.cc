@@ -21,17 +21,10 @@ main(int argc, char *argv[])
 {
   using namespace tmfdem;
   tmfdem::install_signal_handlers(); // SIGINT/SIGTERM during start-up too
-  // Started without mpirun (Open MPI singleton): skip the support daemon and
-  // the network transports a single process never uses; MPI_Init drops from
-  // about 0.5 s to 0.05 s (doc/performance.md). Settings in the
-  // environment win.
-  if (std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr &&
-      std::getenv("PMIX_RANK") == nullptr && std::getenv("PMI_RANK") == nullptr)
-    {
-      setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
-      setenv("OMPI_MCA_pml", "ob1", 0);
-      setenv("OMPI_MCA_btl", "self,vader", 0);
-    }
+  // Open MPI's singleton start-up (about 0.5 s of MPI_Init) is left as it
+  // is: isolating the singleton (OMPI_MCA_ess_singleton_isolated=1) cut it
+  // to 0.05 s but failed orte_init in 1 of 320 concurrent launches
+  // (doc/performance.md); a user may still set it in the environment.
   dealii::Utilities::MPI::MPI_InitFinalize
     mpi(argc, argv, dealii::numbers::invalid_unsigned_int);
   // ranks x threads <= cores (include/tmfdem/base/threads.h)
