@@ -282,9 +282,9 @@ namespace tmfdem
        &temperature_mapping,
        &temperature,
        caches](const Triangulation<2>::active_cell_iterator &cell,
-              const std::vector<Point<2>>                  &unit_points,
-              const std::vector<Point<2>> &,
-              std::vector<double> &temperatures) {
+               const std::vector<Point<2>>                  &unit_points,
+               const std::vector<Point<2>> &,
+               std::vector<double> &temperatures) {
         Cache &cache = caches->get();
         if (!cache.fe_values || cache.unit_points != unit_points)
           {

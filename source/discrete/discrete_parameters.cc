@@ -338,12 +338,12 @@ namespace tmfdem
     solver_tolerance         = prm.get_double("Linear solver tolerance");
     mechanical_steps_per_thermal_step =
       prm.get_integer("Mechanical steps per thermal step");
-    coupling             = prm.get("Coupling");
-    relaxation_tolerance = prm.get_double("Relaxation tolerance");
-    relaxation_cap_is_error = prm.get_bool("Relaxation cap is error");
+    coupling                   = prm.get("Coupling");
+    relaxation_tolerance       = prm.get_double("Relaxation tolerance");
+    relaxation_cap_is_error    = prm.get_bool("Relaxation cap is error");
     relaxation_force_tolerance = prm.get_double("Relaxation force tolerance");
-    thermal_step_growth  = prm.get_double("Thermal step growth factor");
-    maximum_thermal_step = prm.get_double("Maximum thermal step");
+    thermal_step_growth        = prm.get_double("Thermal step growth factor");
+    maximum_thermal_step       = prm.get_double("Maximum thermal step");
     maximum_utilisation_change = prm.get_double("Maximum utilisation change");
     prm.leave_subsection();
     if (thermal_step_growth > 1. && coupling != "quasi-static")

@@ -152,15 +152,16 @@ namespace tmfdem
             {
               // motions imposed in thermal time are ramped in over the
               // first relaxation steps of each thermal step
-              using Type        = MechanicalBoundaryCondition::Type;
-              bool imposed      = false;
+              using Type   = MechanicalBoundaryCondition::Type;
+              bool imposed = false;
               for (const auto &c : parameters.mechanical_boundary.conditions)
-                imposed |= c.type == Type::velocity ||
-                           c.type == Type::displacement;
+                imposed |=
+                  c.type == Type::velocity || c.type == Type::displacement;
               for (const auto motion : body_motion)
                 imposed |= motion == DiscreteBody::Motion::velocity;
               quasi_static_ramp_steps = imposed ? 100 : 0;
-              if (imposed && steps_per_thermal_step <= 2 * quasi_static_ramp_steps)
+              if (imposed &&
+                  steps_per_thermal_step <= 2 * quasi_static_ramp_steps)
                 throw InputError(
                   "Discrete heat/Mechanical steps per thermal step = " +
                   std::to_string(steps_per_thermal_step) +
@@ -251,18 +252,17 @@ namespace tmfdem
           // Damping ratio = zeta of the element's highest free mode
           // (stable_step.h): eta = ratio / zeta per unit viscosity
           const double ratio = parameters.discrete_mechanics.damping_ratio;
-          viscosity[e] =
-            ratio > 0. ?
-              ratio / highest_mode_damping_per_viscosity(
-                        {{model.x_ref[3 * e],
-                          model.x_ref[3 * e + 1],
-                          model.x_ref[3 * e + 2]}},
-                        {{model.y_ref[3 * e],
-                          model.y_ref[3 * e + 1],
-                          model.y_ref[3 * e + 2]}},
-                        solid[model.material[e]].lame,
-                        node_mass) :
-              0.;
+          viscosity[e]       = ratio > 0. ?
+                                 ratio / highest_mode_damping_per_viscosity(
+                                     {{model.x_ref[3 * e],
+                                             model.x_ref[3 * e + 1],
+                                             model.x_ref[3 * e + 2]}},
+                                     {{model.y_ref[3 * e],
+                                             model.y_ref[3 * e + 1],
+                                             model.y_ref[3 * e + 2]}},
+                                     solid[model.material[e]].lame,
+                                     node_mass) :
+                                 0.;
           for (unsigned int k = 0; k < 3; ++k)
             model.mass[3 * e + k] = node_mass;
         }
@@ -510,7 +510,7 @@ namespace tmfdem
     void
     ExplicitSolver::evaluate_boundary_conditions()
     {
-      using Type         = MechanicalBoundaryCondition::Type;
+      using Type = MechanicalBoundaryCondition::Type;
       // quasi-static coupling: the clock is the thermal time, which does not
       // move while the mechanics relaxes: velocities at the middle of the
       // thermal step (scaled to spread v dt_thermal over the ramp),
@@ -611,7 +611,7 @@ namespace tmfdem
     ExplicitSolver::element_step_input(const unsigned int e,
                                        const bool         deformed) const
     {
-      ElementStepInput in;
+      ElementStepInput   in;
       const unsigned int n0 = 3 * e;
       const auto        &X  = deformed ? model.x : model.x_ref;
       const auto        &Y  = deformed ? model.y : model.y_ref;
@@ -621,8 +621,7 @@ namespace tmfdem
           in.y[k] = Y[n0 + k];
           // every intact joint the element's nodes belong to
           const int code = model.edge_joint[n0 + k];
-          if (code >= 0 &&
-              model.joint_status[code / 2] == JointStatus::intact)
+          if (code >= 0 && model.joint_status[code / 2] == JointStatus::intact)
             {
               const JointConstants &jc = model.joint_constants[code / 2];
               in.edge_joint_normal_stiffness[k]     = jc.normal_stiffness;
@@ -1066,8 +1065,8 @@ namespace tmfdem
                       const NodeCondition &nc = node_conditions[slot];
                       const double         tx = nc.force[0], ty = nc.force[1];
                       double               gx = fx + tx, gy = fy + ty;
-                      vx_new    = damp_a * vx_old + damp_b * gx / mass;
-                      vy_new    = damp_a * vy_old + damp_b * gy / mass;
+                      vx_new = damp_a * vx_old + damp_b * gx / mass;
+                      vy_new = damp_a * vy_old + damp_b * gy / mass;
                       if (!nc.prescribed[0])
                         unbalanced += (gx - f_v[2 * k]) * (gx - f_v[2 * k]);
                       if (!nc.prescribed[1])
@@ -1095,9 +1094,10 @@ namespace tmfdem
                   else if (b == 255 ||
                            body_motion[b] == DiscreteBody::Motion::free)
                     {
-                      vx_new = damp_a * vx_old + damp_b * fx / mass;
-                      vy_new = damp_a * vy_old + damp_b * fy / mass;
-                      const double ux = fx - f_v[2 * k], uy = fy - f_v[2 * k + 1];
+                      vx_new          = damp_a * vx_old + damp_b * fx / mass;
+                      vy_new          = damp_a * vy_old + damp_b * fy / mass;
+                      const double ux = fx - f_v[2 * k],
+                                   uy = fy - f_v[2 * k + 1];
                       unbalanced += ux * ux + uy * uy;
                     }
                   else
@@ -1304,12 +1304,12 @@ namespace tmfdem
           const double          d1x = model.x[n[3]] - model.x[n[1]];
           const double          d1y = model.y[n[3]] - model.y[n[1]];
           const double          ex  = 0.5 * (model.x[n[1]] + model.x[n[3]] -
-                                     model.x[n[0]] - model.x[n[2]]);
+                                   model.x[n[0]] - model.x[n[2]]);
           const double          ey  = 0.5 * (model.y[n[1]] + model.y[n[3]] -
-                                     model.y[n[0]] - model.y[n[2]]);
+                                   model.y[n[0]] - model.y[n[2]]);
           const double          L   = std::sqrt(ex * ex + ey * ey);
           const double          tx = ex / L, ty = ey / L, nx = ty, ny = -tx;
-          const JointConstants &k  = model.joint_constants[j];
+          const JointConstants &k = model.joint_constants[j];
           for (const double u : gauss)
             {
               const double dx = (1. - u) * d0x + u * d1x;
@@ -1317,12 +1317,12 @@ namespace tmfdem
               const double o  = dx * nx + dy * ny;
               const double s  = dx * tx + dy * ty;
               const double fs =
-                k.cohesion - (o < 0. ? k.normal_stiffness * o : 0.) *
-                               k.friction_tangent;
-              highest = std::max(
-                {highest,
-                 o * k.normal_stiffness / (2. * k.tensile_strength),
-                 std::abs(s) * k.tangential_stiffness / (2. * fs)});
+                k.cohesion -
+                (o < 0. ? k.normal_stiffness * o : 0.) * k.friction_tangent;
+              highest =
+                std::max({highest,
+                          o * k.normal_stiffness / (2. * k.tensile_strength),
+                          std::abs(s) * k.tangential_stiffness / (2. * fs)});
             }
         }
       return std::min(highest, 1.);

@@ -1,8 +1,7 @@
-#include <tmfdem/discrete/stable_step.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tmfdem/discrete/stable_step.h>
 
 namespace tmfdem
 {
@@ -110,9 +109,8 @@ namespace tmfdem
             continue;
           const unsigned int a = edge, b = (edge + 1) % 3;
           const double       L = std::hypot(e.x[b] - e.x[a], e.y[b] - e.y[a]);
-          const double       t[2] = {(e.x[b] - e.x[a]) / L,
-                                     (e.y[b] - e.y[a]) / L};
-          const double       n[2] = {t[1], -t[0]};
+          const double t[2]    = {(e.x[b] - e.x[a]) / L, (e.y[b] - e.y[a]) / L};
+          const double n[2]    = {t[1], -t[0]};
           for (unsigned int d = 0; d < 2; ++d)
             for (unsigned int f = 0; f < 2; ++f)
               {
@@ -136,17 +134,18 @@ namespace tmfdem
         Matrix6 A;
         for (unsigned int r = 0; r < 6; ++r)
           for (unsigned int c = 0; c < 6; ++c)
-            A[r][c] = (r == c ? 4. : 0.) - 2. * dt * C[r][c] - dt * dt * K[r][c];
+            A[r][c] =
+              (r == c ? 4. : 0.) - 2. * dt * C[r][c] - dt * dt * K[r][c];
         return positive_definite(A);
       };
       const double k_norm = row_sum_norm(K), c_norm = row_sum_norm(C);
       if (!(k_norm > 0.) && !(c_norm > 0.))
         return std::numeric_limits<double>::infinity();
       // a sure lower bound from the norms: 2 dt |C| + dt^2 |K| <= 4
-      double lo = k_norm > 0. ?
-                    (-c_norm + std::sqrt(c_norm * c_norm + 4. * k_norm)) /
-                      k_norm :
-                    2. / c_norm;
+      double lo =
+        k_norm > 0. ?
+          (-c_norm + std::sqrt(c_norm * c_norm + 4. * k_norm)) / k_norm :
+          2. / c_norm;
       lo *= 1. - 1e-12;
       double hi = 2. * lo;
       while (stable(hi))
@@ -156,16 +155,16 @@ namespace tmfdem
         }
       while (hi - lo > 1e-4 * lo)
         {
-          const double mid = 0.5 * (lo + hi);
+          const double mid        = 0.5 * (lo + hi);
           (stable(mid) ? lo : hi) = mid;
         }
       return lo;
     }
 
     void
-    symmetric_eigen(const Matrix6          &matrix,
+    symmetric_eigen(const Matrix6         &matrix,
                     std::array<double, 6> &values,
-                    Matrix6                &vectors)
+                    Matrix6               &vectors)
     {
       Matrix6 a = matrix;
       for (unsigned int r = 0; r < 6; ++r)
@@ -196,28 +195,30 @@ namespace tmfdem
                 for (unsigned int k = 0; k < 6; ++k)
                   {
                     const double akp = a[k][p], akq = a[k][q];
-                    a[k][p]          = c * akp - s * akq;
-                    a[k][q]          = s * akp + c * akq;
+                    a[k][p] = c * akp - s * akq;
+                    a[k][q] = s * akp + c * akq;
                   }
                 for (unsigned int k = 0; k < 6; ++k)
                   {
                     const double apk = a[p][k], aqk = a[q][k];
-                    a[p][k]          = c * apk - s * aqk;
-                    a[q][k]          = s * apk + c * aqk;
+                    a[p][k] = c * apk - s * aqk;
+                    a[q][k] = s * apk + c * aqk;
                   }
                 for (unsigned int k = 0; k < 6; ++k)
                   {
                     const double vkp = vectors[k][p], vkq = vectors[k][q];
-                    vectors[k][p]    = c * vkp - s * vkq;
-                    vectors[k][q]    = s * vkp + c * vkq;
+                    vectors[k][p] = c * vkp - s * vkq;
+                    vectors[k][q] = s * vkp + c * vkq;
                   }
               }
         }
       // sort ascending, columns with their values
       std::array<unsigned int, 6> order = {{0, 1, 2, 3, 4, 5}};
-      std::sort(order.begin(), order.end(), [&](unsigned int i, unsigned int j) {
-        return a[i][i] < a[j][j];
-      });
+      std::sort(order.begin(),
+                order.end(),
+                [&](unsigned int i, unsigned int j) {
+                  return a[i][i] < a[j][j];
+                });
       const Matrix6 v = vectors;
       for (unsigned int c = 0; c < 6; ++c)
         {
@@ -236,7 +237,7 @@ namespace tmfdem
       Matrix6 K, C;
       element_matrices(x, y, lame, K, C);
       std::array<double, 6> omega2;
-      Matrix6                modes;
+      Matrix6               modes;
       symmetric_eigen(K, omega2, modes);
       const double top = omega2[5];
       if (!(top > 0.))

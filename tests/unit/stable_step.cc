@@ -50,8 +50,14 @@ namespace
     const Matrix2 F =
       multiply(element_basis(xs[0], ys[0], xs[1], ys[1], xs[2], ys[2]),
                inverse(element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2])));
-    nodal_forces(
-      elastic_stress(F, lame), xs[0], ys[0], xs[1], ys[1], xs[2], ys[2], f);
+    nodal_forces(elastic_stress(F, lame),
+                 xs[0],
+                 ys[0],
+                 xs[1],
+                 ys[1],
+                 xs[2],
+                 ys[2],
+                 f);
   }
 
   // viscous force of the production loop for velocities vx, vy
@@ -66,8 +72,7 @@ namespace
     const Matrix2 Fi_inv =
       inverse(element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2]));
     const Matrix2 L =
-      multiply(element_basis(vx[0], vy[0], vx[1], vy[1], vx[2], vy[2]),
-               Fi_inv);
+      multiply(element_basis(vx[0], vy[0], vx[1], vy[1], vx[2], vy[2]), Fi_inv);
     const Stress2 s{2. * eta * L.a00, 2. * eta * L.a11, eta * (L.a01 + L.a10)};
     nodal_forces(s, X[0], Y[0], X[1], Y[1], X[2], Y[2], f);
   }
@@ -85,19 +90,20 @@ namespace
   {
     const LameConstants lame =
       lame_constants(E, nu, Idealisation::plane_strain);
-    const unsigned int  n_el = a.x.size(), N = 6 * n_el;
-    std::vector<double> K(N * N, 0.), C(N * N, 0.), mass(N, 0.);
+    const unsigned int            n_el = a.x.size(), N = 6 * n_el;
+    std::vector<double>           K(N * N, 0.), C(N * N, 0.), mass(N, 0.);
     std::vector<ElementStepInput> inputs(n_el);
     for (unsigned int e = 0; e < n_el; ++e)
       {
         const double *X = a.x[e].data(), *Y = a.y[e].data();
         const double  area =
           0.5 * ((X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]));
-        const double m   = rho * area / 3.;
-        const double eta = damping_ratio > 0. ?
-                             damping_ratio / highest_mode_damping_per_viscosity(
-                                               a.x[e], a.y[e], lame, m) :
-                             0.;
+        const double m = rho * area / 3.;
+        const double eta =
+          damping_ratio > 0. ?
+            damping_ratio /
+              highest_mode_damping_per_viscosity(a.x[e], a.y[e], lame, m) :
+            0.;
         inputs[e].x         = a.x[e];
         inputs[e].y         = a.y[e];
         inputs[e].lame      = lame;
@@ -136,17 +142,17 @@ namespace
                            a1 = 6 * j.ea + 2 * ((j.ka + 1) % 3);
         const unsigned int b0 = 6 * j.eb + 2 * ((j.kb + 1) % 3),
                            b1 = 6 * j.eb + 2 * j.kb;
-        const double       dx = a.x[j.ea][(j.ka + 1) % 3] - a.x[j.ea][j.ka];
-        const double       dy = a.y[j.ea][(j.ka + 1) % 3] - a.y[j.ea][j.ka];
-        const double       L  = std::hypot(dx, dy);
-        const double       t[2] = {dx / L, dy / L}, n[2] = {t[1], -t[0]};
-        const double       k_n = penalty_factor * E / L;
-        const double       k_t = tangential_ratio * k_n;
+        const double dx       = a.x[j.ea][(j.ka + 1) % 3] - a.x[j.ea][j.ka];
+        const double dy       = a.y[j.ea][(j.ka + 1) % 3] - a.y[j.ea][j.ka];
+        const double L        = std::hypot(dx, dy);
+        const double t[2] = {dx / L, dy / L}, n[2] = {t[1], -t[0]};
+        const double k_n = penalty_factor * E / L;
+        const double k_t = tangential_ratio * k_n;
         for (unsigned int q = 0; q < 2; ++q)
           for (unsigned int dir = 0; dir < 2; ++dir)
             {
-              const double      *d = dir == 0 ? n : t;
-              const double       k = dir == 0 ? k_n : k_t;
+              const double       *d = dir == 0 ? n : t;
+              const double        k = dir == 0 ? k_n : k_t;
               std::vector<double> v(N, 0.);
               for (unsigned int c = 0; c < 2; ++c)
                 {
@@ -174,8 +180,7 @@ namespace
         for (unsigned int c = 0; c < N; ++c)
           {
             // v+ = (I - dt M^-1 C) v - dt M^-1 K x
-            const double Bv =
-              (r == c ? 1. : 0.) - dt * C[r * N + c] / mass[r];
+            const double Bv = (r == c ? 1. : 0.) - dt * C[r * N + c] / mass[r];
             const double Bx = -dt * K[r * N + c] / mass[r];
             A(r, c)         = Bv;
             A(r, N + c)     = Bx;
@@ -200,7 +205,7 @@ namespace
       }
     for (unsigned int i = 0; i < 40; ++i)
       {
-        const double mid = 0.5 * (lo + hi);
+        const double mid                    = 0.5 * (lo + hi);
         (radius(mid) <= 1. + tol ? lo : hi) = mid;
       }
     return {computed, lo};
@@ -321,7 +326,8 @@ TEST(StableStep, DampingRatioIsModal)
   const double omega = std::sqrt(w2[5] / m);
   EXPECT_NEAR(zeta1, phiCphi / (2. * m * omega), 1e-12 * zeta1);
   // the old convention eta = 2 h sqrt(E rho), h = sqrt(2 A), gave zeta ~ 3.6
-  const double eta_old = 2. * std::sqrt(2. * 0.5 * h * s3 * h) * std::sqrt(E * rho);
+  const double eta_old =
+    2. * std::sqrt(2. * 0.5 * h * s3 * h) * std::sqrt(E * rho);
   EXPECT_GT(eta_old * zeta1, 3.5);
   EXPECT_LT(eta_old * zeta1, 3.7);
 }

@@ -35,8 +35,8 @@ namespace tmfdem
     double      contact_tangential_penalty_factor = 1.;  ///< p_ct / E [-]
     double      friction_coefficient              = 0.5; ///< mu [-]
     std::string softening_law                     = "Munjiza";
-    double      damping_ratio             = 1.; ///< modal ratio of the highest element mode [-]
-    double      mass_damping              = 0.; ///< c of -c m v [1/s]
+    double damping_ratio = 1.; ///< modal ratio of the highest element mode [-]
+    double mass_damping  = 0.; ///< c of -c m v [1/s]
     std::vector<double> gravity           = {0., 0.}; ///< [m/s^2]
     double              contact_buffer    = 0.; ///< [m]; 0: 0.25 x smallest h
     unsigned int        threads           = 0;  ///< 0: all cores
@@ -68,7 +68,8 @@ namespace tmfdem
     unsigned int mechanical_steps_per_thermal_step = 0; ///< 0: automatic
     std::string  coupling             = "dynamic"; ///< dynamic|quasi-static
     double       relaxation_tolerance = 1e-6;      ///< kinetic / strain energy
-    bool relaxation_cap_is_error = false; ///< stop when a relaxation hits the cap
+    bool         relaxation_cap_is_error =
+      false; ///< stop when a relaxation hits the cap
     double relaxation_force_tolerance = 1e-3; ///< |out-of-balance| / |internal|
     /** Quasi-static: thermal step n = Time step x growth^n [-]. */
     double thermal_step_growth = 1.;

@@ -233,8 +233,8 @@ namespace tmfdem
                  current_thermal_step / (quasi_static_ramp_steps * time_step) :
                  0.;
       }
-      double                        last_kinetic_to_strain = 0.;
-      unsigned long                 n_thermal_steps        = 0;
+      double        last_kinetic_to_strain = 0.;
+      unsigned long n_thermal_steps        = 0;
       /** Stress-free temperature per element [C]. */
       std::vector<double> reference_temperature;
       /** Quasi-static coupling: the next thermal step [s], growing from

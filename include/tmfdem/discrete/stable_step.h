@@ -34,9 +34,8 @@
 #ifndef tmfdem_discrete_stable_step_h
 #define tmfdem_discrete_stable_step_h
 
-#include <tmfdem/discrete/solid.h>
-
 #include <array>
+#include <tmfdem/discrete/solid.h>
 
 namespace tmfdem
 {
@@ -106,9 +105,9 @@ namespace tmfdem
      * symmetric 6 x 6 matrix, by cyclic Jacobi rotations.
      */
     void
-    symmetric_eigen(const Matrix6          &matrix,
+    symmetric_eigen(const Matrix6         &matrix,
                     std::array<double, 6> &values,
-                    Matrix6                &vectors);
+                    Matrix6               &vectors);
   } // namespace discrete
 } // namespace tmfdem
 
