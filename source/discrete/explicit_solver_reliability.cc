@@ -438,7 +438,10 @@ namespace tmfdem
           for (unsigned int e = 0; e < model.n_elements; ++e)
             {
               const ElementStepInput in = element_step_input(e, true);
-              const double           dt = critical_time_step(in);
+              if (stable_at(in, time_step))
+                continue;
+              // only elements the step is too long for get the bisection
+              const double dt = critical_time_step(in);
               if (dt < dt_min)
                 {
                   dt_min = dt;

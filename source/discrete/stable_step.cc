@@ -90,53 +90,82 @@ namespace tmfdem
           }
     }
 
-    double
-    critical_time_step(const ElementStepInput &e)
+    namespace
     {
-      const double area = 0.5 * ((e.x[1] - e.x[0]) * (e.y[2] - e.y[0]) -
-                                 (e.x[2] - e.x[0]) * (e.y[1] - e.y[0]));
-      if (!(area > 0.) || !(e.node_mass > 0.))
-        return 0.;
-      Matrix6 K, C;
-      element_matrices(e.x, e.y, e.lame, K, C);
-      // joints, twice their one-sided matrix
-      // L / 6 [[2, 1], [1, 2]] (x) (k_n n n^T + k_t t t^T)
-      for (unsigned int edge = 0; edge < 3; ++edge)
-        {
-          const double kn = e.edge_joint_normal_stiffness[edge];
-          const double kt = e.edge_joint_tangential_stiffness[edge];
-          if (!(kn > 0.) && !(kt > 0.))
-            continue;
-          const unsigned int a = edge, b = (edge + 1) % 3;
-          const double       L = std::hypot(e.x[b] - e.x[a], e.y[b] - e.y[a]);
-          const double t[2]    = {(e.x[b] - e.x[a]) / L, (e.y[b] - e.y[a]) / L};
-          const double n[2]    = {t[1], -t[0]};
-          for (unsigned int d = 0; d < 2; ++d)
-            for (unsigned int f = 0; f < 2; ++f)
-              {
-                const double k = kn * n[d] * n[f] + kt * t[d] * t[f];
-                K[2 * a + d][2 * a + f] += 2. * k * L / 3.;
-                K[2 * b + d][2 * b + f] += 2. * k * L / 3.;
-                K[2 * a + d][2 * b + f] += k * L / 3.;
-                K[2 * b + d][2 * a + f] += k * L / 3.;
-              }
-        }
-      for (unsigned int i = 0; i < 6; ++i)
-        K[i][i] += e.node_contact_stiffness;
-      const double inv_m = 1. / e.node_mass;
-      for (unsigned int r = 0; r < 6; ++r)
-        for (unsigned int c = 0; c < 6; ++c)
+      /**
+       * M^-1 (K_e + 2 sum G + R) and M^-1 C_e of the element (M = m I);
+       * false for a degenerate element or massless nodes.
+       */
+      bool
+      scaled_matrices(const ElementStepInput &e, Matrix6 &K, Matrix6 &C)
+      {
+        const double area = 0.5 * ((e.x[1] - e.x[0]) * (e.y[2] - e.y[0]) -
+                                   (e.x[2] - e.x[0]) * (e.y[1] - e.y[0]));
+        if (!(area > 0.) || !(e.node_mass > 0.))
+          return false;
+        element_matrices(e.x, e.y, e.lame, K, C);
+        // joints, twice their one-sided matrix
+        // L / 6 [[2, 1], [1, 2]] (x) (k_n n n^T + k_t t t^T)
+        for (unsigned int edge = 0; edge < 3; ++edge)
           {
-            K[r][c] *= inv_m;
-            C[r][c] *= e.viscosity * inv_m;
+            const double kn = e.edge_joint_normal_stiffness[edge];
+            const double kt = e.edge_joint_tangential_stiffness[edge];
+            if (!(kn > 0.) && !(kt > 0.))
+              continue;
+            const unsigned int a = edge, b = (edge + 1) % 3;
+            const double       L = std::hypot(e.x[b] - e.x[a], e.y[b] - e.y[a]);
+            const double t[2] = {(e.x[b] - e.x[a]) / L, (e.y[b] - e.y[a]) / L};
+            const double n[2] = {t[1], -t[0]};
+            for (unsigned int d = 0; d < 2; ++d)
+              for (unsigned int f = 0; f < 2; ++f)
+                {
+                  const double k = kn * n[d] * n[f] + kt * t[d] * t[f];
+                  K[2 * a + d][2 * a + f] += 2. * k * L / 3.;
+                  K[2 * b + d][2 * b + f] += 2. * k * L / 3.;
+                  K[2 * a + d][2 * b + f] += k * L / 3.;
+                  K[2 * b + d][2 * a + f] += k * L / 3.;
+                }
           }
-      const auto stable = [&](const double dt) {
+        for (unsigned int i = 0; i < 6; ++i)
+          K[i][i] += e.node_contact_stiffness;
+        const double inv_m = 1. / e.node_mass;
+        for (unsigned int r = 0; r < 6; ++r)
+          for (unsigned int c = 0; c < 6; ++c)
+            {
+              K[r][c] *= inv_m;
+              C[r][c] *= e.viscosity * inv_m;
+            }
+        return true;
+      }
+
+      /** 4 I - 2 dt C - dt^2 K positive definite (K, C scaled by 1/m). */
+      bool
+      stable_with(const Matrix6 &K, const Matrix6 &C, const double dt)
+      {
         Matrix6 A;
         for (unsigned int r = 0; r < 6; ++r)
           for (unsigned int c = 0; c < 6; ++c)
             A[r][c] =
               (r == c ? 4. : 0.) - 2. * dt * C[r][c] - dt * dt * K[r][c];
         return positive_definite(A);
+      }
+    } // namespace
+
+    bool
+    stable_at(const ElementStepInput &e, const double dt)
+    {
+      Matrix6 K, C;
+      return scaled_matrices(e, K, C) && stable_with(K, C, dt);
+    }
+
+    double
+    critical_time_step(const ElementStepInput &e)
+    {
+      Matrix6 K, C;
+      if (!scaled_matrices(e, K, C))
+        return 0.;
+      const auto stable = [&](const double dt) {
+        return stable_with(K, C, dt);
       };
       const double k_norm = row_sum_norm(K), c_norm = row_sum_norm(C);
       if (!(k_norm > 0.) && !(c_norm > 0.))

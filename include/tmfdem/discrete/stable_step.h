@@ -88,6 +88,15 @@ namespace tmfdem
     critical_time_step(const ElementStepInput &element);
 
     /**
+     * True when the step @p dt [s] satisfies the condition of
+     * critical_time_step() for @p element, i.e. dt does not exceed its
+     * critical step (one Cholesky test instead of a bisection: what the
+     * deformed-mesh guard asks of every element).
+     */
+    bool
+    stable_at(const ElementStepInput &element, const double dt);
+
+    /**
      * Damping ratio [-] of the highest free mode of the element (no
      * joints) per unit viscosity [1/(Pa s)]: zeta_1 = phi^T C_1 phi / (2 m
      * omega) with K_e phi = m omega^2 phi, omega the largest frequency and
