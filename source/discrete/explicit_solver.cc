@@ -1018,16 +1018,7 @@ namespace tmfdem
 
               double f_contact[6] = {0., 0., 0., 0., 0., 0.};
               if (have_contact)
-                for (unsigned int p = element_pair_start[e];
-                     p < element_pair_start[e + 1];
-                     ++p)
-                  {
-                    const unsigned int entry = element_pair_entries[p];
-                    const double      *pf =
-                      &pair_force[12 * (entry / 2) + 6 * (entry % 2)];
-                    for (unsigned int i = 0; i < 6; ++i)
-                      f_contact[i] += pf[i];
-                  }
+                add_contact_forces(e, f_contact);
               for (unsigned int k = 0; k < 3; ++k)
                 {
                   const unsigned int node = n0 + k;
@@ -1508,16 +1499,7 @@ namespace tmfdem
             if (!pairs.empty())
               {
                 double f[6] = {0., 0., 0., 0., 0., 0.};
-                for (unsigned int p = element_pair_start[e];
-                     p < element_pair_start[e + 1];
-                     ++p)
-                  {
-                    const unsigned int entry = element_pair_entries[p];
-                    const double      *pf =
-                      &pair_force[12 * (entry / 2) + 6 * (entry % 2)];
-                    for (unsigned int i = 0; i < 6; ++i)
-                      f[i] += pf[i];
-                  }
+                add_contact_forces(e, f);
                 double contact = 0., perimeter = 0.;
                 for (unsigned int k = 0; k < 3; ++k)
                   {

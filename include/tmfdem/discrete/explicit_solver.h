@@ -208,6 +208,21 @@ namespace tmfdem
       /** |out-of-balance force| / |internal element forces| over the free
        *  node components after the last step (viscous force left out) [-]. */
       double relative_unbalanced_force = 0.;
+      /** Adds the contact forces of all pairs of element @p e to its six
+       *  nodal components @p f [N/m] (pair order: deterministic). */
+      void
+      add_contact_forces(const unsigned int e, double *f) const
+      {
+        for (unsigned int p = element_pair_start[e];
+             p < element_pair_start[e + 1];
+             ++p)
+          {
+            const unsigned int entry = element_pair_entries[p];
+            const double *pf = &pair_force[12 * (entry / 2) + 6 * (entry % 2)];
+            for (unsigned int i = 0; i < 6; ++i)
+              f[i] += pf[i];
+          }
+      }
       /** Quasi-static coupling: relaxations that ended at the step cap. */
       unsigned int relaxations_at_cap = 0;
       /** Quasi-static coupling: length of the current thermal step [s]. */
