@@ -2,8 +2,8 @@
 """Tutorial lesson 1: free and restrained thermal expansion of a sheet.
 
 Runs doc/tutorial/prm/lesson-01-free.prm at dT = +100 and -100 C and
-doc/tutorial/prm/lesson-01-restrained.prm at dT = +100, -100 C (plane
-stress) and +100 C (plane strain), and checks, with references fixed by the
+doc/tutorial/prm/lesson-01-restrained.prm at dT = +100 C in plane stress and
+in plane strain, and checks, with references fixed by the
 closed forms (small strain, tension positive):
   free sheet:       eps_xx = eps_yy = alpha dT at every probe, relative
                     error < 1e-9 (the exact displacement is linear and lies
@@ -38,7 +38,7 @@ for dT in (100.0, -100.0):
                 f"< 1e-9 E alpha |dT| = {bound:.2e} Pa")
     results["free"][dT] = strains["eps_xx (right, corner)"][0]
 
-for idealisation, dT in (("plane stress", 100.0), ("plane stress", -100.0), ("plane strain", 100.0)):
+for idealisation, dT in (("plane stress", 100.0), ("plane strain", 100.0)):
     tag = idealisation.replace(" ", "_")
     folder = f"{args.out}/restrained_{tag}_dT{dT:+.0f}"
     run(args.tmfdem, prm("lesson-01-restrained.prm"), folder, f"Mechanics/Temperature={dT}",
