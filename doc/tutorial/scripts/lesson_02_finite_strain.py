@@ -102,7 +102,7 @@ if args.plot:
     a2.axhline(0.01, color="k", lw=0.6)
     a2.set_xlabel(r"$s = \alpha\,\Delta T$")
     a2.set_ylabel(r"$d = \sigma_{finite}/\sigma_{small} - 1$")
-    a2.set_title("relative difference (dashed: d = 1 %)")
+    a2.set_title("relative difference (dashed: s where d = 1 %)")
     a2.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(args.plot, dpi=110)
