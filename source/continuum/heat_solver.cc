@@ -1161,6 +1161,92 @@ namespace tmfdem
     write_summary(0, time, progress.elapsed(), balance, cycles);
   }
 
+  // ------------------------------------------------------------ stepping
+  void
+  HeatSolver::start_stepping()
+  {
+    stepping                           = SteppingState();
+    stepping.time                      = parameters.time.start_time;
+    stepping.dirichlet_depends_on_time = false;
+    for (const auto &functions : boundary_functions)
+      stepping.dirichlet_depends_on_time |=
+        functions.time_dependent_temperature;
+  }
+
+  bool
+  HeatSolver::in_rannacher_start() const
+  {
+    return parameters.time.theta < 1. &&
+           stepping.step < parameters.time.rannacher_steps;
+  }
+
+  void
+  HeatSolver::advance(const double dt)
+  {
+    theta                 = in_rannacher_start() ? 1. : parameters.time.theta;
+    const double time     = stepping.time;
+    const double new_time = time + dt;
+    const bool rebuild = !stepping.matrix_is_current || time_dependent_robin ||
+                         std::abs(dt - stepping.last_dt) > 1e-12 * dt ||
+                         theta != stepping.last_theta;
+    if (stepping.dirichlet_depends_on_time)
+      make_constraints(new_time);
+    owned_old_solution = owned_solution;
+    if (rebuild || stepping.dirichlet_depends_on_time)
+      assemble_matrix_and_lifting(new_time, 1., theta * dt, rebuild);
+    assemble_rhs(time, new_time, false);
+    solve(rebuild);
+    accumulate_heat_balance(stepping.balance);
+    stepping.matrix_is_current = true;
+    stepping.time              = new_time;
+    stepping.last_dt           = dt;
+    stepping.last_theta        = theta;
+    ++stepping.step;
+  }
+
+  void
+  HeatSolver::prepare_coupled_stepping()
+  {
+    if (parameters.time.mode != TimeSteppingParameters::Mode::transient)
+      throw InputError("Time stepping/Mode = steady: the continuum heat as a "
+                       "temperature source steps in time with the coupled "
+                       "model; allowed is transient.");
+    if (parameters.adaptivity.enable)
+      throw InputError("Adaptive refinement/Enable = true: the continuum "
+                       "heat as a temperature source keeps the mesh of the "
+                       "coupled model; allowed is false.");
+    make_mesh();
+    setup_dofs();
+    set_initial_condition(false);
+    compute_cell_matrices();
+    start_stepping();
+  }
+
+  void
+  HeatSolver::restore_state(const double               time,
+                            const unsigned long        steps,
+                            const HeatBalance         &balance,
+                            const std::vector<double> &values)
+  {
+    if (values.size() != dof_handler->n_dofs())
+      throw InputError("checkpoint: " + std::to_string(values.size()) +
+                       " continuum temperatures for " +
+                       std::to_string(dof_handler->n_dofs()) +
+                       " DoFs; resume with the mesh and Heat solver/Degree "
+                       "of the run that wrote it.");
+    for (const auto dof : locally_owned_dofs)
+      owned_solution(dof) = values[dof];
+    owned_solution.compress(VectorOperation::insert);
+    owned_old_solution         = owned_solution;
+    solution                   = owned_solution;
+    stepping.time              = time;
+    stepping.step              = steps;
+    stepping.balance           = balance;
+    stepping.matrix_is_current = false;
+    stepping.last_dt           = -1.;
+    stepping.last_theta        = -1.;
+  }
+
   void
   HeatSolver::run_transient()
   {
@@ -1198,78 +1284,58 @@ namespace tmfdem
                                    }),
                        output_times.end());
 
-    bool time_dependent_dirichlet = false;
-    for (const auto &functions : boundary_functions)
-      time_dependent_dirichlet |= functions.time_dependent_temperature;
-
     ProgressReporter progress(parameters.output.progress_interval,
                               start,
                               end,
                               Utilities::MPI::this_mpi_process(communicator) ==
                                 0);
-    HeatBalance      balance;
-    double           time = start, last_dt = -1., last_theta = -1.;
-    unsigned long    step              = 0;
-    bool             matrix_is_current = false;
+    start_stepping();
+    double &time = stepping.time;
     write_output(time);
     for (const double output_time : output_times)
       while (time < output_time - time_tolerance)
         {
-          double dt = time_parameters.time_step;
           // Rannacher start of Crank-Nicolson: backward Euler half steps
-          theta = time_parameters.theta;
-          if (theta < 1. && step < time_parameters.rannacher_steps)
-            {
-              theta = 1.;
-              dt *= 0.5;
-            }
+          double dt = time_parameters.time_step;
+          if (in_rannacher_start())
+            dt *= 0.5;
           // land on the output time; never leave a sliver of a step
           if (time + dt > output_time - 1e-3 * dt)
             dt = output_time - time;
-          const double new_time = time + dt;
-          const bool   rebuild  = !matrix_is_current || time_dependent_robin ||
-                               std::abs(dt - last_dt) > 1e-12 * dt ||
-                               theta != last_theta;
-          if (time_dependent_dirichlet)
-            make_constraints(new_time);
-          owned_old_solution = owned_solution;
-          if (rebuild || time_dependent_dirichlet)
-            assemble_matrix_and_lifting(new_time, 1., theta * dt, rebuild);
-          assemble_rhs(time, new_time, false);
-          solve(rebuild);
-          accumulate_heat_balance(balance);
-          matrix_is_current = true;
-          time       = std::abs(new_time - output_time) < time_tolerance ?
-                         output_time :
-                         new_time;
-          last_dt    = dt;
-          last_theta = theta;
-          ++step;
+          advance(dt);
+          if (std::abs(time - output_time) < time_tolerance)
+            time = output_time;
           if (parameters.adaptivity.enable &&
-              step % parameters.adaptivity.interval == 0)
+              stepping.step % parameters.adaptivity.interval == 0)
             {
               adapt_mesh(true);
               make_constraints(time);
-              matrix_is_current = false;
+              stepping.matrix_is_current = false;
             }
           if (std::abs(time - output_time) < time_tolerance)
             write_output(output_time);
-          progress.update(step, time);
+          progress.update(stepping.step, time);
           if (stop_requested_on_any_rank(communicator))
             {
               // finish cleanly: the state now as an extra output, the
               // summary so far (no checkpoint: continuum runs restart)
               if (std::abs(time - output_time) >= time_tolerance)
                 write_output(time);
-              write_summary(step, time, progress.elapsed(), balance, {});
-              throw StopRequested("stopped by " + stop_signal_name() +
-                                  " at t = " + Utilities::to_string(time) +
-                                  " s after step " + std::to_string(step) +
-                                  "; outputs so far in " +
-                                  parameters.output.directory +
-                                  " (continuum runs cannot be resumed).");
+              write_summary(stepping.step,
+                            time,
+                            progress.elapsed(),
+                            stepping.balance,
+                            {});
+              throw StopRequested(
+                "stopped by " + stop_signal_name() +
+                " at t = " + Utilities::to_string(time) + " s after step " +
+                std::to_string(stepping.step) + "; outputs so far in " +
+                parameters.output.directory +
+                " (continuum runs cannot be resumed).");
             }
         }
+    const unsigned long step    = stepping.step;
+    const HeatBalance  &balance = stepping.balance;
     write_summary(step, time, progress.elapsed(), balance, {});
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       std::cout << "done: " << step << " steps to t = " << time << " s, "

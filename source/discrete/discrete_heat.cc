@@ -19,27 +19,19 @@ namespace tmfdem
 {
   namespace discrete
   {
-    double
-    HeatBalance::imbalance() const
+    namespace
     {
-      double in = source_heat + contact_heat;
-      for (const auto &[id, q] : boundary_heat_in)
-        in += q;
-      return in - stored_heat;
-    }
-
-    double
-    HeatBalance::scale() const
-    {
-      double s = std::max({std::abs(source_heat),
-                           std::abs(contact_heat),
-                           contact_exchange,
-                           std::abs(stored_heat),
-                           1e-30});
-      for (const auto &[id, q] : boundary_heat_in)
-        s = std::max(s, std::abs(q));
-      return s;
-    }
+      const bool registered = register_temperature_source(
+        "discrete heat",
+        "the discrete layer's own heat conduction: P1 in every triangle, "
+        "conducting joints that stop conducting when they break, contact "
+        "heat, boundary conditions (Discrete heat subsection)",
+        [](const Parameters &parameters,
+           DiscreteModel    &model,
+           MPI_Comm) -> std::unique_ptr<TemperatureSource> {
+          return std::make_unique<DiscreteHeat>(parameters, model);
+        });
+    } // namespace
 
     template <typename Function>
     void

@@ -37,6 +37,13 @@ namespace tmfdem
     {
       if (input_checked)
         return;
+      if (parameters.discrete_heat.temperature_source != "discrete heat")
+        throw InputError(
+          "Discrete heat/Temperature source = " +
+          parameters.discrete_heat.temperature_source +
+          " applies to Model = discrete thermo-mechanics; Model = discrete "
+          "heat is the discrete heat itself (for the continuum heat alone use "
+          "Model = continuum heat); allowed here is discrete heat.");
       build_discrete_mesh(parameters,
                           communicator,
                           triangulation,

@@ -6,6 +6,7 @@
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/discrete/cohesive_law.h>
 #include <tmfdem/discrete/discrete_parameters.h>
+#include <tmfdem/discrete/temperature_source.h>
 
 namespace tmfdem
 {
@@ -225,6 +226,29 @@ namespace tmfdem
   DiscreteHeatParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Discrete heat");
+    std::string source_names;
+    for (const auto &name : discrete::temperature_source_names())
+      source_names += (source_names.empty() ? "" : "|") + name;
+    prm.declare_entry(
+      "Temperature source",
+      "discrete heat",
+      Patterns::Selection(source_names),
+      "discrete thermo-mechanics: where the nodal temperatures that load the "
+      "triangles come from. " +
+        discrete::temperature_source_descriptions() +
+        "The continuum source solves on the unbroken reference mesh: it does "
+        "not see cracks or contacts (see Continuum source at broken "
+        "joints).");
+    prm.declare_entry(
+      "Continuum source at broken joints",
+      "stop",
+      Patterns::Selection("stop|accept"),
+      "Temperature source = continuum heat conducts across every joint as if "
+      "intact and exchanges no contact heat. stop: the run stops (exit 2, "
+      "outputs so far and a checkpoint kept) at the first thermal step "
+      "after a joint breaks, where the temperature would start to be wrong "
+      "near the crack; accept: it goes on, warns once on stderr and "
+      "summary.json records continuum_heat_across_cracks = true.");
     prm.declare_entry("Time integration",
                       "implicit",
                       Patterns::Selection("implicit|explicit"),
@@ -331,6 +355,9 @@ namespace tmfdem
   DiscreteHeatParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Discrete heat");
+    temperature_source = prm.get("Temperature source");
+    accept_continuum_source_at_broken_joints =
+      prm.get("Continuum source at broken joints") == "accept";
     time_integration         = prm.get("Time integration");
     joint_conductance_factor = prm.get_double("Joint conductance factor");
     contact_conductance      = prm.get_double("Contact conductance");

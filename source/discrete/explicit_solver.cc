@@ -115,7 +115,11 @@ namespace tmfdem
       time = parameters.time.start_time;
       if (with_heat)
         {
-          heat = std::make_unique<DiscreteHeat>(parameters, model);
+          heat = create_temperature_source(
+            parameters.discrete_heat.temperature_source,
+            parameters,
+            model,
+            communicator);
           heat->initialise(time);
           const unsigned int n =
             parameters.discrete_heat.mechanical_steps_per_thermal_step;
@@ -1198,6 +1202,7 @@ namespace tmfdem
           // one thermal step of physical time (M -> T: current geometry,
           // joints, contacts) and the new thermal stretch (T -> M) ...
           const double dt = quasi_static_thermal_step();
+          check_cracks_seen_by_heat();
           heat->update_contact_pairs();
           heat->step(time, dt);
           time += dt;
@@ -1268,6 +1273,7 @@ namespace tmfdem
       if (with_heat && step_number % steps_per_thermal_step == 0)
         {
           // M -> T: current geometry, broken joints, contacts
+          check_cracks_seen_by_heat();
           heat->update_contact_pairs();
           heat->step(thermal_time, time - thermal_time);
           thermal_time = time;
@@ -1275,6 +1281,33 @@ namespace tmfdem
           // T -> M
           update_thermal_stretch();
         }
+    }
+
+    void
+    ExplicitSolver::check_cracks_seen_by_heat()
+    {
+      if (heat->sees_cracks() || heat_across_cracks)
+        return;
+      const unsigned int broken = model.n_broken_joints();
+      if (broken == 0)
+        return;
+      const std::string what =
+        "Discrete heat/Temperature source = " + heat->name() + ": " +
+        std::to_string(broken) +
+        " joint(s) broken by t = " + Utilities::to_string(time) +
+        " s, and this source conducts across them as if intact (no crack, "
+        "no contact heat)";
+      if (!parameters.discrete_heat.accept_continuum_source_at_broken_joints)
+        guard_failure(what +
+                      "; the temperature near the cracks would be wrong from "
+                      "here on. Set Discrete heat/Continuum source at broken "
+                      "joints = accept to go on regardless, or Temperature "
+                      "source = discrete heat.");
+      heat_across_cracks = true;
+      std::cerr << "[tmfdem] warning: " << what
+                << "; going on (Continuum source at broken joints = "
+                   "accept); summary.json records "
+                   "continuum_heat_across_cracks.\n";
     }
 
     double
@@ -1713,6 +1746,8 @@ namespace tmfdem
             rates.add(std::to_string(id), q);
           hb.add("boundary_heat_rate_last_step", rates);
           summary.add("coupling", parameters.discrete_heat.coupling)
+            .add("temperature_source", heat->name())
+            .add("continuum_heat_across_cracks", heat_across_cracks)
             .add("thermal_steps", static_cast<long long>(n_thermal_steps))
             .add("last_relaxation_steps", last_relaxation_steps)
             .add("relaxations_at_cap", relaxations_at_cap)

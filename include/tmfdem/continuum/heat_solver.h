@@ -91,7 +91,6 @@ namespace tmfdem
     double
     memory_estimate() const;
 
-  private:
     /** Heat that crossed each boundary id and came from sources [J/m]. */
     struct HeatBalance
     {
@@ -99,6 +98,57 @@ namespace tmfdem
       double                               source_heat = 0.;
       double                               stored_heat = 0.;
     };
+
+    /**
+     * @name Stepping by a coupled model
+     * A model that takes its temperature from this solver (the discrete
+     * layer with `Discrete heat/Temperature source = continuum heat`) builds
+     * the mesh, DoFs, matrices and the initial temperature with
+     * prepare_coupled_stepping() and then calls advance() at its own thermal
+     * steps; this solver writes no outputs then. run_transient() uses the
+     * same advance().
+     * @{
+     */
+    /** Mesh, DoFs, matrices, initial temperature at Start time; InputError
+     *  for steady mode or adaptive refinement. */
+    void
+    prepare_coupled_stepping();
+    /** True while a Crank-Nicolson run takes its backward Euler start
+     *  (Time stepping/Rannacher steps half steps). */
+    bool
+    in_rannacher_start() const;
+    /** One theta step of @p dt [s] from current_time() (backward Euler
+     *  during the Rannacher start); keeps the heat balance. */
+    void
+    advance(const double dt);
+    /** Time of the current temperature [s]. */
+    double
+    current_time() const
+    {
+      return stepping.time;
+    }
+    /** Heat balance since the start [J/m]. */
+    const HeatBalance &
+    heat_balance() const
+    {
+      return stepping.balance;
+    }
+    /** Steps taken so far. */
+    unsigned long
+    steps_taken() const
+    {
+      return stepping.step;
+    }
+    /** Replaces the temperature (a restart) at @p time [s], with the steps
+     *  taken and the heat balance so far; @p values are the DoF values. */
+    void
+    restore_state(const double               time,
+                  const unsigned long        steps,
+                  const HeatBalance         &balance,
+                  const std::vector<double> &values);
+    /** @} */
+
+  private:
     /** Per boundary condition: functions for its value entries. */
     struct BoundaryFunctions
     {
@@ -212,6 +262,9 @@ namespace tmfdem
     write_output(const double time);
     void
     run_transient();
+    /** Stepping state at Start time (time, step count, balance). */
+    void
+    start_stepping();
     void
     run_steady();
     void
@@ -304,6 +357,19 @@ namespace tmfdem
     std::unique_ptr<SolutionSeries>   solution_series;
     unsigned long                     total_linear_iterations = 0;
     std::function<void(const double)> output_hook;
+
+    /** Where the time stepping stands. */
+    struct SteppingState
+    {
+      double        time              = 0.;  ///< of the current solution [s]
+      double        last_dt           = -1.; ///< of the assembled matrix [s]
+      double        last_theta        = -1.; ///< of the assembled matrix
+      unsigned long step              = 0;
+      bool          matrix_is_current = false;
+      bool          dirichlet_depends_on_time = false;
+      HeatBalance   balance;
+    };
+    SteppingState stepping;
   };
 } // namespace tmfdem
 

@@ -24,6 +24,7 @@
 #include <memory>
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/temperature_source.h>
 #include <vector>
 
 namespace tmfdem
@@ -33,26 +34,9 @@ namespace tmfdem
 
   namespace discrete
   {
-    /** Heat that crossed each boundary id, joints and contacts, and the
-     *  stored heat [J/m] (per unit thickness). */
-    struct HeatBalance
-    {
-      std::map<types::boundary_id, double> boundary_heat_in;
-      double                               source_heat  = 0.;
-      double                               contact_heat = 0.; ///< sums to 0
-      /** Heat that crossed contacts, sum over pairs of |Q| dt [J/m]. */
-      double contact_exchange = 0.;
-      double stored_heat      = 0.;
-      /** in - stored [J/m]. */
-      double
-      imbalance() const;
-      /** Largest of the terms [J/m]. */
-      double
-      scale() const;
-    };
-
-    /** The thermal state and operators of the discrete layer. */
-    class DiscreteHeat
+    /** The thermal state and operators of the discrete layer: the
+     *  temperature source `discrete heat`. */
+    class DiscreteHeat : public TemperatureSource
     {
     public:
       /**
@@ -61,12 +45,24 @@ namespace tmfdem
        * InputError for boundary ids not on the mesh.
        */
       DiscreteHeat(const Parameters &parameters, DiscreteModel &model);
-      ~DiscreteHeat();
+      ~DiscreteHeat() override;
+
+      std::string
+      name() const override
+      {
+        return "discrete heat";
+      }
+
+      bool
+      sees_cracks() const override
+      {
+        return true;
+      }
 
       /** Threads of the heat rates and the contact search (results do not
        *  depend on it). */
       void
-      set_threads(const unsigned int threads)
+      set_threads(const unsigned int threads) override
       {
         n_threads = std::max(1u, threads);
       }
@@ -75,39 +71,39 @@ namespace tmfdem
        *  positions) at every node, Dirichlet nodes included: the Dirichlet
        *  values act from the first step on. */
       void
-      initialise(const double time);
+      initialise(const double time) override;
 
       /** Stable explicit step of the lumped system [s]. */
       double
-      stable_time_step() const;
+      stable_time_step() const override;
 
       /** Advance from @p time by @p time_step with the method of `Discrete
        *  heat/Time integration`. */
       void
-      step(const double time, const double time_step);
+      step(const double time, const double time_step) override;
 
       /** Nodal temperatures [C]. */
       Vector<double> &
-      temperature()
+      temperature() override
       {
         return T;
       }
       const Vector<double> &
-      temperature() const
+      temperature() const override
       {
         return T;
       }
 
       /** Heat balance so far. */
       const HeatBalance &
-      balance() const
+      balance() const override
       {
         return heat_balance;
       }
 
       /** True for the implicit (backward Euler) method. */
       bool
-      implicit() const
+      implicit() const override
       {
         return use_implicit;
       }
@@ -126,7 +122,7 @@ namespace tmfdem
        * the geometry or the joints changed; done once by initialise().
        */
       void
-      update_contact_pairs();
+      update_contact_pairs() override;
 
       /** Number of overlapping (conducting) contact pairs. */
       unsigned int
@@ -137,7 +133,7 @@ namespace tmfdem
 
       /** Heat rate through each boundary id in the last step [W/m]. */
       const std::map<types::boundary_id, double> &
-      last_boundary_rate() const
+      last_boundary_rate() const override
       {
         return last_rate;
       }
@@ -158,10 +154,10 @@ namespace tmfdem
       /** Appends the thermal state (temperatures, heat balance, last rates)
        *  to a checkpoint. */
       void
-      save(CheckpointWriter &out) const;
+      save(CheckpointWriter &out) const override;
       /** Restores what save() wrote; InputError on a size mismatch. */
       void
-      load(CheckpointReader &in);
+      load(CheckpointReader &in) override;
 
     private:
       /** Heat rates into each node from conduction, joints, boundary

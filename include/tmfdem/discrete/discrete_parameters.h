@@ -60,6 +60,10 @@ namespace tmfdem
   /** Subsection `Discrete heat`. */
   struct DiscreteHeatParameters
   {
+    /** Name of a registered discrete::TemperatureSource. */
+    std::string temperature_source = "discrete heat";
+    /** Temperature source = continuum heat goes on past broken joints. */
+    bool         accept_continuum_source_at_broken_joints = false;
     std::string  time_integration         = "implicit"; ///< implicit|explicit
     double       joint_conductance_factor = 1000.;      ///< beta [-]
     double       contact_conductance      = 1e4;        ///< h_c [W/(m^2 K)]

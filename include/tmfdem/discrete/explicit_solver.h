@@ -22,11 +22,11 @@
 #include <tmfdem/base/simulation.h>
 #include <tmfdem/discrete/cohesive_law.h>
 #include <tmfdem/discrete/contact.h>
-#include <tmfdem/discrete/discrete_heat.h>
 #include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_model.h>
 #include <tmfdem/discrete/solid.h>
 #include <tmfdem/discrete/stable_step.h>
+#include <tmfdem/discrete/temperature_source.h>
 #include <vector>
 
 namespace tmfdem
@@ -188,11 +188,18 @@ namespace tmfdem
       std::vector<double>        viscosity; ///< eta per element [Pa s]
 
       // heat (thermo-mechanical runs)
-      bool                          with_heat = false;
-      std::unique_ptr<DiscreteHeat> heat;
-      unsigned int                  steps_per_thermal_step = 1;
-      bool                          quasi_static           = false;
-      unsigned int                  last_relaxation_steps  = 0;
+      bool with_heat = false;
+      /** The temperature source (Discrete heat/Temperature source). */
+      std::unique_ptr<TemperatureSource> heat;
+      /** A source blind to cracks went on past a broken joint (accepted). */
+      bool heat_across_cracks = false;
+      /** Before a thermal step: stop (or warn once) if joints are broken and
+       *  the temperature source does not see cracks. */
+      void
+                   check_cracks_seen_by_heat();
+      unsigned int steps_per_thermal_step = 1;
+      bool         quasi_static           = false;
+      unsigned int last_relaxation_steps  = 0;
       /** Quasi-static coupling: strength utilisation of the most loaded
        *  undamaged joint after the last relaxation [-]. */
       double joint_utilisation = 0.;
