@@ -141,7 +141,8 @@ PAIRS = {
         line="radial", abscissa="r", times="final",
         quantities=["T", "ux", "uy", "srr", "stt"], polar=(0.0, 0.0),
         scales={"T": (100.0, "wall temperature difference 100 C"),
-                "ux": (None, "max |u_x| (continuum)"), "uy": (None, "max |u_y| (continuum)"),
+                "ux": ("ux", "max |u_x| = max |u_r| on the line (continuum)"),
+                "uy": ("ux", "max |u_x| = max |u_r| on the line (continuum)"),
                 "srr": ("stt", "max |sigma_theta| (continuum)"),
                 "stt": ("stt", "max |sigma_theta| (continuum)")},
         bounds=[
@@ -360,7 +361,8 @@ def write_tables(case, pair, rows, out):
         lines.append(
             f"| {NAMES[r['quantity']]} [{r['unit']}] | {t} | {r['points']} | "
             f"{fmt(r['max_abs_difference'])} | ({fmt(r['at_x'], 3)}, {fmt(r['at_y'], 3)}) | "
-            f"{fmt(r['scale'])} ({r['scale_is']}) | {fmt(100 * r['relative'])} % | {bound} | "
+            f"{fmt(r['scale'])} ({r['scale_is'].replace('|', chr(92) + '|')}) | "
+            f"{fmt(100 * r['relative'])} % | {bound} | "
             f"{r['status']} |")
     notes = sorted({r["bound_from"] for r in rows if r["bound_from"]})
     if notes:
