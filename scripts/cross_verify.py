@@ -79,9 +79,13 @@ def Bound(fields, limit, relative, times=None, note=""):
 #                        "max relative"; scale None = max |continuum| of
 #                        that quantity at that time
 #   bounds               Bound(...) list: the DISCRETE targets of
-#                        doc/verification.md (the continuum solutions are
-#                        10-100 times more accurate, so the difference is
-#                        the discrete error to within that)
+#                        doc/verification.md, taken as bounds on the
+#                        difference itself (the continuum twins' own errors
+#                        are far below the discrete targets: the plate's
+#                        P2 error is 0.015 C, the sheets' 2e-12, the
+#                        cylinder's T 0.18 C and stresses 0.2 %; so a
+#                        discrete run within its target passes, one
+#                        outside it by more than that fails)
 #   requires             prm entry the pair needs ("Subsection/Entry"), or None
 # Quantities without a bound are reported, not asserted.
 # ---------------------------------------------------------------------------
@@ -358,12 +362,13 @@ def write_tables(case, pair, rows, out):
         bound = "-" if r["bound"] is None else (
             f"{fmt(r['bound'])} {r['unit']}" + (f" ({fmt(100 * r['bound_relative'])} %)"
                                                 if r["bound_relative"] else ""))
+        where = (f"({fmt(r['at_x'], 3)}, {fmt(r['at_y'], 3)})"
+                 if r["max_abs_difference"] > 0 else "-")
+        scale_is = r["scale_is"].replace("|", "\\|")
         lines.append(
             f"| {NAMES[r['quantity']]} [{r['unit']}] | {t} | {r['points']} | "
-            f"{fmt(r['max_abs_difference'])} | ({fmt(r['at_x'], 3)}, {fmt(r['at_y'], 3)}) | "
-            f"{fmt(r['scale'])} ({r['scale_is'].replace('|', chr(92) + '|')}) | "
-            f"{fmt(100 * r['relative'])} % | {bound} | "
-            f"{r['status']} |")
+            f"{fmt(r['max_abs_difference'])} | {where} | {fmt(r['scale'])} ({scale_is}) | "
+            f"{fmt(100 * r['relative'])} % | {bound} | {r['status']} |")
     notes = sorted({r["bound_from"] for r in rows if r["bound_from"]})
     if notes:
         lines += [""] + [f"- bound: {n}" for n in notes]
@@ -500,7 +505,8 @@ def main(argv):
         t = "final" if pair["times"] == "final" else f"t = {r['time']:g} s"
         message = (f"{case}, {NAMES[r['quantity']]}, {t}: max |discrete - continuum| = "
                    f"{r['max_abs_difference']:.4g} {r['unit']} ({100 * r['relative']:.4g} % of "
-                   f"{r['scale_is']}) <= {r['bound']:.4g} {r['unit']}")
+                   f"{r['scale_is']}) {'<=' if r['status'] == 'pass' else '>'} bound "
+                   f"{r['bound']:.4g} {r['unit']}")
         print(("PASS: " if r["status"] == "pass" else "FAIL: ") + message, flush=True)
         failed += r["status"] != "pass"
     print(f"wrote {out}/differences.csv, differences.md" + (f", {png}" if png else ""))
