@@ -320,8 +320,9 @@ def compare(pair, discrete, continuum, d_path, c_path):
                 scale = max(abs(c[k][2][ref]) for k in keys)
             bound = None
             for b in pair["bounds"]:
-                if q in b["fields"] and (b["times"] is None or
-                                         any(abs(label - t) <= 1e-9 * max(1, t) for t in b["times"])):
+                at_time = b["times"] is None or any(abs(label - t) <= 1e-9 * max(1, t)
+                                                    for t in b["times"])
+                if q in b["fields"] and at_time:
                     bound = b
             relative = worst / scale if scale > 0 else float("inf")
             status, limit_abs = "reported", None
