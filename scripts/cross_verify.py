@@ -19,7 +19,8 @@ there (no vtu interpolation is involved):
   - discrete: T and u are the P1 nodal values of the triangle that
     contains the point in the reference configuration, interpolated with
     its barycentric coordinates (the field is discontinuous across joints:
-    a point on a shared edge takes one of the triangles, the jump there is
+    a point on a shared edge takes the first such triangle in element
+    order, the jump there is
     O(1/penalty) for u and O(1/beta) for T); the stresses are the
     vertex-recovered stresses (least-squares over the triangles around a
     vertex, walls from their known traction and stretch; doc/theory.md)
