@@ -6,6 +6,7 @@ points and times, and tabulate the differences.
     scripts/cross_verify.py CASE [--build build-release] [--out DIR]
                             [--set "Subsection/Entry=value" ...]
                             [--discrete-set ...] [--continuum-set ...]
+    scripts/cross_verify.py all [options]     every pair but the pending ones
     scripts/cross_verify.py --list
 
 CASE is a key of PAIRS below (`--list` prints them): it names the discrete
@@ -432,13 +433,15 @@ def main(argv):
     parser = argparse.ArgumentParser(
         description="Run a discrete case and its deal.II continuum twin, sample both on the "
                     "same probes and lines, and tabulate the differences.")
-    parser.add_argument("case", nargs="?", help="a key of PAIRS (see --list)")
+    parser.add_argument("case", nargs="?",
+                        help="a key of PAIRS (see --list), or all: every runnable pair")
     parser.add_argument("--list", action="store_true", help="list the pairs and exit")
     parser.add_argument("--build", default="build-release",
                         help="folder with the tmfdem binary (default build-release)")
     parser.add_argument("--prm-dir", default=os.path.join(ROOT, "prm"),
                         help="folder of the prm files (default prm/)")
-    parser.add_argument("--out", help="output folder (default output/cross_verify/CASE)")
+    parser.add_argument("--out", help="output folder (default output/cross_verify/CASE; "
+                                      "for all: output/cross_verify)")
     parser.add_argument("--set", action="append", default=[], metavar="ENTRY=VALUE",
                         help="--set for both runs (repeatable)")
     parser.add_argument("--discrete-set", action="append", default=[], metavar="ENTRY=VALUE",
@@ -457,6 +460,22 @@ def main(argv):
     if not args.case:
         parser.print_usage(sys.stderr)
         raise CrossVerifyError(2, "name a case (--list shows them)")
+    if args.case == "all":
+        if args.out is None:
+            args.out = os.path.join("output", "cross_verify")
+        root, status, tables = os.path.abspath(args.out), 0, []
+        for case, pair in PAIRS.items():
+            if pair.get("pending"):
+                print(f"skipped {case}: pending ({pair['pending']})")
+                continue
+            args.out = os.path.join(root, case)
+            code, text = run_pair(case, args)
+            status = max(status, code)
+            tables.append(text)
+        with open(os.path.join(root, "differences.md"), "w") as f:
+            f.write("\n".join(tables))
+        print(f"wrote {root}/differences.md (all pairs)")
+        return status
     case = args.case
     if case not in PAIRS:
         d = os.path.join(args.prm_dir, f"{case}.prm")
@@ -464,11 +483,17 @@ def main(argv):
         hint = (f"; {d} and {c} exist: add an entry for them to PAIRS in {__file__}"
                 if os.path.isfile(d) and os.path.isfile(c) else "")
         raise CrossVerifyError(2, f"unknown case '{case}': known are "
-                                  f"{', '.join(PAIRS)}{hint}")
+                                  f"{', '.join(PAIRS)} (or all){hint}")
     pair = PAIRS[case]
     if pair.get("pending"):
         raise CrossVerifyError(2, f"the pair '{case}' is not runnable yet: {pair['pending']} "
                                   f"(needs the prm entry '{pair['requires']}')")
+    return run_pair(case, args)[0]
+
+
+def run_pair(case, args):
+    """Runs (unless --reuse) and compares one pair; (exit status, markdown)."""
+    pair = PAIRS[case]
     prms = {}
     for side in ("discrete", "continuum"):
         prms[side] = os.path.join(args.prm_dir, pair[side])
@@ -498,7 +523,8 @@ def main(argv):
     discrete = read_run(folders["discrete"])
     continuum = read_run(folders["continuum"])
     rows, curves = compare(pair, discrete, continuum, folders["discrete"], folders["continuum"])
-    print(write_tables(case, pair, rows, out))
+    text = write_tables(case, pair, rows, out)
+    print(text)
     png = plot(case, pair, curves, out)
     failed = 0
     for r in rows:
@@ -512,7 +538,7 @@ def main(argv):
         print(("PASS: " if r["status"] == "pass" else "FAIL: ") + message, flush=True)
         failed += r["status"] != "pass"
     print(f"wrote {out}/differences.csv, differences.md" + (f", {png}" if png else ""))
-    return 1 if failed else 0
+    return (1 if failed else 0), text
 
 
 if __name__ == "__main__":
