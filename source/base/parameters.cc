@@ -659,12 +659,18 @@ namespace tmfdem
     prm.declare_entry(
       "Temperature source",
       "function",
-      Patterns::Selection("function|heat solver"),
+      Patterns::Selection("function|heat solver|discrete heat"),
       "function: the temperature is Mechanics/Temperature, T(x, y, t), "
       "solved at every time step (steady: once). heat solver: the continuum "
       "heat solver runs on the same mesh (all heat entries apply, its own "
       "outputs go to <Output/Directory>/heat) and the stress is solved at "
-      "each of its output times.");
+      "each of its output times. discrete heat: the discrete layer's heat "
+      "(Discrete heat subsection: exploded P1 triangles, conducting joints) "
+      "runs on the same triangle mesh, one MPI process, transient; the "
+      "stress is solved at every Time step with the discrete layer's own "
+      "linear field in each triangle as the temperature, so continuum and "
+      "discrete thermal stresses can be compared on one temperature "
+      "field.");
     prm.declare_entry("Temperature",
                       "0",
                       Patterns::Anything(),
@@ -728,15 +734,17 @@ namespace tmfdem
   MechanicsParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Mechanics");
-    idealisation          = prm.get("Idealisation") == "plane stress" ?
-                              Idealisation::plane_stress :
-                              Idealisation::plane_strain;
-    strain_measure        = prm.get("Strain measure") == "small" ?
-                              StrainMeasure::small :
-                              StrainMeasure::finite;
-    temperature_source    = prm.get("Temperature source") == "function" ?
-                              TemperatureSource::function :
-                              TemperatureSource::heat_solver;
+    idealisation             = prm.get("Idealisation") == "plane stress" ?
+                                 Idealisation::plane_stress :
+                                 Idealisation::plane_strain;
+    strain_measure           = prm.get("Strain measure") == "small" ?
+                                 StrainMeasure::small :
+                                 StrainMeasure::finite;
+    const std::string source = prm.get("Temperature source");
+    temperature_source =
+      source == "function"    ? TemperatureSource::function :
+      source == "heat solver" ? TemperatureSource::heat_solver :
+                                TemperatureSource::discrete_heat;
     temperature           = prm.get("Temperature");
     degree                = prm.get_integer("Polynomial degree");
     newton_tolerance      = prm.get_double("Newton tolerance");

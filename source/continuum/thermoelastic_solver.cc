@@ -33,6 +33,7 @@
 #include <tmfdem/continuum/adaptivity.h>
 #include <tmfdem/continuum/heat_solver.h>
 #include <tmfdem/continuum/thermoelastic_solver.h>
+#include <tmfdem/coupling/discrete_heat_field.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/monitors.h>
 #include <tmfdem/io/output_files.h>
@@ -1066,7 +1067,10 @@ namespace tmfdem
            std::string(mechanics.temperature_source ==
                            MechanicsParameters::TemperatureSource::function ?
                          "function" :
-                         "heat solver"))
+                       mechanics.temperature_source ==
+                           MechanicsParameters::TemperatureSource::heat_solver ?
+                         "heat solver" :
+                         "discrete heat"))
       .add("cells", cells)
       .add("dofs", static_cast<long long>(dof_handler->n_dofs()))
       .add("steps", static_cast<long long>(solves))
@@ -1111,7 +1115,20 @@ namespace tmfdem
         setup(&heat_solver->get_triangulation());
       }
     else
-      setup();
+      {
+        setup();
+        if (parameters.mechanics.temperature_source ==
+            MechanicsParameters::TemperatureSource::discrete_heat)
+          {
+            if (parameters.adaptivity.enable)
+              throw InputError(
+                "Adaptive refinement/Enable = true: Mechanics/Temperature "
+                "source = discrete heat keeps the mesh; allowed is false.");
+            coupling::DiscreteHeatField check(parameters,
+                                              *triangulation,
+                                              communicator);
+          }
+      }
   }
 
   void
@@ -1139,6 +1156,23 @@ namespace tmfdem
   ThermoelasticSolver::run_with_temperature_function()
   {
     setup();
+    // Temperature source = discrete heat: the discrete layer's heat on this
+    // mesh, advanced to the time of every solve
+    std::unique_ptr<coupling::DiscreteHeatField> discrete_heat;
+    if (parameters.mechanics.temperature_source ==
+        MechanicsParameters::TemperatureSource::discrete_heat)
+      {
+        discrete_heat =
+          std::make_unique<coupling::DiscreteHeatField>(parameters,
+                                                        *triangulation,
+                                                        communicator);
+        set_temperature(discrete_heat->field());
+      }
+    const auto solve_at = [&](const double time) {
+      if (discrete_heat)
+        discrete_heat->advance_to(time);
+      solve(time);
+    };
     const auto &time_parameters = parameters.time;
     if (time_parameters.mode == TimeSteppingParameters::Mode::steady)
       {
@@ -1150,7 +1184,7 @@ namespace tmfdem
           {
             if (cycle > 0)
               adapt_mesh();
-            solve(time);
+            solve_at(time);
             if (Utilities::MPI::this_mpi_process(communicator) == 0)
               std::cout << "cycle " << cycle << ": "
                         << triangulation->n_global_active_cells() << " cells, "
@@ -1184,7 +1218,7 @@ namespace tmfdem
                                 0);
     double           time = start;
     unsigned long    step = 0;
-    solve(time);
+    solve_at(time);
     write_output(time);
     for (const double output_time : output_times)
       while (time < output_time - time_tolerance)
@@ -1195,7 +1229,7 @@ namespace tmfdem
           time = std::abs(time + dt - output_time) < time_tolerance ?
                    output_time :
                    time + dt;
-          solve(time);
+          solve_at(time);
           ++step;
           if (std::abs(time - output_time) < time_tolerance)
             write_output(output_time);

@@ -263,7 +263,8 @@ namespace tmfdem
     enum class TemperatureSource
     {
       function,
-      heat_solver
+      heat_solver,
+      discrete_heat
     };
     /** One point whose displacement components are held at zero. */
     struct PinnedPoint
