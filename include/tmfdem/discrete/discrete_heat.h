@@ -20,6 +20,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <memory>
 #include <tmfdem/base/parameters.h>
@@ -186,6 +187,16 @@ namespace tmfdem
       double            beta         = 100.;
 
       std::vector<double> conductivity;             ///< per element [W/(m K)]
+      /** Largest principal conductivity per element [W/(m K)]. */
+      std::vector<double> max_conductivity;
+      /** Per element: 1 where the material is anisotropic. */
+      std::vector<char> anisotropic;
+      /** Reference conductivity tensor (xx, xy, yy) per element [W/(m K)]. */
+      std::vector<std::array<double, 3>> conductivity_tensor;
+      /** Conductivity matrix of element @p e in the current configuration
+       *  [W/(m K)]: isotropic k, or the tensor turned with the element. */
+      void
+      element_conductivity_matrix(const unsigned int e, double K[3][3]) const;
       std::vector<double> volumetric_heat_capacity; ///< rho c per element
       std::vector<double> lumped_capacity;          ///< per node [J/(m K)]
       std::vector<double>
