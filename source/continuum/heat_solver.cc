@@ -375,9 +375,9 @@ namespace tmfdem
                                     fe_values.shape_value(j, q) *
                                     fe_values.JxW(q);
                   if (anisotropic)
-                    conductivity(i, j) +=
-                      fe_values.shape_grad(i, q) *
-                      (K * fe_values.shape_grad(j, q)) * fe_values.JxW(q);
+                    conductivity(i, j) += fe_values.shape_grad(i, q) *
+                                          (K * fe_values.shape_grad(j, q)) *
+                                          fe_values.JxW(q);
                   else
                     conductivity(i, j) += k * fe_values.shape_grad(i, q) *
                                           fe_values.shape_grad(j, q) *

@@ -132,17 +132,17 @@ namespace tmfdem
         const double  c10 = y[1] - y[0], c11 = y[2] - y[0];
         const double  r00 = X[1] - X[0], r01 = X[2] - X[0];
         const double  r10 = Y[1] - Y[0], r11 = Y[2] - Y[0];
-        const double  det = r00 * r11 - r01 * r10;
-        const double  F00 = (c00 * r11 - c01 * r10) / det;
-        const double  F01 = (-c00 * r01 + c01 * r00) / det;
-        const double  F10 = (c10 * r11 - c11 * r10) / det;
-        const double  F11 = (-c10 * r01 + c11 * r00) / det;
+        const double  det   = r00 * r11 - r01 * r10;
+        const double  F00   = (c00 * r11 - c01 * r10) / det;
+        const double  F01   = (-c00 * r01 + c01 * r00) / det;
+        const double  F10   = (c10 * r11 - c11 * r10) / det;
+        const double  F11   = (-c10 * r01 + c11 * r00) / det;
         const double  angle = std::atan2(F10 - F01, F00 + F11);
         const double  c = std::cos(angle), s = std::sin(angle);
         // D' = R D R^T, R = [[c, -s], [s, c]]
-        const double dxx = c * c * D[0] - 2. * c * s * D[1] + s * s * D[2];
-        const double dyy = s * s * D[0] + 2. * c * s * D[1] + c * c * D[2];
-        const double dxy = c * s * (D[0] - D[2]) + (c * c - s * s) * D[1];
+        const double dxx   = c * c * D[0] - 2. * c * s * D[1] + s * s * D[2];
+        const double dyy   = s * s * D[0] + 2. * c * s * D[1] + c * c * D[2];
+        const double dxy   = c * s * (D[0] - D[2]) + (c * c - s * s) * D[1];
         const double scale = 1. / (4. * area);
         for (unsigned int a = 0; a < 3; ++a)
           for (unsigned int b = 0; b < 3; ++b)
@@ -153,7 +153,7 @@ namespace tmfdem
 
     void
     DiscreteHeat::element_conductivity_matrix(const unsigned int e,
-                                              double K[3][3]) const
+                                              double             K[3][3]) const
     {
       if (anisotropic[e])
         conductivity_matrix(model, e, conductivity_tensor[e], K);
@@ -205,10 +205,9 @@ namespace tmfdem
           const double       L  = std::hypot(dx, dy);
           const Tensor<1, 2> normal({dy / L, -dx / L});
           const auto         side_conductivity = [&](const unsigned int e) {
-            return anisotropic[e] ?
-                     parameters.materials[model.material[e]]
-                       .normal_conductivity(normal) :
-                     conductivity[e];
+            return anisotropic[e] ? parameters.materials[model.material[e]]
+                                      .normal_conductivity(normal) :
+                                            conductivity[e];
           };
           const double ka = side_conductivity(model.joint_elements[2 * j]);
           const double kb = side_conductivity(model.joint_elements[2 * j + 1]);

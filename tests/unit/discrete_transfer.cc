@@ -8,9 +8,8 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/discrete/discrete_heat.h>
 #include <tmfdem/discrete/discrete_model.h>
@@ -68,12 +67,12 @@ TEST(DiscreteHeatAnisotropy, RigidRotationGivesTheSameIncrements)
   dof_handler.distribute_dofs(fe);
 
   Parameters parameters;
-  auto      &m                        = parameters.materials.materials[0];
-  m.anisotropic_conductivity          = true;
-  m.conductivity_along                = 4.;
-  m.conductivity_across               = 1.;
-  m.conductivity_direction            = 30.;
-  parameters.discrete_heat.time_integration    = "explicit";
+  auto      &m                              = parameters.materials.materials[0];
+  m.anisotropic_conductivity                = true;
+  m.conductivity_along                      = 4.;
+  m.conductivity_across                     = 1.;
+  m.conductivity_direction                  = 30.;
+  parameters.discrete_heat.time_integration = "explicit";
   parameters.discrete_heat.contact_conductance = 0.;
 
   std::vector<double> increments[2];
@@ -84,10 +83,10 @@ TEST(DiscreteHeatAnisotropy, RigidRotationGivesTheSameIncrements)
       const double phi = rotated ? 0.7 : 0.;
       for (unsigned int n = 0; n < model.n_nodes; ++n)
         {
-          model.x[n] = std::cos(phi) * model.x_ref[n] -
-                       std::sin(phi) * model.y_ref[n];
-          model.y[n] = std::sin(phi) * model.x_ref[n] +
-                       std::cos(phi) * model.y_ref[n];
+          model.x[n] =
+            std::cos(phi) * model.x_ref[n] - std::sin(phi) * model.y_ref[n];
+          model.y[n] =
+            std::sin(phi) * model.x_ref[n] + std::cos(phi) * model.y_ref[n];
         }
       discrete::DiscreteHeat heat(parameters, model);
       heat.initialise(0.);

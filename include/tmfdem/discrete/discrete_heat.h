@@ -186,7 +186,7 @@ namespace tmfdem
       bool              use_implicit = true;
       double            beta         = 100.;
 
-      std::vector<double> conductivity;             ///< per element [W/(m K)]
+      std::vector<double> conductivity; ///< per element [W/(m K)]
       /** Largest principal conductivity per element [W/(m K)]. */
       std::vector<double> max_conductivity;
       /** Per element: 1 where the material is anisotropic. */
