@@ -241,23 +241,43 @@ try:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharey=True)
-    for ax, name, label in zip(axes, ("along", "across"), ("along d (k1 = 4 W/(m K))", "across d (k2 = 1 W/(m K))")):
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.4))
+    colours = ("C0", "C1", "C2")
+    for ax, name, label in zip(axes[:2], ("along", "across"),
+                               ("along d (k1 = 4 W/(m K))", "across d (k2 = 1 W/(m K))")):
         for t in (50.0, 100.0):
-            x, y, _ = read_csv(os.path.join(p1, "lines.csv"))[name][t]
+            x, y, _ = at(read_csv(os.path.join(p1, "lines.csv"))[name], t)
             r = x * c + y * s if name == "along" else -x * s + y * c
             rr = np.linspace(r.min(), r.max(), 801)
             xe, ye = (rr * c, rr * s) if name == "along" else (-rr * s, rr * c)
             ax.plot(rr, gaussian(xe, ye, t), "k-", lw=1, label="exact" if t == 50.0 else None)
-            for (lab, fold), mk in zip(results.items(), ("o", "s", "^")):
-                xs, ys, f = read_csv(os.path.join(fold, "lines.csv"))[name][t]
-                ax.plot(r[::8], f["T"][::8], mk, ms=3.5, mfc="none",
+            for (lab, fold), mk, col in zip(results.items(), ("o", "s", "^"), colours):
+                f = at(read_csv(os.path.join(fold, "lines.csv"))[name], t)[2]
+                ax.plot(r[::8], f["T"][::8], mk, color=col, ms=3.5, mfc="none",
                         label=lab if t == 50.0 else None)
-        ax.set_title(f"T along the principal axis {label}", fontsize=10)
+            if t == 100.0:
+                f = at(read_csv(os.path.join(wrong, "lines.csv"))[name], t)[2]
+                ax.plot(r, f["T"], "--", color="0.5", lw=1,
+                        label="P1 with theta = -30 deg (wrong tensor), t = 100 s")
+        ax.set_title(f"T on the principal axis {label}, t = 50 and 100 s", fontsize=10)
         ax.set_xlabel("distance from the centre along the axis [m]")
         ax.grid(alpha=0.3)
-    axes[0].set_ylabel("T [C] at t = 50 s (upper) and 100 s")
-    axes[0].legend(fontsize=8)
+    axes[0].set_ylabel("T [C]")
+    axes[0].legend(fontsize=7, loc="lower center")
+    for (lab, fold), col in zip(results.items(), colours):
+        for name, style in (("along", "-"), ("across", ":")):
+            x, y, f = at(read_csv(os.path.join(fold, "lines.csv"))[name], 100.0)
+            r = x * c + y * s if name == "along" else -x * s + y * c
+            axes[2].plot(r, f["T"] - gaussian(x, y, 100.0), style, color=col, lw=1,
+                         label=f"{lab}, {name}")
+    axes[2].axhline(bound_p1_be(100.0, 1.0), color="k", lw=0.8, ls="--")
+    axes[2].axhline(-bound_p1_be(100.0, 1.0), color="k", lw=0.8, ls="--",
+                    label="P1 bound (continuum)")
+    axes[2].set_title("error T - T_exact on both axes, t = 100 s", fontsize=10)
+    axes[2].set_xlabel("distance from the centre along the axis [m]")
+    axes[2].set_ylabel("error [C]")
+    axes[2].grid(alpha=0.3)
+    axes[2].legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "anisotropic_conduction.png"), dpi=110)
     print("plot:", os.path.join(out, "anisotropic_conduction.png"))
