@@ -10,6 +10,7 @@
 #ifndef tmfdem_base_parameters_h
 #define tmfdem_base_parameters_h
 
+#include <deal.II/base/numbers.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
@@ -135,7 +136,7 @@ namespace tmfdem
           K[0][0] = K[1][1] = thermal_conductivity;
           return K;
         }
-      const double theta = conductivity_direction * M_PI / 180.;
+      const double theta = conductivity_direction * numbers::PI / 180.;
       const double c = std::cos(theta), s = std::sin(theta);
       K[0][0] = conductivity_along * c * c + conductivity_across * s * s;
       K[1][1] = conductivity_along * s * s + conductivity_across * c * c;
