@@ -7,6 +7,10 @@
  * off when the joint breaks), thermal boundary conditions on boundary ids,
  * explicit (lumped capacity, enforced stable step) or backward Euler
  * (Eq. 22, consistent capacity, CG) time integration, and the heat balance.
+ * Anisotropic materials (paper Eqs. 8-9): the conductivity tensor turns with
+ * each triangle's rotation, joints conduct with the harmonic mean of the two
+ * sides' n.D.n, and the stable step takes the triangles with the largest
+ * principal value (theory manual Secs. 1.7, 7.2, 7.3, 7.6).
  *
  * The nodal temperatures are a deal.II Vector indexed like the DoFs of
  * FE_SimplexDGP(1) on the discrete layer's triangulation (node 3e+k).
