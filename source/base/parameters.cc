@@ -249,7 +249,36 @@ namespace tmfdem
         prm.declare_entry("Thermal conductivity",
                           Utilities::to_string(defaults.thermal_conductivity),
                           Patterns::Double(0.),
-                          "Thermal conductivity k [W/(m K)], > 0.");
+                          "Thermal conductivity k [W/(m K)], > 0, of an "
+                          "isotropic material. Leave it at its default where "
+                          "the principal values 'Thermal conductivity along' "
+                          "and 'across' are given.");
+        prm.declare_entry(
+          "Thermal conductivity along",
+          "",
+          Patterns::List(Patterns::Double(0.), 0, 1),
+          "Anisotropic conduction (paper Eqs. 8-9): principal conductivity "
+          "k1 [W/(m K)], > 0, along the direction d = (cos theta, sin "
+          "theta) of 'Conductivity direction'. Empty: isotropic "
+          "('Thermal conductivity'). Give 'Thermal conductivity across' "
+          "with it; K = k1 d d^T + k2 p p^T, p perpendicular to d.");
+        prm.declare_entry(
+          "Thermal conductivity across",
+          "",
+          Patterns::List(Patterns::Double(0.), 0, 1),
+          "Anisotropic conduction: principal conductivity k2 [W/(m K)], "
+          "> 0, across the direction d (along p = (-sin theta, cos "
+          "theta)). Empty: isotropic. Give 'Thermal conductivity along' "
+          "with it.");
+        prm.declare_entry(
+          "Conductivity direction",
+          "0",
+          Patterns::Double(-360., 360.),
+          "Angle theta of the principal direction d of 'Thermal "
+          "conductivity along', counterclockwise from the x axis [deg], "
+          "in the reference configuration (the discrete layer turns the "
+          "tensor with each triangle's rotation). Only with the "
+          "principal values set.");
         prm.declare_entry("Specific heat capacity",
                           Utilities::to_string(defaults.specific_heat),
                           Patterns::Double(0.),
@@ -296,6 +325,7 @@ namespace tmfdem
   void
   MaterialParameters::parse_parameters(ParameterHandler &prm)
   {
+    const MaterialProperties defaults;
     prm.enter_subsection("Materials");
     for (unsigned int id = 0; id < max_materials; ++id)
       {
@@ -315,7 +345,55 @@ namespace tmfdem
         m.fracture_energy_I     = prm.get_double("Mode I fracture energy");
         m.fracture_energy_II    = prm.get_double("Mode II fracture energy");
         m.heat_source           = prm.get("Volumetric heat source");
+        const std::string along = Utilities::trim(
+                            prm.get("Thermal conductivity along")),
+                          across = Utilities::trim(
+                            prm.get("Thermal conductivity across"));
+        m.conductivity_direction = prm.get_double("Conductivity direction");
         prm.leave_subsection();
+
+        // anisotropic conduction: both principal values or neither, and
+        // not together with a changed isotropic value
+        m.anisotropic_conductivity = !along.empty() || !across.empty();
+        if (along.empty() != across.empty())
+          throw InputError(
+            name + "/Thermal conductivity " +
+            (along.empty() ? "across" : "along") + " is set but " + name +
+            "/Thermal conductivity " + (along.empty() ? "along" : "across") +
+            " is not: give both principal values (anisotropic conduction) "
+            "or neither (isotropic, 'Thermal conductivity').");
+        if (m.anisotropic_conductivity)
+          {
+            m.conductivity_along  = Utilities::string_to_double(along);
+            m.conductivity_across = Utilities::string_to_double(across);
+            for (const auto &[entry, value] :
+                 {std::pair<const char *, double>{"along",
+                                                  m.conductivity_along},
+                  {"across", m.conductivity_across}})
+              if (!(value > 0.))
+                throw InputError(name + "/Thermal conductivity " + entry +
+                                 " = " + Utilities::to_string(value) +
+                                 ": must be > 0.");
+            if (m.thermal_conductivity != defaults.thermal_conductivity)
+              throw InputError(
+                name + "/Thermal conductivity = " +
+                Utilities::to_string(m.thermal_conductivity) +
+                " contradicts the principal values 'Thermal conductivity "
+                "along' = " +
+                along + " and 'across' = " + across +
+                " of the same material: an anisotropic material takes its "
+                "conductivity from along/across only; remove 'Thermal "
+                "conductivity' (leave it at its default " +
+                Utilities::to_string(defaults.thermal_conductivity) +
+                ") or the principal values.");
+          }
+        else if (m.conductivity_direction != 0.)
+          throw InputError(
+            name + "/Conductivity direction = " +
+            Utilities::to_string(m.conductivity_direction) +
+            " deg has no effect on an isotropic material: set 'Thermal "
+            "conductivity along' and 'Thermal conductivity across' (the "
+            "principal values) or leave the direction at 0.");
 
         if (!(m.poisson_ratio < 0.5) || !(m.poisson_ratio > -1.))
           throw InputError(name + "/Poisson's ratio = " +

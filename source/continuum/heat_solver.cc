@@ -361,6 +361,10 @@ namespace tmfdem
           const auto  &material = parameters.materials[cell->material_id()];
           const double rho_c    = material.density * material.specific_heat;
           const double k        = material.thermal_conductivity;
+          // anisotropic (paper Eqs. 8-9): grad phi_i . K grad phi_j; the
+          // isotropic product below is kept as it was (bitwise results)
+          const bool         anisotropic = material.anisotropic_conductivity;
+          const Tensor<2, 2> K           = material.conductivity_tensor();
           fe_values.reinit(cell);
           FullMatrix<double> capacity(n, n), conductivity(n, n);
           for (const unsigned int q : fe_values.quadrature_point_indices())
@@ -370,9 +374,14 @@ namespace tmfdem
                   capacity(i, j) += rho_c * fe_values.shape_value(i, q) *
                                     fe_values.shape_value(j, q) *
                                     fe_values.JxW(q);
-                  conductivity(i, j) += k * fe_values.shape_grad(i, q) *
-                                        fe_values.shape_grad(j, q) *
-                                        fe_values.JxW(q);
+                  if (anisotropic)
+                    conductivity(i, j) += fe_values.shape_grad(i, q) *
+                                          (K * fe_values.shape_grad(j, q)) *
+                                          fe_values.JxW(q);
+                  else
+                    conductivity(i, j) += k * fe_values.shape_grad(i, q) *
+                                          fe_values.shape_grad(j, q) *
+                                          fe_values.JxW(q);
                 }
           cell->get_dof_indices(dof_indices);
           capacity_matrix.add(dof_indices, capacity);

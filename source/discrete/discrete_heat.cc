@@ -100,7 +100,58 @@ namespace tmfdem
           for (unsigned int b = 0; b < 3; ++b)
             K[a][b] = scale * (g[a][0] * g[b][0] + g[a][1] * g[b][1]);
       }
+
+      /**
+       * Anisotropic conductivity matrix K_ab = A grad N_a . D grad N_b of
+       * element e (paper Eqs. 8-9, 18-20), D the reference tensor @p D
+       * (xx, xy, yy) [W/(m K)] turned with the element's rotation R from
+       * the reference to the current configuration, D' = R D R^T (R from
+       * the polar decomposition of the element's deformation gradient F:
+       * its angle is atan2(F_10 - F_01, F_00 + F_11)).
+       */
+      inline void
+      conductivity_matrix(const DiscreteModel         &m,
+                          const unsigned int           e,
+                          const std::array<double, 3> &D,
+                          double                       K[3][3])
+      {
+        double       g[3][2];
+        const double area = shape_gradients(m, e, g);
+        // F = [current edges] [reference edges]^-1
+        const double *x = &m.x[3 * e], *y = &m.y[3 * e];
+        const double *X = &m.x_ref[3 * e], *Y = &m.y_ref[3 * e];
+        const double  c00 = x[1] - x[0], c01 = x[2] - x[0];
+        const double  c10 = y[1] - y[0], c11 = y[2] - y[0];
+        const double  r00 = X[1] - X[0], r01 = X[2] - X[0];
+        const double  r10 = Y[1] - Y[0], r11 = Y[2] - Y[0];
+        const double  det   = r00 * r11 - r01 * r10;
+        const double  F00   = (c00 * r11 - c01 * r10) / det;
+        const double  F01   = (-c00 * r01 + c01 * r00) / det;
+        const double  F10   = (c10 * r11 - c11 * r10) / det;
+        const double  F11   = (-c10 * r01 + c11 * r00) / det;
+        const double  angle = std::atan2(F10 - F01, F00 + F11);
+        const double  c = std::cos(angle), s = std::sin(angle);
+        // D' = R D R^T, R = [[c, -s], [s, c]]
+        const double dxx   = c * c * D[0] - 2. * c * s * D[1] + s * s * D[2];
+        const double dyy   = s * s * D[0] + 2. * c * s * D[1] + c * c * D[2];
+        const double dxy   = c * s * (D[0] - D[2]) + (c * c - s * s) * D[1];
+        const double scale = 1. / (4. * area);
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int b = 0; b < 3; ++b)
+            K[a][b] = scale * (g[a][0] * (dxx * g[b][0] + dxy * g[b][1]) +
+                               g[a][1] * (dxy * g[b][0] + dyy * g[b][1]));
+      }
     } // namespace
+
+    void
+    DiscreteHeat::element_conductivity_matrix(const unsigned int e,
+                                              double             K[3][3]) const
+    {
+      if (anisotropic[e])
+        conductivity_matrix(model, e, conductivity_tensor[e], K);
+      else
+        conductivity_matrix(model, e, conductivity[e], K);
+    }
 
     DiscreteHeat::DiscreteHeat(const Parameters &parameters,
                                DiscreteModel    &model)
@@ -114,25 +165,45 @@ namespace tmfdem
       T.reinit(model.n_nodes);
 
       conductivity.resize(model.n_elements);
+      max_conductivity.resize(model.n_elements);
+      anisotropic.assign(model.n_elements, 0);
+      conductivity_tensor.resize(model.n_elements);
       volumetric_heat_capacity.resize(model.n_elements);
       lumped_capacity.assign(model.n_nodes, 0.);
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
           const MaterialProperties &m = parameters.materials[model.material[e]];
           conductivity[e]             = m.thermal_conductivity;
+          max_conductivity[e]         = m.max_conductivity();
+          anisotropic[e]              = m.anisotropic_conductivity;
+          const Tensor<2, 2> D        = m.conductivity_tensor();
+          conductivity_tensor[e]      = {{D[0][0], D[0][1], D[1][1]}};
           volumetric_heat_capacity[e] = m.density * m.specific_heat;
           for (unsigned int k = 0; k < 3; ++k)
             lumped_capacity[3 * e + k] =
               volumetric_heat_capacity[e] * model.reference_area[e] / 3.;
         }
       // joints: k_i = beta k / h per unit area, half the edge to each node
-      // pair: G = k_i h / 2 = beta k / 2 with k the harmonic mean
+      // pair: G = k_i h / 2 = beta k / 2 with k the harmonic mean of the
+      // two sides' normal conductivities n.K.n (n the joint's unit normal
+      // in the reference configuration; k itself where isotropic)
       joint_conductance.resize(model.n_joints);
       for (unsigned int j = 0; j < model.n_joints; ++j)
         {
-          const double ka      = conductivity[model.joint_elements[2 * j]];
-          const double kb      = conductivity[model.joint_elements[2 * j + 1]];
-          const double k       = 2. * ka * kb / (ka + kb);
+          const unsigned int n0 = model.joint_nodes[4 * j];
+          const unsigned int n1 = model.joint_nodes[4 * j + 1];
+          const double       dx = model.x_ref[n1] - model.x_ref[n0];
+          const double       dy = model.y_ref[n1] - model.y_ref[n0];
+          const double       L  = std::hypot(dx, dy);
+          const Tensor<1, 2> normal({dy / L, -dx / L});
+          const auto         side_conductivity = [&](const unsigned int e) {
+            return anisotropic[e] ? parameters.materials[model.material[e]]
+                                      .normal_conductivity(normal) :
+                                            conductivity[e];
+          };
+          const double ka = side_conductivity(model.joint_elements[2 * j]);
+          const double kb = side_conductivity(model.joint_elements[2 * j + 1]);
+          const double k  = 2. * ka * kb / (ka + kb);
           joint_conductance[j] = 0.5 * beta * k;
         }
 
@@ -327,8 +398,10 @@ namespace tmfdem
       std::vector<double> row(model.n_nodes, 0.);
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
+          // with anisotropy the largest principal value: K(D) <= K(k_max I)
+          // in the order of symmetric matrices, so the bound holds
           double K[3][3];
-          conductivity_matrix(model, e, conductivity[e], K);
+          conductivity_matrix(model, e, max_conductivity[e], K);
           for (unsigned int a = 0; a < 3; ++a)
             row[3 * e + a] += 2. * K[a][a];
         }
@@ -386,7 +459,7 @@ namespace tmfdem
                        for (std::size_t e = begin; e < end; ++e)
                          {
                            double K[3][3];
-                           conductivity_matrix(model, e, conductivity[e], K);
+                           element_conductivity_matrix(e, K);
                            for (unsigned int a = 0; a < 3; ++a)
                              {
                                double q = 0.;
@@ -633,7 +706,7 @@ namespace tmfdem
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
           double K[3][3];
-          conductivity_matrix(model, e, conductivity[e], K);
+          element_conductivity_matrix(e, K);
           const double c =
             volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
           for (unsigned int a = 0; a < 3; ++a)

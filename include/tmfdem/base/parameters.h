@@ -10,10 +10,14 @@
 #ifndef tmfdem_base_parameters_h
 #define tmfdem_base_parameters_h
 
+#include <deal.II/base/numbers.h>
 #include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 #include <tmfdem/discrete/discrete_parameters.h>
 #include <vector>
@@ -98,7 +102,7 @@ namespace tmfdem
     double      density               = 2500.; ///< [kg/m^3]
     double      youngs_modulus        = 50e9;  ///< [Pa]
     double      poisson_ratio         = 0.25;  ///< [-]
-    double      thermal_conductivity  = 3.;    ///< [W/(m K)]
+    double      thermal_conductivity  = 3.;    ///< isotropic k [W/(m K)]
     double      specific_heat         = 800.;  ///< [J/(kg K)]
     double      thermal_expansion     = 1e-5;  ///< [1/K]
     double      reference_temperature = 0.;    ///< stress-free temperature [C]
@@ -109,11 +113,62 @@ namespace tmfdem
     double      fracture_energy_II = 500.; ///< Mode II fracture energy [J/m^2]
     std::string heat_source = "0"; ///< volumetric source f(x,y,t) [W/m^3]
 
-    /** Thermal diffusivity k / (rho c) [m^2/s]. */
+    /**
+     * Anisotropic conduction (paper Eqs. 8-9): true where `Thermal
+     * conductivity along` and `across` are given. The conductivity is then
+     * the tensor K = k1 d d^T + k2 p p^T with d = (cos theta, sin theta)
+     * and p = (-sin theta, cos theta), and `Thermal conductivity` is not
+     * used; otherwise K = k I with k = thermal_conductivity.
+     */
+    bool   anisotropic_conductivity = false;
+    double conductivity_along       = 3.; ///< k1, along d [W/(m K)]
+    double conductivity_across      = 3.; ///< k2, along p [W/(m K)]
+    /** Angle theta of d from the x axis, counterclockwise [deg]. */
+    double conductivity_direction = 0.;
+
+    /** Conductivity tensor K [W/(m K)]: k I when isotropic. */
+    Tensor<2, 2>
+    conductivity_tensor() const
+    {
+      Tensor<2, 2> K;
+      if (!anisotropic_conductivity)
+        {
+          K[0][0] = K[1][1] = thermal_conductivity;
+          return K;
+        }
+      const double theta = conductivity_direction * numbers::PI / 180.;
+      const double c = std::cos(theta), s = std::sin(theta);
+      K[0][0] = conductivity_along * c * c + conductivity_across * s * s;
+      K[1][1] = conductivity_along * s * s + conductivity_across * c * c;
+      K[0][1] = K[1][0] = (conductivity_along - conductivity_across) * c * s;
+      return K;
+    }
+
+    /** Largest principal conductivity [W/(m K)] (k when isotropic). */
+    double
+    max_conductivity() const
+    {
+      return anisotropic_conductivity ?
+               std::max(conductivity_along, conductivity_across) :
+               thermal_conductivity;
+    }
+
+    /** Normal conductivity n.K.n for a unit vector @p n [W/(m K)] (k when
+     *  isotropic, exactly). */
+    double
+    normal_conductivity(const Tensor<1, 2> &n) const
+    {
+      if (!anisotropic_conductivity)
+        return thermal_conductivity;
+      return n * (conductivity_tensor() * n);
+    }
+
+    /** Thermal diffusivity k / (rho c) [m^2/s]; with anisotropy the
+     *  largest principal value k_max / (rho c). */
     double
     diffusivity() const
     {
-      return thermal_conductivity / (density * specific_heat);
+      return max_conductivity() / (density * specific_heat);
     }
   };
 

@@ -7,6 +7,10 @@
  * off when the joint breaks), thermal boundary conditions on boundary ids,
  * explicit (lumped capacity, enforced stable step) or backward Euler
  * (Eq. 22, consistent capacity, CG) time integration, and the heat balance.
+ * Anisotropic materials (paper Eqs. 8-9): the conductivity tensor turns with
+ * each triangle's rotation, joints conduct with the harmonic mean of the two
+ * sides' n.D.n, and the stable step takes the triangles with the largest
+ * principal value (theory manual Secs. 1.7, 7.2, 7.3, 7.6).
  *
  * The nodal temperatures are a deal.II Vector indexed like the DoFs of
  * FE_SimplexDGP(1) on the discrete layer's triangulation (node 3e+k).
@@ -20,6 +24,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <memory>
 #include <tmfdem/base/parameters.h>
@@ -181,7 +186,17 @@ namespace tmfdem
       bool              use_implicit = true;
       double            beta         = 100.;
 
-      std::vector<double> conductivity;             ///< per element [W/(m K)]
+      std::vector<double> conductivity; ///< per element [W/(m K)]
+      /** Largest principal conductivity per element [W/(m K)]. */
+      std::vector<double> max_conductivity;
+      /** Per element: 1 where the material is anisotropic. */
+      std::vector<char> anisotropic;
+      /** Reference conductivity tensor (xx, xy, yy) per element [W/(m K)]. */
+      std::vector<std::array<double, 3>> conductivity_tensor;
+      /** Conductivity matrix of element @p e in the current configuration
+       *  [W/(m K)]: isotropic k, or the tensor turned with the element. */
+      void
+      element_conductivity_matrix(const unsigned int e, double K[3][3]) const;
       std::vector<double> volumetric_heat_capacity; ///< rho c per element
       std::vector<double> lumped_capacity;          ///< per node [J/(m K)]
       std::vector<double>
