@@ -24,7 +24,9 @@ usage: reliability.py TMFDEM OUT_DIR CHECK [CASE]
                      its history interval is the thermal step either way)
 CASE: mechanics (two_blocks_collision), thermo (cut_plate, quasi-static with
 fracture and contact heat), thermo_multirate (sheet_restrained_expansion,
-shortened), heat (plate_transient, discrete heat).
+shortened), heat (plate_transient, discrete heat), thermo_continuum
+(thermal_shock_disc at h = 0.8 mm to 12 ms with the continuum heat, P2, as
+temperature source).
 """
 import glob
 import json
@@ -49,6 +51,12 @@ CASES = {
     "thermo_multirate": ("sheet_restrained_expansion.prm",
                          ["Time stepping/End time=0.002"]),
     "heat": ("plate_transient.prm", []),
+    # quasi-static thermo-mechanics with the deal.II heat (P2) as its
+    # temperature source, before any joint breaks
+    "thermo_continuum": ("thermal_shock_disc.prm",
+                         ["Mesh/Element size=0.8e-3", "Time stepping/End time=0.012",
+                          "Discrete heat/Temperature source=continuum heat",
+                          "Heat solver/Polynomial degree=2"]),
     # refined so that the run is still in its time loop when the signal
     # comes (the unrefined case takes well under a second)
     "continuum": ("plate_transient-continuum.prm", ["Mesh/Global refinements=2"]),
@@ -125,7 +133,7 @@ if which == "kill_resume":
     reference = fresh(os.path.join(out, "reference"))
     run(reference)
     folder = fresh(os.path.join(out, "killed"))
-    interval = "Checkpoint/Interval (steps)=" + ("1" if case == "thermo" else
+    interval = "Checkpoint/Interval (steps)=" + ("1" if case.startswith("thermo_c") or case == "thermo" else
                                                  "20" if case == "heat" else "500")
     cmd = command(folder, interval)
     print("$", " ".join(cmd), "(SIGKILL once a checkpoint exists)", flush=True)
