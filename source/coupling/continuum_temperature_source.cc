@@ -80,6 +80,17 @@ namespace tmfdem
 
     ContinuumTemperatureSource::~ContinuumTemperatureSource() = default;
 
+    std::string
+    ContinuumTemperatureSource::describe() const
+    {
+      const DoFHandler<2> &dofs = heat_solver->get_dof_handler();
+      return "continuum heat, FE_SimplexP(" +
+             std::to_string(dofs.get_fe().degree) + "), " +
+             std::to_string(dofs.n_dofs()) + " DoFs, " +
+             heat_parameters.time.method +
+             " (conducts across broken joints, no contact heat)";
+    }
+
     double
     ContinuumTemperatureSource::stable_time_step() const
     {

@@ -128,6 +128,8 @@ namespace tmfdem
                        solver->get_stable_time_step(),
                        solver->get_time_step(),
                        parameters);
+        if (const auto *source = solver->get_temperature_source())
+          out << "  temperature source: " << source->describe() << "\n";
         out << "  model state: " << model_bytes(model) / mebibyte
             << " MiB (contact lists grow with fragmentation)\n";
       }

@@ -49,6 +49,9 @@ namespace tmfdem
       {
         return "continuum heat";
       }
+      /** Name, element degree, DoFs and theta (after initialise()). */
+      std::string
+      describe() const override;
       void
       set_threads(const unsigned int) override
       {}

@@ -64,6 +64,14 @@ namespace tmfdem
         return true;
       }
 
+      std::string
+      describe() const override
+      {
+        return std::string("discrete heat, ") + (use_implicit ?
+                                                   "implicit (backward Euler)" :
+                                                   "explicit (forward Euler)");
+      }
+
       /** Threads of the heat rates and the contact search (results do not
        *  depend on it). */
       void

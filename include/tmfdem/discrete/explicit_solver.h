@@ -117,6 +117,13 @@ namespace tmfdem
       {
         return stable_time_step;
       }
+      /** The temperature source (thermo-mechanics, after check_input);
+       *  nullptr without heat. */
+      const TemperatureSource *
+      get_temperature_source() const
+      {
+        return heat.get();
+      }
       /** Advance by one explicit step. */
       void
       step();

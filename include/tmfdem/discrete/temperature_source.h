@@ -63,6 +63,13 @@ namespace tmfdem
       virtual std::string
       name() const = 0;
 
+      /** One line for `--validate`: the source and its discretisation. */
+      virtual std::string
+      describe() const
+      {
+        return name();
+      }
+
       /** Threads the source may use (its results do not depend on it). */
       virtual void
       set_threads(const unsigned int threads) = 0;
