@@ -13,6 +13,7 @@
 
 #include <array>
 #include <string>
+#include <tmfdem/discrete/contact_heat.h>
 #include <vector>
 
 namespace dealii
@@ -63,6 +64,9 @@ namespace tmfdem
     std::string  time_integration         = "implicit"; ///< implicit|explicit
     double       joint_conductance_factor = 1000.;      ///< beta [-]
     double       contact_conductance      = 1e4;        ///< h_c [W/(m^2 K)]
+    /** Driving term of the contact heat (`Contact heat model`). */
+    discrete::ContactHeatModel contact_heat_model =
+      discrete::ContactHeatModel::temperature_difference;
     double       safety_factor            = 0.9;        ///< explicit [-]
     double       solver_tolerance         = 1e-12;      ///< relative
     unsigned int mechanical_steps_per_thermal_step = 0; ///< 0: automatic
@@ -101,6 +105,9 @@ namespace tmfdem
     std::string                     velocity_y = "0"; ///< v_y(t) [m/s]
     std::string initial_velocity_x = "0"; ///< v_x(x, y) at start [m/s]
     std::string initial_velocity_y = "0"; ///< v_y(x, y) at start [m/s]
+    /** T(x, y) at the start time [C]; empty: the materials' or the global
+     *  initial temperature (Parameters::initial_temperature_of()). */
+    std::string initial_temperature;
   };
 
   /** Subsection `Discrete bodies`: up to max_bodies `Body <n>`. Cells of
