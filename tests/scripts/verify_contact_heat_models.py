@@ -6,7 +6,10 @@ derived by hand before the runs.
 pressed: two single-triangle bodies pressed together
   (tests/data/pressed_triangles.prm: w = H = 0.1 m, overlap delta = 1 mm,
   the overlap a hexagon of area A = w delta (1 - 3 delta / (4 H)), centroid
-  G = (w/2, H - delta/2), chord L_c = w (1 - delta / (2 H)), the triangles'
+  G = (w/2, H - delta/2), contact length L_c = w (1 - delta/H) +
+  delta sqrt(1 + w^2 / (4 H^2)) (the slanted sides cross at y = H - delta/2:
+  all six vertices are crossings of the two boundaries, L_c is half the
+  hexagon's perimeter, theory 7.4), the triangles'
   centroids on x = w/2, so n = (0, 1) from the lower (contactor, element 0)
   to the upper). One step dt: the insulated triangles' own conduction
   moves no net heat, so the mean nodal temperature of each triangle (the
@@ -24,14 +27,20 @@ pressed: two single-triangle bodies pressed together
   Bound: 1e-8 relative (round-off of the overlap clip ~1e-14, the csv's 12
   digits on values ~100 ~1e-10).
 equilibrate: prm/contact_conduction.prm's two insulated, highly conducting
-  blocks at 100 C and 0 C (per-material initial temperatures) with the
-  paper literal model: no heat crosses the contact (contact_exchange at
-  most 1e-9 of the default run's; the default run is
-  verify.discrete_contact_heat), the probes' difference stays 100 C within
-  1e-9 C.
+  blocks at 100 C and 0 C (per-material initial temperatures) for 6000 s
+  (3 tau of the default model) with the paper literal model: no heat
+  crosses the contact: contact_exchange at most 1e-9 of the default run's
+  (the default run is verify.discrete_contact_heat's), and the upper block,
+  which only the contact could warm, stays at 0 C within 1e-9 C (default:
+  ~47.5 C at the end). (The lower block's 100 C drifts by ~1e-8 relative
+  over the 1200 implicit steps, from the round-off of the matrix's row sums
+  with beta = 1e4; the same ~0.008 J/m is the default run's imbalance of
+  1.5e-8. It is printed, not asserted: it says nothing about the contact.)
 The heat balance closes to 1e-9 relative in the one-step runs and to 1e-6
 (CG tolerance over 1200 steps, as verify.discrete_contact_heat) in the
-equilibration runs."""
+default equilibration run; in the paper literal one, where nothing is
+exchanged and the relative imbalance is 0/0, the imbalance is at most 1e-6
+of the default run's contact exchange."""
 import os
 import sys
 
@@ -47,7 +56,7 @@ w, H, delta, h_c, dt = 0.1, 0.1, 0.001, 1e4, 1.0
 rho_c = 1000.0 * 1000.0
 area_lower = area_upper = 0.5 * w * H
 overlap_area = w * delta * (1.0 - 3.0 * delta / (4.0 * H))
-chord = w * (1.0 - delta / (2.0 * H))
+chord = w * (1.0 - delta / H) + delta * (1.0 + w**2 / (4.0 * H**2)) ** 0.5
 G_y = H - delta / 2.0
 
 M1, M2 = "Materials/Material 1/Initial temperature", "Materials/Material 2/Initial temperature"
@@ -116,14 +125,21 @@ for model in ("temperature difference", "paper literal"):
     run(binary, contact, folder, *equilibrate, f"Discrete heat/Contact heat model={model}")
     s = summary(folder)
     exchanges[model] = s["heat_balance"]["contact_exchange"]
-    rel = s["heat_balance"]["relative_imbalance"]
-    ok &= check(rel < 1e-6, f"equilibrate, {model}: heat balance closes to {rel:.1e} (< 1e-6)")
-    if model == "paper literal":
-        probes = read_csv(os.path.join(folder, "probes.csv"))
-        worst = max(abs(probes["lower"][t][2]["T"][0] - probes["upper"][t][2]["T"][0] - 100.0)
-                    for t in probes["lower"])
-        ok &= check(worst < 1e-9, f"equilibrate, paper literal: T(lower) - T(upper) stays "
-                    f"100 C within {worst:.1e} C (< 1e-9 C) over 6000 s")
+    probes = read_csv(os.path.join(folder, "probes.csv"))
+    t_end = max(probes["upper"])
+    print(f"equilibrate, {model}: at t = {t_end:g} s lower {probes['lower'][t_end][2]['T'][0]:.10f} C, "
+          f"upper {probes['upper'][t_end][2]['T'][0]:.10f} C")
+    if model == "temperature difference":
+        rel = s["heat_balance"]["relative_imbalance"]
+        ok &= check(rel < 1e-6, f"equilibrate, {model}: heat balance closes to {rel:.1e} (< 1e-6)")
+    else:
+        imbalance = abs(s["heat_balance"]["imbalance"])
+        bound = 1e-6 * exchanges["temperature difference"]
+        ok &= check(imbalance < bound, f"equilibrate, {model}: heat balance closes to "
+                    f"{imbalance:.1e} J/m (< 1e-6 x the default's exchange = {bound:.2e} J/m)")
+        worst = max(abs(probes["upper"][t][2]["T"][0]) for t in probes["upper"])
+        ok &= check(worst < 1e-9, f"equilibrate, paper literal: the upper block stays at 0 C "
+                    f"within {worst:.1e} C (< 1e-9 C) over {t_end:g} s")
 ratio = exchanges["paper literal"] / exchanges["temperature difference"]
 ok &= check(exchanges["temperature difference"] > 0.0 and ratio <= 1e-9,
             f"equilibrate: heat exchanged over the contact, paper literal "

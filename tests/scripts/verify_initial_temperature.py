@@ -19,7 +19,12 @@ continuum (tests/data/two_triangles.msh: the unit square cut along the
   P1: (1,0) 101, (0,1) 21, (0,0) 60, (1,1) 61; inside, the P1 interpolant:
   (0.75, 0.25) 80.75, (0.25, 0.75) 40.75;
   P2: the same vertices, the interface midpoint (0.5, 0.5) 60.5, the edge
-  midpoints (0.5, 0) 100.5 and (0, 0.5) 20.5."""
+  midpoints (0.5, 0) 100.5 and (0, 0.5) 20.5;
+  P1 after 3 global refinements, serial and (with mpirun given as the third
+  argument) on 2 MPI ranks, where interface nodes owned by one rank touch
+  cells of the other: (t, t) on the interface 60 + t, (0.75, 0.25) 100.75,
+  (0.25, 0.75) 20.75.
+usage: verify_initial_temperature.py TMFDEM OUTPUT_FOLDER [MPIRUN]"""
 import os
 import sys
 
@@ -29,6 +34,7 @@ from analytic import read_csv
 from common import run, check
 
 binary, out = sys.argv[1], sys.argv[2]
+mpirun = sys.argv[3] if len(sys.argv) > 3 else None
 here = os.path.dirname(os.path.abspath(__file__))
 ok = True
 tolerance = 1e-10  # C: the csv's 12 significant digits on values <= 101
@@ -100,4 +106,18 @@ for degree, points in expected.items():
         ok &= check(abs(value - reference) < tolerance,
                     f"continuum P{degree}: initial T at ({px}, {py}) = {value:.12g} C "
                     f"vs {reference} C")
+refined = {"d1": (0.25, 0.25, 60.25), "d2": (0.625, 0.625, 60.625),
+           "d3": (0.875, 0.875, 60.875), "lower": (0.75, 0.25, 100.75),
+           "upper": (0.25, 0.75, 20.75)}
+probes = "; ".join(f"{n}: {px}, {py}" for n, (px, py, _) in refined.items())
+for ranks in ([1, 2] if mpirun else [1]):
+    folder = os.path.join(out, f"continuum_refined_np{ranks}")
+    run(binary, prm, folder, "Mesh/Global refinements=3", f"Monitors/Probes={probes}",
+        mpirun=mpirun if ranks > 1 else None, np=ranks)
+    values = read_csv(os.path.join(folder, "probes.csv"))
+    for n, (px, py, reference) in refined.items():
+        value = values[n][0.0][2]["T"][0]
+        ok &= check(abs(value - reference) < tolerance,
+                    f"continuum P1, 3 refinements, {ranks} rank(s): initial T at ({px}, {py}) "
+                    f"= {value:.12g} C vs {reference} C")
 sys.exit(0 if ok else 1)

@@ -739,8 +739,12 @@ TEST(ContactHeat, PaperLiteralTermMatchesAHandDerivedValue)
     linear += transfer.flow_weights[k] * Tc[k] +
               transfer.flow_weights[3 + k] * Tt[k];
   EXPECT_NEAR(linear, transfer.heat_flow, 1e-9 * std::abs(transfer.heat_flow));
-  // the default on the same pair: h_c L_c (T_t(G) - T_c(G)), L_c the chord
-  // w (1 - delta / (2 H)), G = (w/2, H - delta/2)
+  // the default on the same pair: h_c L_c (T_t(G) - T_c(G)),
+  // G = (w/2, H - delta/2); the slanted sides of the two triangles cross at
+  // y = H - delta/2, so all six vertices of the hexagon are crossings of the
+  // two boundaries and L_c is half its perimeter: the two flat edges
+  // w (1 - delta/H) and four slanted pieces (delta/2) sqrt(1 + (w/(2H))^2),
+  // L_c = w (1 - delta/H) + delta sqrt(1 + w^2 / (4 H^2))
   ContactHeatTransfer prescribed;
   ASSERT_TRUE(contact_heat(ContactHeatModel::temperature_difference,
                            c.x,
@@ -753,7 +757,10 @@ TEST(ContactHeat, PaperLiteralTermMatchesAHandDerivedValue)
                            overlap,
                            prescribed));
   const double G_y      = H - delta / 2.;
-  const double expected = h_c * w * (1. - delta / (2. * H)) *
+  const double chord =
+    w * (1. - delta / H) + delta * std::sqrt(1. + w * w / (4. * H * H));
+  EXPECT_NEAR(overlap.contact_length, chord, 1e-12 * chord);
+  const double expected = h_c * chord *
                           ((120. + 3000. * (G_y - 0.099)) - (20. + 1000. * G_y));
   EXPECT_NEAR(prescribed.heat_flow, expected, 1e-10 * std::abs(expected));
 }
