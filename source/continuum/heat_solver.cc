@@ -963,7 +963,7 @@ namespace tmfdem
           entry_of_material[id] = it->second;
           return it->second;
         };
-        const unsigned int n_owned = locally_owned_dofs.n_elements();
+        const unsigned int         n_owned = locally_owned_dofs.n_elements();
         std::vector<std::uint32_t> entries_at(n_owned, 0); // bit per entry
         std::vector<Point<2>>      point_of(n_owned);
         FEValues<2>                fe_values(*mapping,

@@ -48,7 +48,7 @@ namespace tmfdem
       // transfers in parallel, handed to f in pair order
       std::vector<ContactHeatTransfer> transfers(contact_pairs.size());
       std::vector<char>                overlapping(contact_pairs.size(), 0);
-      const ContactHeatModel contact_model =
+      const ContactHeatModel           contact_model =
         parameters.discrete_heat.contact_heat_model;
       for_each_chunk(arena_for(n_threads),
                      contact_pairs.size(),

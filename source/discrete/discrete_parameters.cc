@@ -356,19 +356,6 @@ namespace tmfdem
     time_integration         = prm.get("Time integration");
     joint_conductance_factor = prm.get_double("Joint conductance factor");
     contact_conductance      = prm.get_double("Contact conductance");
-    {
-      const std::string name = prm.get("Contact heat model");
-      bool              found = false;
-      for (const auto &[entry, model] : discrete::contact_heat_model_registry())
-        if (name == entry)
-          {
-            contact_heat_model = model;
-            found              = true;
-          }
-      if (!found) // the Selection pattern has already refused it
-        throw InputError("Discrete heat/Contact heat model = '" + name +
-                         "': unknown.");
-    }
     safety_factor            = prm.get_double("Safety factor");
     solver_tolerance         = prm.get_double("Linear solver tolerance");
     mechanical_steps_per_thermal_step =
@@ -380,6 +367,19 @@ namespace tmfdem
     thermal_step_growth        = prm.get_double("Thermal step growth factor");
     maximum_thermal_step       = prm.get_double("Maximum thermal step");
     maximum_utilisation_change = prm.get_double("Maximum utilisation change");
+    {
+      const std::string name  = prm.get("Contact heat model");
+      bool              found = false;
+      for (const auto &[entry, model] : discrete::contact_heat_model_registry())
+        if (name == entry)
+          {
+            contact_heat_model = model;
+            found              = true;
+          }
+      if (!found) // the Selection pattern has already refused it
+        throw InputError("Discrete heat/Contact heat model = '" + name +
+                         "': unknown.");
+    }
     prm.leave_subsection();
     if (thermal_step_growth > 1. && coupling != "quasi-static")
       throw InputError(
@@ -480,8 +480,8 @@ namespace tmfdem
                              " already belongs to another body.");
         if (body.material_ids.empty() && !body.initial_temperature.empty())
           throw InputError(body.name + "/Initial temperature = '" +
-                           body.initial_temperature +
-                           "' is set but " + body.name +
+                           body.initial_temperature + "' is set but " +
+                           body.name +
                            "/Material ids is empty: name the material ids of "
                            "the body, or leave Initial temperature empty.");
         if (!body.material_ids.empty())

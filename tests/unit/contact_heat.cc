@@ -730,14 +730,16 @@ TEST(ContactHeat, PaperLiteralTermMatchesAHandDerivedValue)
                            overlap,
                            transfer));
   EXPECT_NEAR(overlap.area, area, 1e-12 * area);
-  EXPECT_NEAR(transfer.heat_flow, h_c * area * 4000., 1e-10 * h_c * area * 4000.);
+  EXPECT_NEAR(transfer.heat_flow,
+              h_c * area * 4000.,
+              1e-10 * h_c * area * 4000.);
   EXPECT_EQ(sum_of_nodal_heats(transfer), 0.);
   EXPECT_EQ(transfer.conductance, 0.);
   // the flow weights are dQ/dT: Q = sum_j a_j T_j
   double linear = 0.;
   for (unsigned int k = 0; k < 3; ++k)
-    linear += transfer.flow_weights[k] * Tc[k] +
-              transfer.flow_weights[3 + k] * Tt[k];
+    linear +=
+      transfer.flow_weights[k] * Tc[k] + transfer.flow_weights[3 + k] * Tt[k];
   EXPECT_NEAR(linear, transfer.heat_flow, 1e-9 * std::abs(transfer.heat_flow));
   // the default on the same pair: h_c L_c (T_t(G) - T_c(G)),
   // G = (w/2, H - delta/2); the slanted sides of the two triangles cross at
@@ -756,12 +758,12 @@ TEST(ContactHeat, PaperLiteralTermMatchesAHandDerivedValue)
                            h_c,
                            overlap,
                            prescribed));
-  const double G_y      = H - delta / 2.;
+  const double G_y = H - delta / 2.;
   const double chord =
     w * (1. - delta / H) + delta * std::sqrt(1. + w * w / (4. * H * H));
   EXPECT_NEAR(overlap.contact_length, chord, 1e-12 * chord);
-  const double expected = h_c * chord *
-                          ((120. + 3000. * (G_y - 0.099)) - (20. + 1000. * G_y));
+  const double expected =
+    h_c * chord * ((120. + 3000. * (G_y - 0.099)) - (20. + 1000. * G_y));
   EXPECT_NEAR(prescribed.heat_flow, expected, 1e-10 * std::abs(expected));
 }
 
@@ -773,9 +775,9 @@ TEST(ContactHeat, PaperLiteralTermDoesNotDependOnWhichTriangleIsTheContactor)
   unsigned int    tested = 0;
   for (unsigned int trial = 0; trial < 2000 && tested < 100; ++trial)
     {
-      const Triangle c = random_triangle(rng, 0., 1.);
-      const Triangle t = random_triangle(rng, 0.3, 1.);
-      double         Tc[3], Tt[3];
+      const Triangle                         c = random_triangle(rng, 0., 1.);
+      const Triangle                         t = random_triangle(rng, 0.3, 1.);
+      double                                 Tc[3], Tt[3];
       std::uniform_real_distribution<double> u(0., 100.);
       for (unsigned int k = 0; k < 3; ++k)
         {
@@ -784,16 +786,31 @@ TEST(ContactHeat, PaperLiteralTermDoesNotDependOnWhichTriangleIsTheContactor)
         }
       OverlapPolygon      overlap;
       ContactHeatTransfer forward, backward;
-      if (!paper_literal_contact_heat(
-            c.x, c.y, Tc, t.x, t.y, Tt, 1e3, overlap, forward))
+      if (!paper_literal_contact_heat(c.x,
+                                      c.y,
+                                      Tc,
+                                      t.x,
+                                      t.y,
+                                      Tt,
+                                      1e3,
+                                      overlap,
+                                      forward))
         continue;
-      ASSERT_TRUE(paper_literal_contact_heat(
-        t.x, t.y, Tt, c.x, c.y, Tc, 1e3, overlap, backward));
+      ASSERT_TRUE(paper_literal_contact_heat(t.x,
+                                             t.y,
+                                             Tt,
+                                             c.x,
+                                             c.y,
+                                             Tc,
+                                             1e3,
+                                             overlap,
+                                             backward));
       // the size of the terms of Q (h_c A |grad T|), not Q (cancellation)
-      const auto   gc    = temperature_gradient(c.x, c.y, Tc);
-      const auto   gt    = temperature_gradient(t.x, t.y, Tt);
-      const double scale = 1e3 * overlap.area *
-                           (std::hypot(gc[0], gc[1]) + std::hypot(gt[0], gt[1]));
+      const auto   gc = temperature_gradient(c.x, c.y, Tc);
+      const auto   gt = temperature_gradient(t.x, t.y, Tt);
+      const double scale =
+        1e3 * overlap.area *
+        (std::hypot(gc[0], gc[1]) + std::hypot(gt[0], gt[1]));
       EXPECT_NEAR(backward.heat_flow, -forward.heat_flow, 1e-9 * scale);
       for (unsigned int k = 0; k < 3; ++k)
         {
@@ -811,15 +828,16 @@ TEST(ContactHeat, PaperLiteralTermDoesNotDependOnWhichTriangleIsTheContactor)
 
 TEST(ContactHeat, ModelDispatchGivesTheDefaultBitwise)
 {
-  EXPECT_STREQ(contact_heat_model_registry()[0].first, "temperature difference");
+  EXPECT_STREQ(contact_heat_model_registry()[0].first,
+               "temperature difference");
   EXPECT_EQ(contact_heat_model_registry()[0].second,
             ContactHeatModel::temperature_difference);
   EXPECT_STREQ(contact_heat_model_registry()[1].first, "paper literal");
   std::mt19937_64 rng(11);
   for (unsigned int trial = 0; trial < 200; ++trial)
     {
-      const Triangle      c = random_triangle(rng, 0., 1.);
-      const Triangle      t = random_triangle(rng, 0.3, 1.);
+      const Triangle      c     = random_triangle(rng, 0., 1.);
+      const Triangle      t     = random_triangle(rng, 0.3, 1.);
       const double        Tc[3] = {10., 20., 35.}, Tt[3] = {80., 60., 75.};
       OverlapPolygon      o1, o2;
       ContactHeatTransfer direct, dispatched;
@@ -840,7 +858,8 @@ TEST(ContactHeat, ModelDispatchGivesTheDefaultBitwise)
         {
           EXPECT_EQ(direct.contactor_nodal_heat[k],
                     dispatched.contactor_nodal_heat[k]);
-          EXPECT_EQ(direct.target_nodal_heat[k], dispatched.target_nodal_heat[k]);
+          EXPECT_EQ(direct.target_nodal_heat[k],
+                    dispatched.target_nodal_heat[k]);
         }
     }
 }

@@ -58,9 +58,9 @@ namespace tmfdem
     contact_heat_model_registry()
     {
       static const std::array<std::pair<const char *, ContactHeatModel>, 2>
-        registry{{{"temperature difference",
-                   ContactHeatModel::temperature_difference},
-                  {"paper literal", ContactHeatModel::paper_literal}}};
+        registry{
+          {{"temperature difference", ContactHeatModel::temperature_difference},
+           {"paper literal", ContactHeatModel::paper_literal}}};
       return registry;
     }
 
@@ -808,9 +808,8 @@ namespace tmfdem
         interpolate_temperature(Tt, transfer.target_shape);
       transfer.conductance = 0.; // not a conductance-type law
       const double factor  = h_c * overlap.area;
-      transfer.heat_flow =
-        factor * ((gradient_c[0] + gradient_t[0]) * nx +
-                  (gradient_c[1] + gradient_t[1]) * ny);
+      transfer.heat_flow   = factor * ((gradient_c[0] + gradient_t[0]) * nx +
+                                     (gradient_c[1] + gradient_t[1]) * ny);
       // dQ/dT_j = h_c A grad N_j . n, grad N_j = (y_k - y_l, x_l - x_k)/2A
       const double *xs[2] = {cx, tx}, *ys[2] = {cy, ty};
       for (unsigned int side = 0; side < 2; ++side)
@@ -822,8 +821,7 @@ namespace tmfdem
             {
               const unsigned int k = (j + 1) % 3, l = (j + 2) % 3;
               transfer.flow_weights[3 * side + j] =
-                factor * ((y[k] - y[l]) * nx + (x[l] - x[k]) * ny) /
-                twice_area;
+                factor * ((y[k] - y[l]) * nx + (x[l] - x[k]) * ny) / twice_area;
             }
         }
       split_heat_exactly(transfer.heat_flow,
@@ -854,8 +852,15 @@ namespace tmfdem
       switch (model)
         {
           case ContactHeatModel::paper_literal:
-            return paper_literal_contact_heat(
-              cx, cy, Tc, tx, ty, Tt, h_c, overlap, transfer);
+            return paper_literal_contact_heat(cx,
+                                              cy,
+                                              Tc,
+                                              tx,
+                                              ty,
+                                              Tt,
+                                              h_c,
+                                              overlap,
+                                              transfer);
           case ContactHeatModel::temperature_difference:
           default:
             return contact_heat(cx, cy, Tc, tx, ty, Tt, h_c, overlap, transfer);

@@ -64,9 +64,6 @@ namespace tmfdem
     std::string  time_integration         = "implicit"; ///< implicit|explicit
     double       joint_conductance_factor = 1000.;      ///< beta [-]
     double       contact_conductance      = 1e4;        ///< h_c [W/(m^2 K)]
-    /** Driving term of the contact heat (`Contact heat model`). */
-    discrete::ContactHeatModel contact_heat_model =
-      discrete::ContactHeatModel::temperature_difference;
     double       safety_factor            = 0.9;        ///< explicit [-]
     double       solver_tolerance         = 1e-12;      ///< relative
     unsigned int mechanical_steps_per_thermal_step = 0; ///< 0: automatic
@@ -82,6 +79,9 @@ namespace tmfdem
     /** Quasi-static: largest predicted rise of the joints' strength
      *  utilisation per thermal step [-]; 0: off. */
     double maximum_utilisation_change = 0.01;
+    /** Driving term of the contact heat (`Contact heat model`). */
+    discrete::ContactHeatModel contact_heat_model =
+      discrete::ContactHeatModel::temperature_difference;
 
     static void
     declare_parameters(ParameterHandler &prm);
