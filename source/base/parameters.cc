@@ -1,10 +1,12 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
 #include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/function_expression.h>
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/base/simulation.h>
 #include <tmfdem/mesh/block_generator.h>
@@ -317,6 +319,18 @@ namespace tmfdem
                           Patterns::Anything(),
                           "Heat generated per unit volume, a function of x, y "
                           "[m] and t [s] [W/m^3].");
+        prm.declare_entry(
+          "Initial temperature",
+          "",
+          Patterns::Anything(),
+          "Initial temperature of this material's cells, a function of x, y "
+          "[m] (t = start time) [C]; empty: Initial conditions/Temperature. "
+          "Precedence: Discrete bodies/Body <n>/Initial temperature > this > "
+          "Initial conditions/Temperature (setting it here and for a body "
+          "containing this material is refused). Discrete layer: exact per "
+          "triangle (each owns its nodes); continuum (CG): a node shared by "
+          "cells of different initial temperatures takes the mean of their "
+          "values there.");
         prm.leave_subsection();
       }
     prm.leave_subsection();
@@ -350,6 +364,7 @@ namespace tmfdem
                           across = Utilities::trim(
                             prm.get("Thermal conductivity across"));
         m.conductivity_direction = prm.get_double("Conductivity direction");
+        m.initial_temperature = Utilities::trim(prm.get("Initial temperature"));
         prm.leave_subsection();
 
         // anisotropic conduction: both principal values or neither, and
@@ -1202,5 +1217,61 @@ namespace tmfdem
     discrete_heat.parse_parameters(prm);
     checkpoint.parse_parameters(prm);
     guards.parse_parameters(prm);
+
+    // a body and one of its materials may not both set the initial
+    // temperature: two entries for the same cells
+    for (const auto &body : discrete_bodies.bodies)
+      if (!body.initial_temperature.empty())
+        for (const auto id : body.material_ids)
+          if (id < MaterialParameters::max_materials &&
+              !materials.materials[id].initial_temperature.empty())
+            throw InputError(
+              body.name + "/Initial temperature = '" +
+              body.initial_temperature + "' and Materials/Material " +
+              std::to_string(id) + "/Initial temperature = '" +
+              materials.materials[id].initial_temperature +
+              "' both set the initial temperature of material " +
+              std::to_string(id) + " (" + body.name +
+              "/Material ids); allowed is one of them: leave the other "
+              "empty.");
+    // malformed expressions are refused here, naming the entry, whichever
+    // layer runs and whether or not the mesh has that material
+    for (const auto &body : discrete_bodies.bodies)
+      if (!body.initial_temperature.empty())
+        make_expression_function(body.initial_temperature,
+                                 body.name + "/Initial temperature");
+    for (unsigned int id = 0; id < MaterialParameters::max_materials; ++id)
+      if (!materials.materials[id].initial_temperature.empty())
+        make_expression_function(materials.materials[id].initial_temperature,
+                                 "Materials/Material " + std::to_string(id) +
+                                   "/Initial temperature");
+  }
+
+  InitialTemperatureEntry
+  Parameters::initial_temperature_of(const types::material_id id) const
+  {
+    for (const auto &body : discrete_bodies.bodies)
+      if (!body.initial_temperature.empty() &&
+          std::find(body.material_ids.begin(), body.material_ids.end(), id) !=
+            body.material_ids.end())
+        return {body.initial_temperature, body.name + "/Initial temperature"};
+    if (id < MaterialParameters::max_materials &&
+        !materials.materials[id].initial_temperature.empty())
+      return {materials.materials[id].initial_temperature,
+              "Materials/Material " + std::to_string(id) +
+                "/Initial temperature"};
+    return {initial.temperature, "Initial conditions/Temperature"};
+  }
+
+  bool
+  Parameters::has_local_initial_temperature() const
+  {
+    for (const auto &body : discrete_bodies.bodies)
+      if (!body.initial_temperature.empty())
+        return true;
+    for (const auto &m : materials.materials)
+      if (!m.initial_temperature.empty())
+        return true;
+    return false;
   }
 } // namespace tmfdem

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <iostream>
 #include <regex>
 #include <sstream>
@@ -938,10 +939,77 @@ namespace tmfdem
   {
     initial_temperature->set_time(parameters.time.start_time);
     TrilinosWrappers::MPI::Vector distributed(locally_owned_dofs, communicator);
-    VectorTools::interpolate(*mapping,
-                             *dof_handler,
-                             *initial_temperature,
-                             distributed);
+    if (!parameters.has_local_initial_temperature())
+      VectorTools::interpolate(*mapping,
+                               *dof_handler,
+                               *initial_temperature,
+                               distributed);
+    else
+      {
+        // per material id (body > material > global entry): every cell
+        // evaluates its own entry at its support points; a node shared by
+        // cells of different entries (a material interface) takes the mean
+        // of their values there, each distinct entry counted once, so that
+        // the CG field at the interface is the midpoint of the jump whatever
+        // the number of cells on either side
+        std::vector<std::unique_ptr<FunctionParser<2>>> functions;
+        std::map<std::string, unsigned int>             index_of_entry;
+        std::map<types::material_id, unsigned int>      entry_of_material;
+        auto entry_index = [&](const types::material_id id) {
+          const auto known = entry_of_material.find(id);
+          if (known != entry_of_material.end())
+            return known->second;
+          const InitialTemperatureEntry entry =
+            parameters.initial_temperature_of(id);
+          const auto [it, inserted] =
+            index_of_entry.emplace(entry.entry, functions.size());
+          if (inserted)
+            {
+              functions.push_back(
+                make_expression_function(entry.expression, entry.entry));
+              functions.back()->set_time(parameters.time.start_time);
+            }
+          entry_of_material[id] = it->second;
+          return it->second;
+        };
+        const unsigned int         n_owned = locally_owned_dofs.n_elements();
+        std::vector<std::uint32_t> entries_at(n_owned, 0); // bit per entry
+        std::vector<Point<2>>      point_of(n_owned);
+        FEValues<2>                fe_values(*mapping,
+                              *fe,
+                              Quadrature<2>(fe->get_unit_support_points()),
+                              update_quadrature_points);
+        std::vector<types::global_dof_index> dofs(fe->n_dofs_per_cell());
+        // ghost cells too: a node owned here may touch cells of other ranks
+        for (const auto &cell : dof_handler->active_cell_iterators())
+          if (cell->is_locally_owned() || cell->is_ghost())
+            {
+              const unsigned int e = entry_index(cell->material_id());
+              fe_values.reinit(cell);
+              cell->get_dof_indices(dofs);
+              for (unsigned int i = 0; i < dofs.size(); ++i)
+                if (locally_owned_dofs.is_element(dofs[i]))
+                  {
+                    const auto k = locally_owned_dofs.index_within_set(dofs[i]);
+                    entries_at[k] |= std::uint32_t(1) << e;
+                    point_of[k] = fe_values.quadrature_point(i);
+                  }
+            }
+        for (unsigned int k = 0; k < n_owned; ++k)
+          {
+            double       sum   = 0.;
+            unsigned int count = 0;
+            for (unsigned int e = 0; e < functions.size(); ++e)
+              if (entries_at[k] & (std::uint32_t(1) << e))
+                {
+                  sum += functions[e]->value(point_of[k]);
+                  ++count;
+                }
+            distributed[locally_owned_dofs.nth_index_in_set(k)] =
+              count == 1 ? sum : sum / count;
+          }
+        distributed.compress(VectorOperation::insert);
+      }
     // the initial temperature everywhere, Dirichlet nodes included: the
     // boundary values act from the first step on. Holding them at t = 0
     // would add the heat of a boundary-layer hat function to the initial

@@ -40,6 +40,8 @@ namespace tmfdem
       // transfers in parallel, handed to f in pair order
       std::vector<ContactHeatTransfer> transfers(contact_pairs.size());
       std::vector<char>                overlapping(contact_pairs.size(), 0);
+      const ContactHeatModel           contact_model =
+        parameters.discrete_heat.contact_heat_model;
       for_each_chunk(arena_for(n_threads),
                      contact_pairs.size(),
                      64,
@@ -50,7 +52,8 @@ namespace tmfdem
                          {
                            const auto [c, t] = contact_pairs[p];
                            OverlapPolygon overlap;
-                           overlapping[p] = contact_heat(&model.x[3 * c],
+                           overlapping[p] = contact_heat(contact_model,
+                                                         &model.x[3 * c],
                                                          &model.y[3 * c],
                                                          T.begin() + 3 * c,
                                                          &model.x[3 * t],
@@ -286,11 +289,38 @@ namespace tmfdem
     void
     DiscreteHeat::initialise(const double time)
     {
-      auto initial = make_expression_function(parameters.initial.temperature,
-                                              "Initial conditions/Temperature");
-      initial->set_time(time);
-      for (unsigned int n = 0; n < model.n_nodes; ++n)
-        T[n] = initial->value(Point<2>(model.x_ref[n], model.y_ref[n]));
+      if (!parameters.has_local_initial_temperature())
+        {
+          auto initial =
+            make_expression_function(parameters.initial.temperature,
+                                     "Initial conditions/Temperature");
+          initial->set_time(time);
+          for (unsigned int n = 0; n < model.n_nodes; ++n)
+            T[n] = initial->value(Point<2>(model.x_ref[n], model.y_ref[n]));
+        }
+      else
+        {
+          // per material id (body > material > global): each triangle owns
+          // its three nodes, so the value of its own entry is exact
+          std::map<types::material_id, std::unique_ptr<FunctionParser<2>>>
+            initial_of;
+          for (unsigned int e = 0; e < model.n_elements; ++e)
+            {
+              auto &f = initial_of[model.material[e]];
+              if (!f)
+                {
+                  const InitialTemperatureEntry entry =
+                    parameters.initial_temperature_of(model.material[e]);
+                  f = make_expression_function(entry.expression, entry.entry);
+                  f->set_time(time);
+                }
+              for (unsigned int k = 0; k < 3; ++k)
+                {
+                  const unsigned int n = 3 * e + k;
+                  T[n] = f->value(Point<2>(model.x_ref[n], model.y_ref[n]));
+                }
+            }
+        }
       // Dirichlet nodes too start at the initial temperature; their values
       // act from the first step on. Held at t = 0 they would add, with the
       // consistent capacity of the implicit path, the heat of a hat
@@ -417,6 +447,19 @@ namespace tmfdem
               2. * transfer.conductance * transfer.contactor_shape[k];
             row[3 * t + k] +=
               2. * transfer.conductance * transfer.target_shape[k];
+          }
+        if (parameters.discrete_heat.contact_heat_model ==
+            ContactHeatModel::paper_literal)
+          {
+            // Jacobian s_i dQ/dT_j, s = (N_c, -N_t): row sums of |.|
+            double weights = 0.;
+            for (const double a : transfer.flow_weights)
+              weights += std::abs(a);
+            for (unsigned int k = 0; k < 3; ++k)
+              {
+                row[3 * c + k] += transfer.contactor_shape[k] * weights;
+                row[3 * t + k] += transfer.target_shape[k] * weights;
+              }
           }
       });
       set_function_time(0.);
@@ -605,6 +648,21 @@ namespace tmfdem
                       0.5 * L * f.coefficient->value(p) * f.ambient->value(p);
                 }
             }
+          // the paper's contact term is not a conductance (its Jacobian is
+          // neither symmetric nor definite, heat_jacobian() is zero): it is
+          // taken at the start of the step, T = T_old, on the right-hand side
+          const bool lagged_contact =
+            parameters.discrete_heat.contact_heat_model ==
+            ContactHeatModel::paper_literal;
+          Vector<double> lagged_contact_heat;
+          double         lagged_contact_exchange = 0.;
+          if (lagged_contact)
+            {
+              lagged_contact_heat.reinit(model.n_nodes);
+              add_contact_heat(lagged_contact_heat);
+              lagged_contact_exchange = last_contact_exchange;
+              rhs += lagged_contact_heat;
+            }
           set_dirichlet_values(time + time_step);
           std::map<types::global_dof_index, double> boundary_values;
           for (unsigned int n = 0; n < model.n_nodes; ++n)
@@ -641,6 +699,15 @@ namespace tmfdem
           iterations = control.last_step();
           T          = solution;
           heat_rates(time + time_step, rate, boundary_rate, source_rate);
+          if (lagged_contact)
+            {
+              // the balance with the contact heat the step used
+              Vector<double> current_contact_heat(model.n_nodes);
+              add_contact_heat(current_contact_heat);
+              rate -= current_contact_heat;
+              rate += lagged_contact_heat;
+              last_contact_exchange = lagged_contact_exchange;
+            }
           for (unsigned int e = 0; e < model.n_elements; ++e)
             {
               const double c =

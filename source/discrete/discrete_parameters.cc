@@ -270,9 +270,31 @@ namespace tmfdem
     prm.declare_entry("Contact conductance",
                       "1e4",
                       Patterns::Double(0.),
-                      "h_c of the heat exchanged over contact overlaps, "
-                      "Q = h_c L_c (T_target - T_contactor) at the overlap "
-                      "centroid [W/(m^2 K)].");
+                      "h_c of the heat exchanged over contact overlaps "
+                      "[W/(m^2 K)]; see Contact heat model.");
+    {
+      std::string names;
+      for (const auto &[name, model] : discrete::contact_heat_model_registry())
+        names += (names.empty() ? "" : "|") + std::string(name);
+      prm.declare_entry(
+        "Contact heat model",
+        discrete::contact_heat_model_registry()[0].first,
+        Patterns::Selection(names),
+        "Driving term of the heat exchanged by a contact pair, distributed "
+        "to the nodes of both triangles with the area coordinates of the "
+        "overlap's centroid G (paper Eqs. 34-36). temperature difference: "
+        "Q = h_c L_c (T_target(G) - T_contactor(G)) [W/m], L_c the chord of "
+        "the interpenetration; two bodies at different temperatures "
+        "exchange heat at the rate the contact conductance h_c says. paper "
+        "literal: the paper's Eqs. 29-33 as printed, for reproducing the "
+        "paper, Q = h_c A (grad T_contactor + grad T_target) . n [W/m] into "
+        "the contactor (A the overlap area, n the unit vector from the "
+        "contactor's centroid to the target's, k_ij = 1 in Eq. 29 so that "
+        "Q is a heat); it is driven by temperature GRADIENTS only, so two "
+        "isothermal bodies at different temperatures exchange exactly "
+        "nothing (the paper's flaw, doc/theory.md); in implicit time "
+        "integration it is taken at the start of the step (explicitly).");
+    }
     prm.declare_entry("Safety factor",
                       "0.9",
                       Patterns::Double(1e-6, 1.),
@@ -372,6 +394,19 @@ namespace tmfdem
     thermal_step_growth        = prm.get_double("Thermal step growth factor");
     maximum_thermal_step       = prm.get_double("Maximum thermal step");
     maximum_utilisation_change = prm.get_double("Maximum utilisation change");
+    {
+      const std::string name  = prm.get("Contact heat model");
+      bool              found = false;
+      for (const auto &[entry, model] : discrete::contact_heat_model_registry())
+        if (name == entry)
+          {
+            contact_heat_model = model;
+            found              = true;
+          }
+      if (!found) // the Selection pattern has already refused it
+        throw InputError("Discrete heat/Contact heat model = '" + name +
+                         "': unknown.");
+    }
     prm.leave_subsection();
     if (thermal_step_growth > 1. && coupling != "quasi-static")
       throw InputError(
@@ -424,6 +459,17 @@ namespace tmfdem
                           "0",
                           Patterns::Anything(),
                           "Initial velocity v_y(x, y) of a free body [m/s].");
+        prm.declare_entry(
+          "Initial temperature",
+          "",
+          Patterns::Anything(),
+          "Initial temperature of the cells of this body's Material ids, "
+          "function of x, y [m] (t = start time) [C]; empty: each material's "
+          "Materials/Material <id>/Initial temperature, else Initial "
+          "conditions/Temperature. Precedence: body > material > global; "
+          "setting it here and for one of the body's materials is refused. "
+          "Honoured by the continuum heat solver too (a body is a set of "
+          "material ids).");
         prm.leave_subsection();
       }
     prm.leave_subsection();
@@ -451,12 +497,20 @@ namespace tmfdem
         body.velocity_y = prm.get("Velocity y");
         body.initial_velocity_x = prm.get("Initial velocity x");
         body.initial_velocity_y = prm.get("Initial velocity y");
+        body.initial_temperature =
+          Utilities::trim(prm.get("Initial temperature"));
         prm.leave_subsection();
         for (const auto id : body.material_ids)
           if (!used.insert(id).second)
             throw InputError(body.name + "/Material ids: material id " +
                              std::to_string(id) +
                              " already belongs to another body.");
+        if (body.material_ids.empty() && !body.initial_temperature.empty())
+          throw InputError(body.name + "/Initial temperature = '" +
+                           body.initial_temperature + "' is set but " +
+                           body.name +
+                           "/Material ids is empty: name the material ids of "
+                           "the body, or leave Initial temperature empty.");
         if (!body.material_ids.empty())
           bodies.push_back(body);
       }

@@ -3,7 +3,8 @@
 // brute-force grid estimates and exact cases, the contact length of
 // face-to-face contacts, exact conservation of the nodal heats, the
 // direction of the flow, the isothermal-bodies exchange and the
-// linearisation.
+// linearisation; the paper's literal term (Contact heat model = paper
+// literal) against a hand-derived value and under contactor-target swap.
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -696,4 +697,169 @@ TEST(ContactHeat, PaperLiteralTermTransfersNothingBetweenIsothermalBodies)
                                          literal));
   EXPECT_NE(literal.heat_flow, 0.);
   EXPECT_EQ(sum_of_nodal_heats(literal), 0.);
+}
+
+TEST(ContactHeat, PaperLiteralTermMatchesAHandDerivedValue)
+{
+  // two triangles pressed together by delta (tests/data/pressed_triangles):
+  // the lower (0.05, 0), (0.1, 0.1), (0, 0.1) and its mirror image about
+  // y = H - delta/2; overlap a hexagon of area w delta (1 - 3 delta/(4 H)),
+  // centroids on x = w/2 so n = (0, 1). Linear fields T_c = 20 + 1000 y,
+  // T_t = 120 + 3000 (y - 0.099): grad T_c + grad T_t = (0, 4000) K/m and
+  // Q = h_c A 4000 into the contactor (the lower triangle).
+  const double   w = 0.1, H = 0.1, delta = 1e-3, h_c = 1e4;
+  const Triangle c{{0.05, 0.1, 0.}, {0., 0.1, 0.1}};
+  const Triangle t{{0., 0.1, 0.05}, {0.099, 0.099, 0.199}};
+  double         Tc[3], Tt[3];
+  for (unsigned int k = 0; k < 3; ++k)
+    {
+      Tc[k] = 20. + 1000. * c.y[k];
+      Tt[k] = 120. + 3000. * (t.y[k] - 0.099);
+    }
+  const double        area = w * delta * (1. - 3. * delta / (4. * H));
+  OverlapPolygon      overlap;
+  ContactHeatTransfer transfer;
+  ASSERT_TRUE(contact_heat(ContactHeatModel::paper_literal,
+                           c.x,
+                           c.y,
+                           Tc,
+                           t.x,
+                           t.y,
+                           Tt,
+                           h_c,
+                           overlap,
+                           transfer));
+  EXPECT_NEAR(overlap.area, area, 1e-12 * area);
+  EXPECT_NEAR(transfer.heat_flow,
+              h_c * area * 4000.,
+              1e-10 * h_c * area * 4000.);
+  EXPECT_EQ(sum_of_nodal_heats(transfer), 0.);
+  EXPECT_EQ(transfer.conductance, 0.);
+  // the flow weights are dQ/dT: Q = sum_j a_j T_j
+  double linear = 0.;
+  for (unsigned int k = 0; k < 3; ++k)
+    linear +=
+      transfer.flow_weights[k] * Tc[k] + transfer.flow_weights[3 + k] * Tt[k];
+  EXPECT_NEAR(linear, transfer.heat_flow, 1e-9 * std::abs(transfer.heat_flow));
+  // the default on the same pair: h_c L_c (T_t(G) - T_c(G)),
+  // G = (w/2, H - delta/2); the slanted sides of the two triangles cross at
+  // y = H - delta/2, so all six vertices of the hexagon are crossings of the
+  // two boundaries and L_c is half its perimeter: the two flat edges
+  // w (1 - delta/H) and four slanted pieces (delta/2) sqrt(1 + (w/(2H))^2),
+  // L_c = w (1 - delta/H) + delta sqrt(1 + w^2 / (4 H^2))
+  ContactHeatTransfer prescribed;
+  ASSERT_TRUE(contact_heat(ContactHeatModel::temperature_difference,
+                           c.x,
+                           c.y,
+                           Tc,
+                           t.x,
+                           t.y,
+                           Tt,
+                           h_c,
+                           overlap,
+                           prescribed));
+  const double G_y = H - delta / 2.;
+  const double chord =
+    w * (1. - delta / H) + delta * std::sqrt(1. + w * w / (4. * H * H));
+  EXPECT_NEAR(overlap.contact_length, chord, 1e-12 * chord);
+  const double expected =
+    h_c * chord * ((120. + 3000. * (G_y - 0.099)) - (20. + 1000. * G_y));
+  EXPECT_NEAR(prescribed.heat_flow, expected, 1e-10 * std::abs(expected));
+}
+
+TEST(ContactHeat, PaperLiteralTermDoesNotDependOnWhichTriangleIsTheContactor)
+{
+  // Q is odd under exchanging contactor and target: the heat each triangle
+  // receives is the same whichever the search calls the contactor
+  std::mt19937_64 rng(7);
+  unsigned int    tested = 0;
+  for (unsigned int trial = 0; trial < 2000 && tested < 100; ++trial)
+    {
+      const Triangle                         c = random_triangle(rng, 0., 1.);
+      const Triangle                         t = random_triangle(rng, 0.3, 1.);
+      double                                 Tc[3], Tt[3];
+      std::uniform_real_distribution<double> u(0., 100.);
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          Tc[k] = u(rng);
+          Tt[k] = u(rng);
+        }
+      OverlapPolygon      overlap;
+      ContactHeatTransfer forward, backward;
+      if (!paper_literal_contact_heat(c.x,
+                                      c.y,
+                                      Tc,
+                                      t.x,
+                                      t.y,
+                                      Tt,
+                                      1e3,
+                                      overlap,
+                                      forward))
+        continue;
+      ASSERT_TRUE(paper_literal_contact_heat(t.x,
+                                             t.y,
+                                             Tt,
+                                             c.x,
+                                             c.y,
+                                             Tc,
+                                             1e3,
+                                             overlap,
+                                             backward));
+      // the size of the terms of Q (h_c A |grad T|), not Q (cancellation)
+      const auto   gc = temperature_gradient(c.x, c.y, Tc);
+      const auto   gt = temperature_gradient(t.x, t.y, Tt);
+      const double scale =
+        1e3 * overlap.area *
+        (std::hypot(gc[0], gc[1]) + std::hypot(gt[0], gt[1]));
+      EXPECT_NEAR(backward.heat_flow, -forward.heat_flow, 1e-9 * scale);
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          EXPECT_NEAR(backward.contactor_nodal_heat[k],
+                      forward.target_nodal_heat[k],
+                      1e-8 * scale);
+          EXPECT_NEAR(backward.target_nodal_heat[k],
+                      forward.contactor_nodal_heat[k],
+                      1e-8 * scale);
+        }
+      ++tested;
+    }
+  EXPECT_EQ(tested, 100u);
+}
+
+TEST(ContactHeat, ModelDispatchGivesTheDefaultBitwise)
+{
+  EXPECT_STREQ(contact_heat_model_registry()[0].first,
+               "temperature difference");
+  EXPECT_EQ(contact_heat_model_registry()[0].second,
+            ContactHeatModel::temperature_difference);
+  EXPECT_STREQ(contact_heat_model_registry()[1].first, "paper literal");
+  std::mt19937_64 rng(11);
+  for (unsigned int trial = 0; trial < 200; ++trial)
+    {
+      const Triangle      c     = random_triangle(rng, 0., 1.);
+      const Triangle      t     = random_triangle(rng, 0.3, 1.);
+      const double        Tc[3] = {10., 20., 35.}, Tt[3] = {80., 60., 75.};
+      OverlapPolygon      o1, o2;
+      ContactHeatTransfer direct, dispatched;
+      const bool a = contact_heat(c.x, c.y, Tc, t.x, t.y, Tt, 500., o1, direct);
+      const bool b = contact_heat(ContactHeatModel::temperature_difference,
+                                  c.x,
+                                  c.y,
+                                  Tc,
+                                  t.x,
+                                  t.y,
+                                  Tt,
+                                  500.,
+                                  o2,
+                                  dispatched);
+      ASSERT_EQ(a, b);
+      EXPECT_EQ(direct.heat_flow, dispatched.heat_flow);
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          EXPECT_EQ(direct.contactor_nodal_heat[k],
+                    dispatched.contactor_nodal_heat[k]);
+          EXPECT_EQ(direct.target_nodal_heat[k],
+                    dispatched.target_nodal_heat[k]);
+        }
+    }
 }

@@ -112,6 +112,10 @@ namespace tmfdem
     double      fracture_energy_I  = 100.;   ///< Mode I fracture energy [J/m^2]
     double      fracture_energy_II = 500.; ///< Mode II fracture energy [J/m^2]
     std::string heat_source = "0"; ///< volumetric source f(x,y,t) [W/m^3]
+    /** Initial temperature T(x, y) of this material's cells [C]; empty:
+     *  `Initial conditions/Temperature` (Parameters::initial_temperature_of).
+     */
+    std::string initial_temperature;
 
     /**
      * Anisotropic conduction (paper Eqs. 8-9): true where `Thermal
@@ -465,6 +469,16 @@ namespace tmfdem
     parse_parameters(ParameterHandler &prm);
   };
 
+  /**
+   * The initial temperature of the cells of one material id: the
+   * expression and the prm entry it came from (for messages).
+   */
+  struct InitialTemperatureEntry
+  {
+    std::string expression; ///< T(x, y) at the start time [C]
+    std::string entry;      ///< e.g. "Materials/Material 2/Initial temperature"
+  };
+
   /** All parameters of a run. */
   struct Parameters
   {
@@ -497,6 +511,22 @@ namespace tmfdem
     declare_parameters(ParameterHandler &prm);
     void
     parse_parameters(ParameterHandler &prm);
+
+    /**
+     * Initial temperature of the cells of material @p id, by precedence
+     * body > material > global: `Discrete bodies/Body <n>/Initial
+     * temperature` of the body whose Material ids contain @p id, if set;
+     * else `Materials/Material <id>/Initial temperature`, if set; else
+     * `Initial conditions/Temperature`. (A body and one of its materials
+     * both setting it is refused by parse_parameters().) Ids without a
+     * Materials subsection take the global entry.
+     */
+    InitialTemperatureEntry
+    initial_temperature_of(const types::material_id id) const;
+
+    /** True if some body or material sets its own initial temperature. */
+    bool
+    has_local_initial_temperature() const;
   };
 
   /**

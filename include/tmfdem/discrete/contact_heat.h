@@ -17,9 +17,10 @@
  *     0.0 in floating point, in any order of summation (see
  *     split_heat_exactly()).
  *
- * The paper's own driving term (Eqs. 29-33: an element temperature gradient
- * averaged over the overlap, times h_c) is offered only as the named
- * alternative paper_literal_contact_heat(); it transfers nothing between
+ * The paper's own driving term (Eqs. 29-33: element temperature gradients
+ * averaged over the overlap, times h_c) is offered as the named alternative
+ * paper_literal_contact_heat(), selected by `Discrete heat/Contact heat
+ * model = paper literal` (ContactHeatModel); it transfers nothing between
  * two isothermal bodies at different temperatures and so fails the simplest
  * contact benchmark.
  *
@@ -31,11 +32,38 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 namespace tmfdem
 {
   namespace discrete
   {
+    /**
+     * Driving term of the contact heat, `Discrete heat/Contact heat model`.
+     * Parsed once from the prm name (contact_heat_model_registry()); the
+     * heat loop switches on the enum.
+     */
+    enum class ContactHeatModel : unsigned char
+    {
+      /** Q = h_c L_c (T_t(G) - T_c(G)), contact_heat_from_overlap() (the
+       * default) */
+      temperature_difference,
+      /** the paper's Eqs. 29-33, paper_literal_contact_heat() */
+      paper_literal
+    };
+
+    /** The prm names of the contact heat models, in the order of the
+     * `Contact heat model` selection (the first is the default). */
+    inline const std::array<std::pair<const char *, ContactHeatModel>, 2> &
+    contact_heat_model_registry()
+    {
+      static const std::array<std::pair<const char *, ContactHeatModel>, 2>
+        registry{
+          {{"temperature difference", ContactHeatModel::temperature_difference},
+           {"paper literal", ContactHeatModel::paper_literal}}};
+      return registry;
+    }
+
     /** Which triangle's boundary an edge of the overlap polygon lies on. */
     enum class OverlapEdgeOwner : unsigned char
     {
@@ -549,6 +577,13 @@ namespace tmfdem
       std::array<double, 3> contactor_nodal_heat{{0., 0., 0.}},
         target_nodal_heat{{0., 0., 0.}};
 
+      /** Paper literal model only (zero otherwise): dQ/dT_j [W/(m K)] of
+       * the heat flow into the contactor, Q = sum_j flow_weights[j] T_j,
+       * j over contactor nodes 0-2 then target nodes 0-2. Its Jacobian
+       * (not a conductance: neither symmetric nor definite) bounds the
+       * explicit step, see DiscreteHeat::stable_time_step(). */
+      std::array<double, 6> flow_weights{{0., 0., 0., 0., 0., 0.}};
+
       /**
        * d(nodal heat i)/d(nodal temperature j) [W/(m K)], i and j running
        * over contactor nodes 0-2 then target nodes 0-2: -K, with
@@ -697,23 +732,47 @@ namespace tmfdem
     }
 
     /**
-     * NAMED ALTERNATIVE, NOT THE DEFAULT: the paper's literal driving term
-     * (Eqs. 29-33), kept for comparison only. Our reading of it: the flux of
-     * each element is its P1 temperature gradient (Eq. 29 with k_ij = 1,
-     * which is what makes Eq. 33 dimensionally a heat [W/m] at all), its
-     * average over the overlap is the element gradient itself (Eqs. 30-31),
-     * the "outward normals" of Eq. 32 are n_c = unit vector from the
-     * contactor's centroid to the target's and n_t = -n_c, and Eq. 33 gives
-     *   Q = h_c A (grad T_t - grad T_c) . n_c [W/m]
-     * into the contactor, distributed like contact_heat() (Eq. 36).
+     * NAMED ALTERNATIVE, NOT THE DEFAULT (`Contact heat model = paper
+     * literal`): the paper's driving term (Eqs. 29-33), for users
+     * reproducing the paper. Our reading of it, as printed:
+     *  - Eq. 29 with k_ij = 1: the "flux" of each element is q = -grad T
+     *    [K/m], its P1 temperature gradient (with the conductivity, Eq. 33
+     *    would be in W^2/(m^2 K), not a heat; with k_ij = 1 it is a heat
+     *    per unit thickness [W/m]);
+     *  - Eqs. 30-31: averaged over the overlap, a P1 gradient is the element
+     *    gradient itself;
+     *  - Eq. 32: "the outward normal vectors" of the contactor and the
+     *    target are n_c = unit vector from the contactor's centroid to the
+     *    target's and n_t = -n_c; the net flow from c to t superposes what c
+     *    sends towards t, q_c . n_c, and, with the opposite sign, what t
+     *    sends towards c, q_t . n_t:
+     *      q = q_c . n_c - q_t . n_t = -(grad T_c + grad T_t) . n_c;
+     *  - Eq. 33: p = h_c A q over the overlap area A, i.e. the heat flow
+     *    into the contactor
+     *      Q = h_c A (grad T_c + grad T_t) . n_c   [W/m],
+     *    distributed like contact_heat() (Eq. 36, area coordinates of the
+     *    overlap's centroid G).
+     * Q is odd under swapping contactor and target (n_c changes sign), so
+     * the result does not depend on which triangle of a pair the contact
+     * search calls the contactor. (Reading Eq. 32 as a plain sum
+     * q_c . n_c + q_t . n_t instead gives a Q that is even under the swap:
+     * the direction of the flow would follow the element numbering.)
      *
-     * Why it is not used: Q depends only on temperature GRADIENTS. Two
-     * isothermal bodies at T1 != T2 pressed together have zero gradients
-     * and exchange nothing, forever; the simplest contact benchmark (two
-     * small isothermal bodies equilibrating as exp(-t/tau)) fails, and so
-     * does the steady series-resistance benchmark (no temperature jump
-     * q / h_c across the contact can drive a flux). The default form
-     * Q = h_c L_c (T_t(G) - T_c(G)) is driven by the temperature jump.
+     * Why it is not the default: Q depends only on temperature GRADIENTS.
+     * Two isothermal bodies at T1 != T2 pressed together have zero
+     * gradients and exchange nothing, forever; the simplest contact
+     * benchmark (two small isothermal bodies equilibrating as exp(-t/tau))
+     * fails, and so does the steady series-resistance benchmark (no
+     * temperature jump q / h_c across the contact can drive a flux). Its
+     * size also scales with the overlap AREA, i.e. with the
+     * penalty-dependent interpenetration, not with the contact length, and
+     * not with the conductivities of the two bodies.
+     * The default form Q = h_c L_c (T_t(G) - T_c(G)) is driven by the
+     * temperature jump.
+     *
+     * Fills @p overlap and @p transfer (conductance 0: not a
+     * conductance-type law; flow_weights: dQ/dT); returns false (zero
+     * transfer) if the triangles do not overlap with positive area.
      */
     inline bool
     paper_literal_contact_heat(const double        *cx,
@@ -748,15 +807,64 @@ namespace tmfdem
       transfer.target_temperature =
         interpolate_temperature(Tt, transfer.target_shape);
       transfer.conductance = 0.; // not a conductance-type law
-      transfer.heat_flow   = h_c * overlap.area *
-                           ((gradient_t[0] - gradient_c[0]) * nx +
-                            (gradient_t[1] - gradient_c[1]) * ny);
+      const double factor  = h_c * overlap.area;
+      transfer.heat_flow   = factor * ((gradient_c[0] + gradient_t[0]) * nx +
+                                     (gradient_c[1] + gradient_t[1]) * ny);
+      // dQ/dT_j = h_c A grad N_j . n, grad N_j = (y_k - y_l, x_l - x_k)/2A
+      const double *xs[2] = {cx, tx}, *ys[2] = {cy, ty};
+      for (unsigned int side = 0; side < 2; ++side)
+        {
+          const double *x = xs[side], *y = ys[side];
+          const double  twice_area =
+            twice_signed_area(x[0], y[0], x[1], y[1], x[2], y[2]);
+          for (unsigned int j = 0; j < 3; ++j)
+            {
+              const unsigned int k = (j + 1) % 3, l = (j + 2) % 3;
+              transfer.flow_weights[3 * side + j] =
+                factor * ((y[k] - y[l]) * nx + (x[l] - x[k]) * ny) / twice_area;
+            }
+        }
       split_heat_exactly(transfer.heat_flow,
                          transfer.contactor_shape,
                          transfer.target_shape,
                          transfer.contactor_nodal_heat,
                          transfer.target_nodal_heat);
       return true;
+    }
+
+    /**
+     * Contact heat of a pair with the driving term @p model (see
+     * ContactHeatModel): contact_heat() or paper_literal_contact_heat(),
+     * same arguments and results.
+     */
+    inline bool
+    contact_heat(const ContactHeatModel model,
+                 const double          *cx,
+                 const double          *cy,
+                 const double          *Tc,
+                 const double          *tx,
+                 const double          *ty,
+                 const double          *Tt,
+                 const double           h_c,
+                 OverlapPolygon        &overlap,
+                 ContactHeatTransfer   &transfer)
+    {
+      switch (model)
+        {
+          case ContactHeatModel::paper_literal:
+            return paper_literal_contact_heat(cx,
+                                              cy,
+                                              Tc,
+                                              tx,
+                                              ty,
+                                              Tt,
+                                              h_c,
+                                              overlap,
+                                              transfer);
+          case ContactHeatModel::temperature_difference:
+          default:
+            return contact_heat(cx, cy, Tc, tx, ty, Tt, h_c, overlap, transfer);
+        }
     }
   } // namespace discrete
 } // namespace tmfdem

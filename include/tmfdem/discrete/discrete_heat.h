@@ -80,8 +80,10 @@ namespace tmfdem
         n_threads = std::max(1u, threads);
       }
 
-      /** Sets T(x, y, t0) [C] from `Initial conditions` (reference
-       *  positions) at every node, Dirichlet nodes included: the Dirichlet
+      /** Sets T(x, y, t0) [C] (reference positions) at every node,
+       *  Dirichlet nodes included, each triangle's nodes from the initial
+       *  temperature of its material id (Parameters::initial_temperature_of:
+       *  body > material > `Initial conditions/Temperature`): the Dirichlet
        *  values act from the first step on. */
       void
       initialise(const double time) override;

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <string>
+#include <tmfdem/discrete/contact_heat.h>
 #include <vector>
 
 namespace dealii
@@ -82,6 +83,9 @@ namespace tmfdem
     /** Quasi-static: largest predicted rise of the joints' strength
      *  utilisation per thermal step [-]; 0: off. */
     double maximum_utilisation_change = 0.01;
+    /** Driving term of the contact heat (`Contact heat model`). */
+    discrete::ContactHeatModel contact_heat_model =
+      discrete::ContactHeatModel::temperature_difference;
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -105,6 +109,9 @@ namespace tmfdem
     std::string                     velocity_y = "0"; ///< v_y(t) [m/s]
     std::string initial_velocity_x = "0"; ///< v_x(x, y) at start [m/s]
     std::string initial_velocity_y = "0"; ///< v_y(x, y) at start [m/s]
+    /** T(x, y) at the start time [C]; empty: the materials' or the global
+     *  initial temperature (Parameters::initial_temperature_of()). */
+    std::string initial_temperature;
   };
 
   /** Subsection `Discrete bodies`: up to max_bodies `Body <n>`. Cells of
