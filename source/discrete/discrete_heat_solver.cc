@@ -3,6 +3,7 @@
 #include <sstream>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/threads.h>
+#include <tmfdem/discrete/contact_heat.h>
 #include <tmfdem/discrete/discrete_heat_solver.h>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/io/checkpoint.h>
@@ -311,6 +312,9 @@ namespace tmfdem
         .add("nodes", model.n_nodes)
         .add("joints", model.n_joints)
         .add("time_integration", parameters.discrete_heat.time_integration)
+        .add("contact_heat_model",
+             contact_heat_model_name(
+               parameters.discrete_heat.contact_heat_model))
         .add("steps", static_cast<long long>(steps))
         .add("end_time", time)
         .add("time_step", time_step)

@@ -14,6 +14,7 @@
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/function_expression.h>
 #include <tmfdem/base/threads.h>
+#include <tmfdem/discrete/contact_heat.h>
 #include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/explicit_solver.h>
@@ -1747,6 +1748,9 @@ namespace tmfdem
           hb.add("boundary_heat_rate_last_step", rates);
           summary.add("coupling", parameters.discrete_heat.coupling)
             .add("temperature_source", heat->name())
+            .add("contact_heat_model",
+                 contact_heat_model_name(
+                   parameters.discrete_heat.contact_heat_model))
             .add("continuum_heat_across_cracks", heat_across_cracks)
             .add("thermal_steps", static_cast<long long>(n_thermal_steps))
             .add("last_relaxation_steps", last_relaxation_steps)

@@ -32,6 +32,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 #include <utility>
 
 namespace tmfdem
@@ -62,6 +63,16 @@ namespace tmfdem
           {{"temperature difference", ContactHeatModel::temperature_difference},
            {"paper literal", ContactHeatModel::paper_literal}}};
       return registry;
+    }
+
+    /** The prm name of @p model (for summary.json and messages). */
+    inline std::string
+    contact_heat_model_name(const ContactHeatModel model)
+    {
+      for (const auto &[name, entry] : contact_heat_model_registry())
+        if (entry == model)
+          return name;
+      return "unknown";
     }
 
     /** Which triangle's boundary an edge of the overlap polygon lies on. */
