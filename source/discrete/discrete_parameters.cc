@@ -65,7 +65,7 @@ namespace tmfdem
       "(isotropic; doc/theory.md, 'Joint compliance compensation'): the "
       "jointed body is not softened by the penalties, the cohesive law "
       "(peak traction, fracture energy) is unchanged, and the stable step "
-      "shrinks a little. false: the triangles take E and nu as given and the "
+      "does not change at penalties of 10 E and more. false: the triangles take E and nu as given and the "
       "joints soften the body by about x / (1 + x), x = 1.7 E / ((1 - nu) "
       "p_n) in plane stress (doc/tutorial/lesson-05-discrete-layer.md).");
     prm.declare_entry("Contact penalty factor",
