@@ -51,6 +51,8 @@ def run_one(binary, out, hc, T0, h, end_factor=1.2, report_only=False):
         result = subprocess.run(cmd, capture_output=True, text=True)
         if result.returncode != 0:
             return (hc, T0, h, t_rim, t1, t2, None, None, result.stderr[-500:])
+    if not os.path.exists(os.path.join(folder, "history.csv")):
+        return (hc, T0, h, t_rim, t1, t2, None, None, "not run")
     hist = np.genfromtxt(os.path.join(folder, "history.csv"), delimiter=",", names=True)
     onset = np.nonzero(hist["damaged_joints"] > 0)[0]
     if len(onset) == 0:
