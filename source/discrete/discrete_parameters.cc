@@ -55,6 +55,19 @@ namespace tmfdem
                       "10",
                       Patterns::Double(0.),
                       "Joint tangential penalty p_t = factor x E [Pa].");
+    prm.declare_entry(
+      "Joint compliance compensation",
+      "true",
+      Patterns::Bool(),
+      "true: every triangle is made stiffer by the compliance of its own "
+      "intact joints (their lengths and penalties, at set-up), so that a "
+      "triangle in series with its joints has the material's E and nu "
+      "(isotropic; doc/theory.md, 'Joint compliance compensation'): the "
+      "jointed body is not softened by the penalties, the cohesive law "
+      "(peak traction, fracture energy) is unchanged, and the stable step "
+      "does not change at penalties of 10 E and more. false: the triangles take E and nu as given and the "
+      "joints soften the body by about x / (1 + x), x = 1.7 E / ((1 - nu) "
+      "p_n) in plane stress (doc/tutorial/lesson-05-discrete-layer.md).");
     prm.declare_entry("Contact penalty factor",
                       "10",
                       Patterns::Double(0.),
@@ -169,6 +182,8 @@ namespace tmfdem
     joint_normal_penalty_factor = prm.get_double("Joint normal penalty factor");
     joint_tangential_penalty_factor =
       prm.get_double("Joint tangential penalty factor");
+    joint_compliance_compensation =
+      prm.get_bool("Joint compliance compensation");
     contact_penalty_factor = prm.get_double("Contact penalty factor");
     contact_tangential_penalty_factor =
       prm.get_double("Contact tangential penalty factor");

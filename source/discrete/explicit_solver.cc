@@ -18,6 +18,7 @@
 #include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/explicit_solver.h>
+#include <tmfdem/discrete/joint_compliance.h>
 #include <tmfdem/discrete/stable_step.h>
 #include <tmfdem/discrete/stress_recovery.h>
 #include <tmfdem/io/checkpoint.h>
@@ -101,6 +102,7 @@ namespace tmfdem
       setup_bodies();
       setup_boundary_conditions();
       setup_joints();
+      setup_element_stiffness();
       compute_stable_time_step();
 
       const double requested = dm.time_step;
@@ -254,23 +256,78 @@ namespace tmfdem
         {
           const MaterialProperties &m = parameters.materials[model.material[e]];
           const double node_mass = m.density * model.reference_area[e] / 3.;
-          // Damping ratio = zeta of the element's highest free mode
-          // (stable_step.h): eta = ratio / zeta per unit viscosity
-          const double ratio = parameters.discrete_mechanics.damping_ratio;
-          viscosity[e]       = ratio > 0. ?
-                                 ratio / highest_mode_damping_per_viscosity(
-                                     {{model.x_ref[3 * e],
-                                             model.x_ref[3 * e + 1],
-                                             model.x_ref[3 * e + 2]}},
-                                     {{model.y_ref[3 * e],
-                                             model.y_ref[3 * e + 1],
-                                             model.y_ref[3 * e + 2]}},
-                                     solid[model.material[e]].lame,
-                                     node_mass) :
-                                 0.;
           for (unsigned int k = 0; k < 3; ++k)
             model.mass[3 * e + k] = node_mass;
         }
+    }
+
+    void
+    ExplicitSolver::setup_element_stiffness()
+    {
+      const auto &dm = parameters.discrete_mechanics;
+      element_lame.resize(model.n_elements);
+      unsigned int n_capped  = 0;
+      double       max_share = 0.;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          const std::array<double, 3> x = {{model.x_ref[3 * e],
+                                            model.x_ref[3 * e + 1],
+                                            model.x_ref[3 * e + 2]}};
+          const std::array<double, 3> y = {{model.y_ref[3 * e],
+                                            model.y_ref[3 * e + 1],
+                                            model.y_ref[3 * e + 2]}};
+          element_lame[e]               = solid[model.material[e]].lame;
+          if (dm.joint_compliance_compensation)
+            {
+              // the penalties of the element's intact joints (p = k L)
+              std::array<double, 3> pn = {{0., 0., 0.}}, pt = {{0., 0., 0.}};
+              for (unsigned int k = 0; k < 3; ++k)
+                {
+                  const int code = model.edge_joint[3 * e + k];
+                  if (code < 0 ||
+                      model.joint_status[code / 2] != JointStatus::intact)
+                    continue;
+                  const JointConstants &jc = model.joint_constants[code / 2];
+                  const double          L  = model.joint_length[code / 2];
+                  pn[k]                    = jc.normal_stiffness * L;
+                  pt[k]                    = jc.tangential_stiffness * L;
+                }
+              const CompensatedElement c =
+                compensate_joint_compliance(x,
+                                            y,
+                                            element_lame[e],
+                                            pn,
+                                            pt,
+                                            max_compensated_share);
+              element_lame[e] = c.lame;
+              max_share       = std::max(max_share, c.share);
+              n_capped += c.capped ? 1 : 0;
+            }
+          // Damping ratio = zeta of the element's highest free mode
+          // (stable_step.h): eta = ratio / zeta per unit viscosity
+          const double ratio = dm.damping_ratio;
+          viscosity[e] =
+            ratio > 0. ?
+              ratio / highest_mode_damping_per_viscosity(x,
+                                                         y,
+                                                         element_lame[e],
+                                                         model.mass[3 * e]) :
+              0.;
+        }
+      compensation_capped = n_capped;
+      compensation_share  = max_share;
+      if (n_capped > 0 && Utilities::MPI::this_mpi_process(communicator) == 0)
+        std::cerr << "tmfdem: warning: Discrete mechanics/Joint compliance "
+                     "compensation: the joints of "
+                  << n_capped << " of " << model.n_elements
+                  << " triangles take more than "
+                  << 100. * max_compensated_share
+                  << " % of the material's compliance (largest "
+                  << 100. * max_share
+                  << " %); their stiffening is capped there and the body is "
+                     "softer than E. Larger joint penalty factors or a "
+                     "mesh without slivers avoid it."
+                  << std::endl;
     }
 
     void
@@ -603,7 +660,7 @@ namespace tmfdem
             return model.reference_area[e] * s * s *
                    strain_energy_density(
                      {F.a00 / s, F.a01 / s, F.a10 / s, F.a11 / s},
-                     solid[model.material[e]].lame);
+                     element_lame[e]);
           };
           before += energy(s_old);
           after += energy(s_new);
@@ -633,7 +690,7 @@ namespace tmfdem
               in.edge_joint_tangential_stiffness[k] = jc.tangential_stiffness;
             }
         }
-      in.lame      = solid[model.material[e]].lame;
+      in.lame      = element_lame[e];
       in.viscosity = viscosity[e];
       in.node_mass = model.mass[n0];
       if (parameters.discrete_mechanics.contact)
@@ -992,8 +1049,7 @@ namespace tmfdem
                                F.a01 * inv_s,
                                F.a10 * inv_s,
                                F.a11 * inv_s};
-              const Stress2 sigma =
-                elastic_stress(Fe, solid[m.material[e]].lame);
+              const Stress2 sigma = elastic_stress(Fe, element_lame[e]);
               // viscous stress 2 eta sym(dF/dt F^-1), only where eta > 0
               const double eta = viscosity[e];
               Stress2      sigma_v;
@@ -1439,7 +1495,7 @@ namespace tmfdem
           const double       s  = model.thermal_stretch[e];
           const Matrix2      Fe{F.a00 / s, F.a01 / s, F.a10 / s, F.a11 / s};
           strain += model.reference_area[e] * s * s *
-                    strain_energy_density(Fe, solid[model.material[e]].lame);
+                    strain_energy_density(Fe, element_lame[e]);
         }
       for (unsigned int j = 0; j < model.n_joints; ++j)
         if (model.joint_status[j] == JointStatus::intact &&
@@ -1559,7 +1615,7 @@ namespace tmfdem
                   continue;
                 const unsigned int     a = 3 * e + k, b = 3 * e + (k + 1) % 3;
                 BoundaryEdgeKnowledge &edge = boundary[a];
-                edge.lame                   = solid[model.material[e]].lame;
+                edge.lame                   = element_lame[e];
                 edge.thermal_stretch        = model.thermal_stretch[e];
                 if (with_heat)
                   edge.thermal_stretch =
@@ -1690,6 +1746,10 @@ namespace tmfdem
         .add("end_time", time)
         .add("time_step", time_step)
         .add("stable_time_step", stable_time_step)
+        .add("joint_compliance_compensation",
+             parameters.discrete_mechanics.joint_compliance_compensation)
+        .add("compensation_max_share", compensation_share)
+        .add("compensation_capped_elements", compensation_capped)
         .add("threads", n_threads)
         .add("threads_requested", threads_requested)
         .add("threads_available", threads_available)

@@ -28,10 +28,13 @@ namespace tmfdem
   /** Subsection `Discrete mechanics`. */
   struct DiscreteMechanicsParameters
   {
-    double      time_step     = 0.;  ///< [s]; 0: safety factor x stable step
-    double      safety_factor = 0.5; ///< fraction of the stable step [-]
-    double      joint_normal_penalty_factor       = 10.; ///< p_n / E [-]
-    double      joint_tangential_penalty_factor   = 10.; ///< p_t / E [-]
+    double time_step     = 0.;  ///< [s]; 0: safety factor x stable step
+    double safety_factor = 0.5; ///< fraction of the stable step [-]
+    double joint_normal_penalty_factor     = 10.; ///< p_n / E [-]
+    double joint_tangential_penalty_factor = 10.; ///< p_t / E [-]
+    /** Stiffen each triangle by its joints' compliance (joint_compliance.h).
+     */
+    bool        joint_compliance_compensation     = true;
     double      contact_penalty_factor            = 10.; ///< p_c / E [-]
     double      contact_tangential_penalty_factor = 1.;  ///< p_ct / E [-]
     double      friction_coefficient              = 0.5; ///< mu [-]

@@ -143,6 +143,12 @@ namespace tmfdem
       setup_materials();
       void
       setup_joints();
+      /** Per-element Lame constants (element_lame): the material's, or
+       *  compensated for the element's joints (Joint compliance
+       *  compensation, joint_compliance.h); and the viscosity of the
+       *  Damping ratio from them. */
+      void
+      setup_element_stiffness();
       void
       setup_bodies();
       void
@@ -193,6 +199,15 @@ namespace tmfdem
       SofteningLaw               softening_law = SofteningLaw::munjiza;
       std::vector<SolidMaterial> solid;     ///< by material id
       std::vector<double>        viscosity; ///< eta per element [Pa s]
+      /** Lame constants per element [Pa] (setup_element_stiffness()). */
+      std::vector<LameConstants> element_lame;
+      /** Joints' share of an element's compliance above which the
+       *  compensation is capped (the element at most 4 x stiffer) [-]. */
+      static constexpr double max_compensated_share = 0.75;
+      /** Triangles whose compensation was capped. */
+      unsigned int compensation_capped = 0;
+      /** Largest joints' share of an element's compliance [-]. */
+      double compensation_share = 0.;
 
       // heat (thermo-mechanical runs)
       bool with_heat = false;

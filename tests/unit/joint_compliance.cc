@@ -1,0 +1,160 @@
+// Unit tests of the joint compliance compensation (joint_compliance.h): an
+// element in series with its share of its joints must have the material's
+// compliance. The joints' compliance is summed here directly from the
+// opening of each joint under a uniform stress, [u] = L (sigma_nn / p_n n +
+// sigma_nt / p_t t), and its average strain L^2 / (2 A) sym([u] n) per joint
+// (half of each joint to the element), independently of the closed form.
+
+#include <array>
+#include <cmath>
+#include <gtest/gtest.h>
+#include <tmfdem/discrete/joint_compliance.h>
+
+using namespace tmfdem::discrete;
+
+namespace
+{
+  // strain {xx, yy, xy} of the 2D law with lame under stress {xx, yy, xy}
+  std::array<double, 3>
+  element_strain(const LameConstants &c, const std::array<double, 3> &s)
+  {
+    const double K = c.lambda + c.mu;
+    const double m = 0.5 * (s[0] + s[1]); // sigma_m
+    // eps = sigma_m / (2 K) I + dev(sigma) / (2 mu)
+    return {{m / (2. * K) + (s[0] - m) / (2. * c.mu),
+             m / (2. * K) + (s[1] - m) / (2. * c.mu),
+             s[2] / (2. * c.mu)}};
+  }
+
+  // the joints' average strain over the element
+  std::array<double, 3>
+  joint_strain(const std::array<double, 3> &x,
+               const std::array<double, 3> &y,
+               const double                 pn,
+               const double                 pt,
+               const std::array<double, 3> &s)
+  {
+    const double area =
+      0.5 * ((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]));
+    std::array<double, 3> eps = {{0., 0., 0.}};
+    for (unsigned int k = 0; k < 3; ++k)
+      {
+        const unsigned int b  = (k + 1) % 3;
+        const double       L  = std::hypot(x[b] - x[k], y[b] - y[k]);
+        const double       t0 = (x[b] - x[k]) / L, t1 = (y[b] - y[k]) / L;
+        const double       n0 = t1, n1 = -t0;
+        const double       sn0 = s[0] * n0 + s[2] * n1;
+        const double       sn1 = s[2] * n0 + s[1] * n1;
+        const double       snn = n0 * sn0 + n1 * sn1;
+        const double       snt = t0 * sn0 + t1 * sn1;
+        const double       u0  = L * (snn / pn * n0 + snt / pt * t0);
+        const double       u1  = L * (snn / pn * n1 + snt / pt * t1);
+        const double       w   = L / (2. * area); // (L / 2) / A
+        eps[0] += w * u0 * n0;
+        eps[1] += w * u1 * n1;
+        eps[2] += w * 0.5 * (u0 * n1 + u1 * n0);
+      }
+    return eps;
+  }
+} // namespace
+
+TEST(JointCompliance, EquilateralElementWithJointsHasTheMaterialsStiffness)
+{
+  const double E = 370e9, nu = 0.22, h = 0.4e-3;
+  for (const auto ideal :
+       {Idealisation::plane_stress, Idealisation::plane_strain})
+    for (const double factor : {1., 10., 20., 1000.})
+      for (const double ratio_t : {1., 0.1})
+        {
+          const LameConstants lame = lame_constants(E, nu, ideal);
+          const double        pn = factor * E, pt = ratio_t * factor * E;
+          // rotated by 0.3 rad: nothing depends on the orientation
+          const double                a = 0.3;
+          std::array<double, 3>       x, y;
+          const std::array<double, 3> X = {{0., h, 0.5 * h}},
+                                      Y = {{0., 0., 0.5 * std::sqrt(3.) * h}};
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              x[k] = std::cos(a) * X[k] - std::sin(a) * Y[k];
+              y[k] = std::sin(a) * X[k] + std::cos(a) * Y[k];
+            }
+          const CompensatedElement c =
+            compensate_joint_compliance(x,
+                                        y,
+                                        lame,
+                                        {{pn, pn, pn}},
+                                        {{pt, pt, pt}},
+                                        0.99);
+          EXPECT_NEAR(c.weight, 2. * std::sqrt(3.), 1e-12);
+          if (c.capped)
+            continue; // factor 1: the joints alone are softer than E
+          for (const std::array<double, 3> s :
+               {std::array<double, 3>{{1., 1., 0.}},
+                std::array<double, 3>{{1., 0., 0.}},
+                std::array<double, 3>{{0., 1., 0.}},
+                std::array<double, 3>{{0., 0., 1.}},
+                std::array<double, 3>{{0.3, -0.7, 0.4}}})
+            {
+              const auto target = element_strain(lame, s);
+              const auto e      = element_strain(c.lame, s);
+              const auto j      = joint_strain(x, y, pn, pt, s);
+              for (unsigned int i = 0; i < 3; ++i)
+                EXPECT_NEAR(e[i] + j[i], target[i], 1e-12 / E)
+                  << "p_n = " << factor << " E, component " << i;
+            }
+        }
+}
+
+TEST(JointCompliance, AnyShapeHasTheMaterialsAreaStiffness)
+{
+  // under an isotropic stress the trace of the element's and its joints'
+  // strain is the material's, whatever the shape
+  const double        E = 10e9, nu = 0.25, p = 20. * E;
+  const LameConstants lame = lame_constants(E, nu, Idealisation::plane_stress);
+  const std::array<double, 3> x = {{0., 1., 0.2}}, y = {{0., 0.1, 0.6}};
+  const CompensatedElement    c =
+    compensate_joint_compliance(x, y, lame, {{p, p, p}}, {{p, p, p}}, 0.75);
+  EXPECT_FALSE(c.capped);
+  const std::array<double, 3> s      = {{-2., -2., 0.}};
+  const auto                  target = element_strain(lame, s);
+  const auto                  e      = element_strain(c.lame, s);
+  const auto                  j      = joint_strain(x, y, p, p, s);
+  EXPECT_NEAR(e[0] + e[1] + j[0] + j[1], target[0] + target[1], 1e-12 / E);
+}
+
+TEST(JointCompliance, NoJointsNoChangeAndCap)
+{
+  const double        E = 10e9, nu = 0.25;
+  const LameConstants lame = lame_constants(E, nu, Idealisation::plane_stress);
+  const std::array<double, 3> x = {{0., 1., 0.}}, y = {{0., 0., 1.}};
+  const CompensatedElement    free = compensate_joint_compliance(x,
+                                                              y,
+                                                              lame,
+                                                              {{0., 0., 0.}},
+                                                              {{0., 0., 0.}},
+                                                              0.75);
+  EXPECT_EQ(free.lame.mu, lame.mu);
+  EXPECT_EQ(free.lame.lambda, lame.lambda);
+  EXPECT_EQ(free.weight, 0.);
+  // one joint on the hypotenuse (L^2 / (2 A) = 2): W K / p_n = 2 K / p_n
+  const double             p = 10. * E;
+  const CompensatedElement one =
+    compensate_joint_compliance(x, y, lame, {{0., p, 0.}}, {{0., p, 0.}}, 0.75);
+  EXPECT_NEAR(one.weight, 2., 1e-14);
+  const double K = lame.lambda + lame.mu;
+  EXPECT_NEAR(1. / (one.lame.lambda + one.lame.mu), 1. / K - 2. / p, 1e-14 / E);
+  EXPECT_NEAR(1. / one.lame.mu, 1. / lame.mu - 2. * (2. / p) / 2., 1e-14 / E);
+  // a penalty of 0.1 E: the joints would take more than the element can
+  // give; the stiffening stops at 1 / (1 - 0.75) = 4
+  const CompensatedElement soft =
+    compensate_joint_compliance(x,
+                                y,
+                                lame,
+                                {{0., 0.1 * E, 0.}},
+                                {{0., 0.1 * E, 0.}},
+                                0.75);
+  EXPECT_TRUE(soft.capped);
+  EXPECT_GT(soft.share, 1.);
+  EXPECT_NEAR(soft.lame.mu, 4. * lame.mu, 1e-6 * lame.mu);
+  EXPECT_NEAR(soft.lame.lambda + soft.lame.mu, 4. * K, 1e-6 * K);
+}
