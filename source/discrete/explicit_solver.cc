@@ -1353,10 +1353,13 @@ namespace tmfdem
           const bool   py   = slot >= 0 && node_conditions[slot].prescribed[1];
           const double vx = px ? 0. : model.vx[n], vy = py ? 0. : model.vy[n];
           removed += 0.5 * model.mass[n] * (vx * vx + vy * vy);
-          if (!px)
-            model.vx[n] = 0.;
-          if (!py)
-            model.vy[n] = 0.;
+          // back to the middle of the last step, where v^{n+1/2} lives:
+          // resting there (not at x^{n+1}) keeps the reset from feeding
+          // the highest modes, whose kinetic energy peaks every step
+          model.x[n] -= 0.5 * time_step * vx;
+          model.y[n] -= 0.5 * time_step * vy;
+          model.vx[n] = px ? model.vx[n] : 0.;
+          model.vy[n] = py ? model.vy[n] : 0.;
         }
       balance.viscous_dissipation += removed;
       ++velocity_resets;
