@@ -352,6 +352,29 @@ namespace tmfdem
                       "node components) below this fraction of the "
                       "internal element forces (both as Euclidean norms "
                       "over the nodes) [-].");
+    prm.declare_entry(
+      "Relaxation predictor",
+      "none",
+      Patterns::Selection("none|extrapolate"),
+      "Quasi-static coupling: where each relaxation starts [-]. none: at the "
+      "state the last relaxation ended in; extrapolate: that state plus the "
+      "displacement increment of the last relaxation, scaled by the ratio of "
+      "the new to the last thermal step (free node components only; not "
+      "after a relaxation in which joints were damaged or broke), so that a "
+      "response linear in time needs almost no relaxation: for slow, steady "
+      "heating or loading (doc/theory.md 8).");
+    prm.declare_entry(
+      "Relaxation damping",
+      "mass",
+      Patterns::Selection("mass|kinetic"),
+      "Quasi-static coupling: how a relaxation is damped [-]. mass: by "
+      "Discrete mechanics/Mass damping (and the element viscosity) alone; "
+      "kinetic: besides, the velocities of the free nodes are set to zero "
+      "whenever the kinetic energy has passed a peak (kinetic damping: the "
+      "dominant mode is then near its equilibrium), which needs no tuning to "
+      "the lowest frequency and suits bodies whose lowest mode changes as "
+      "they crack (Mass damping 0 or small); convergence is then judged on "
+      "the largest kinetic energy since the last check (doc/theory.md 8).");
     prm.declare_entry("Relaxation cap is error",
                       "false",
                       Patterns::Bool(),
@@ -406,6 +429,8 @@ namespace tmfdem
     relaxation_tolerance       = prm.get_double("Relaxation tolerance");
     relaxation_cap_is_error    = prm.get_bool("Relaxation cap is error");
     relaxation_force_tolerance = prm.get_double("Relaxation force tolerance");
+    relaxation_predictor       = prm.get("Relaxation predictor");
+    relaxation_damping         = prm.get("Relaxation damping");
     thermal_step_growth        = prm.get_double("Thermal step growth factor");
     maximum_thermal_step       = prm.get_double("Maximum thermal step");
     maximum_utilisation_change = prm.get_double("Maximum utilisation change");

@@ -61,6 +61,7 @@ namespace tmfdem
                        std::abs(joint_work),
                        std::abs(contact_work),
                        std::abs(viscous_dissipation),
+                       std::abs(relaxation_work),
                        1e-9}); // [J/m]: below this nothing happened
     }
 
@@ -1028,7 +1029,7 @@ namespace tmfdem
                  w_external = 0., max_speed = 0.;
           // out-of-balance force (free components, no viscous part) and the
           // scale of the internal forces, both squared
-          double unbalanced = 0., internal = 0.;
+          double unbalanced = 0., internal = 0., kinetic = 0.;
           // guards: first non-finite node and first inverted element
           double bad_node = -1., inverted = -1.;
           for (std::size_t e = begin; e < end; ++e)
@@ -1197,22 +1198,24 @@ namespace tmfdem
                   m.y[node] += dt * vy_new;
                   const double v2 = vx_new * vx_new + vy_new * vy_new;
                   max_speed       = std::max(max_speed, v2);
+                  kinetic += 0.5 * mass * v2;
                   if (!(v2 < 1e300) && bad_node < 0.)
                     bad_node = node;
                 }
             }
-          sums[8] = unbalanced;
-          sums[9] = internal;
-          sums[0] = w_elastic;
-          sums[1] = w_viscous;
-          sums[2] = w_joint;
-          sums[3] = w_contact;
-          sums[4] = w_external;
-          sums[5] = max_speed;
-          sums[6] = bad_node;
-          sums[7] = inverted;
+          sums[8]  = unbalanced;
+          sums[9]  = internal;
+          sums[10] = kinetic;
+          sums[0]  = w_elastic;
+          sums[1]  = w_viscous;
+          sums[2]  = w_joint;
+          sums[3]  = w_contact;
+          sums[4]  = w_external;
+          sums[5]  = max_speed;
+          sums[6]  = bad_node;
+          sums[7]  = inverted;
         });
-      double max_speed = 0., unbalanced_sq = 0., internal_sq = 0.;
+      double max_speed = 0., unbalanced_sq = 0., internal_sq = 0., kinetic = 0.;
       for (auto &r : body_reaction)
         r = {{0., 0.}};
       condition_reaction.assign(conditions.size(), {{0., 0.}});
@@ -1227,6 +1230,7 @@ namespace tmfdem
           max_speed = std::max(max_speed, sums[5]);
           unbalanced_sq += sums[8];
           internal_sq += sums[9];
+          kinetic += sums[10];
           // chunks in element order: the first flagged is the lowest index
           if (first_nonfinite_node < 0 && sums[6] >= 0.)
             first_nonfinite_node = static_cast<long long>(sums[6]);
@@ -1246,6 +1250,7 @@ namespace tmfdem
         }
       relative_unbalanced_force =
         std::sqrt(unbalanced_sq / std::max(internal_sq, 1e-300));
+      step_kinetic = kinetic;
       travel_since_search += std::sqrt(max_speed) * dt;
       if (2. * travel_since_search > contact_buffer)
         contact_search_needed = true;
@@ -1266,20 +1271,42 @@ namespace tmfdem
           thermal_time = time;
           ++n_thermal_steps;
           update_thermal_stretch();
-          // ... then the mechanics relaxes at these temperatures (no clock)
+          // ... then the mechanics relaxes at these temperatures (no clock),
+          // from the extrapolated state where asked for
+          if (parameters.discrete_heat.relaxation_predictor == "extrapolate")
+            predict_relaxation(dt);
           current_thermal_step = dt;
           unsigned int i       = 0;
           bool         relaxed = false;
+          // kinetic damping: the kinetic energy of the last step and the
+          // largest one since the last check (a reset just before a check
+          // must not pass for convergence)
+          const bool kinetic_damping =
+            parameters.discrete_heat.relaxation_damping == "kinetic";
+          double previous_kinetic = 0., window_kinetic = 0.;
           while (i < steps_per_thermal_step)
             {
               relaxation_step = i;
               mechanical_step();
               ++i;
+              if (kinetic_damping)
+                {
+                  window_kinetic = std::max(window_kinetic, step_kinetic);
+                  if (step_kinetic < previous_kinetic)
+                    {
+                      reset_velocities();
+                      previous_kinetic = 0.;
+                    }
+                  else
+                    previous_kinetic = step_kinetic;
+                }
               if (i % 50 == 0)
                 {
                   energy();
                   last_kinetic_to_strain =
-                    balance.kinetic / std::max(balance.strain, 1e-300);
+                    (kinetic_damping ? window_kinetic : balance.kinetic) /
+                    std::max(balance.strain, 1e-300);
+                  window_kinetic = 0.;
                   if (i > quasi_static_ramp_steps &&
                       last_kinetic_to_strain <
                         parameters.discrete_heat.relaxation_tolerance &&
@@ -1293,6 +1320,8 @@ namespace tmfdem
             }
           relaxation_step       = quasi_static_ramp_steps + 1;
           last_relaxation_steps = i;
+          if (parameters.discrete_heat.relaxation_predictor == "extrapolate")
+            damaged_after_relaxation = n_damaged_or_broken_joints();
           if (parameters.discrete_heat.maximum_utilisation_change > 0.)
             {
               const double u         = max_joint_utilisation();
@@ -1365,6 +1394,92 @@ namespace tmfdem
                 << "; going on (Continuum source at broken joints = "
                    "accept); summary.json records "
                    "continuum_heat_across_cracks.\n";
+    }
+
+    void
+    ExplicitSolver::reset_velocities()
+    {
+      double removed = 0.;
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        {
+          const unsigned char b = node_body[n];
+          if (b != 255 && body_motion[b] != DiscreteBody::Motion::free)
+            continue;
+          const int    slot = node_condition_slot[n];
+          const bool   px   = slot >= 0 && node_conditions[slot].prescribed[0];
+          const bool   py   = slot >= 0 && node_conditions[slot].prescribed[1];
+          const double vx = px ? 0. : model.vx[n], vy = py ? 0. : model.vy[n];
+          removed += 0.5 * model.mass[n] * (vx * vx + vy * vy);
+          // back to the middle of the last step, where v^{n+1/2} lives:
+          // resting there (not at x^{n+1}) keeps the reset from feeding
+          // the highest modes, whose kinetic energy peaks every step
+          model.x[n] -= 0.5 * time_step * vx;
+          model.y[n] -= 0.5 * time_step * vy;
+          model.vx[n] = px ? model.vx[n] : 0.;
+          model.vy[n] = py ? model.vy[n] : 0.;
+        }
+      balance.viscous_dissipation += removed;
+      ++velocity_resets;
+    }
+
+    unsigned int
+    ExplicitSolver::n_damaged_or_broken_joints() const
+    {
+      unsigned int n = 0;
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        n += model.joint_status[j] != JointStatus::intact ||
+             model.joint_damage[2 * j] > 0. ||
+             model.joint_damage[2 * j + 1] > 0.;
+      return n;
+    }
+
+    void
+    ExplicitSolver::predict_relaxation(const double dt)
+    {
+      // the last relaxation took the state from relaxed_x to x over the
+      // thermal step relaxed_thermal_step; a response linear in time goes on
+      // by the same increment per unit time. Not across a relaxation that
+      // damaged or broke joints (its increment holds the crack's jump).
+      const unsigned int damaged = n_damaged_or_broken_joints();
+      const bool         extrapolate =
+        relaxed_thermal_step > 0. && relaxed_x.size() == model.n_nodes &&
+        damaged_before_relaxation == damaged_after_relaxation &&
+        damaged == damaged_after_relaxation;
+      if (extrapolate)
+        {
+          const EnergyBalance before = energy();
+          const double        ratio  = dt / relaxed_thermal_step;
+          for (unsigned int n = 0; n < model.n_nodes; ++n)
+            {
+              const double dx       = model.x[n] - relaxed_x[n];
+              const double dy       = model.y[n] - relaxed_y[n];
+              relaxed_x[n]          = model.x[n];
+              relaxed_y[n]          = model.y[n];
+              const unsigned char b = node_body[n];
+              if (b != 255 && body_motion[b] != DiscreteBody::Motion::free)
+                continue;
+              const int slot = node_condition_slot[n];
+              if (slot < 0 || !node_conditions[slot].prescribed[0])
+                model.x[n] += ratio * dx;
+              if (slot < 0 || !node_conditions[slot].prescribed[1])
+                model.y[n] += ratio * dy;
+            }
+          energy();
+          // the jump's work on the solid and the intact joints (damaged
+          // joints and contacts: force x jump, not booked)
+          balance.relaxation_work += balance.strain - before.strain +
+                                     balance.joint_stored - before.joint_stored;
+          balance.joint_work += balance.joint_stored - before.joint_stored;
+          contact_search_needed |= contact_enabled;
+          ++predicted_relaxations;
+        }
+      else
+        {
+          relaxed_x = model.x;
+          relaxed_y = model.y;
+        }
+      relaxed_thermal_step      = dt;
+      damaged_before_relaxation = damaged;
     }
 
     double
@@ -1711,6 +1826,7 @@ namespace tmfdem
         .add("viscous_dissipation", balance.viscous_dissipation)
         .add("external_work", balance.external_work)
         .add("thermal_work", balance.thermal_work)
+        .add("relaxation_work", balance.relaxation_work)
         .add("elastic_work", balance.elastic_work)
         .add("balance_error", balance.balance_error())
         .add("relative_balance_error",
@@ -1815,6 +1931,8 @@ namespace tmfdem
             .add("thermal_steps", static_cast<long long>(n_thermal_steps))
             .add("last_relaxation_steps", last_relaxation_steps)
             .add("relaxations_at_cap", relaxations_at_cap)
+            .add("predicted_relaxations", predicted_relaxations)
+            .add("velocity_resets", static_cast<long long>(velocity_resets))
             .add("last_relative_unbalanced_force", relative_unbalanced_force)
             .add("last_kinetic_to_strain_energy", last_kinetic_to_strain)
             .add("mechanical_steps_per_thermal_step", steps_per_thermal_step)

@@ -121,6 +121,14 @@ namespace tmfdem
       out.put(body_reaction);
       out.put(condition_reaction);
       out.put(body_velocity_now);
+      // relaxation predictor
+      out.put(relaxed_x);
+      out.put(relaxed_y);
+      out.put(relaxed_thermal_step);
+      out.put(damaged_before_relaxation);
+      out.put(damaged_after_relaxation);
+      out.put(predicted_relaxations);
+      out.put(velocity_resets);
       // contact candidates with their friction history
       out.put(travel_since_search);
       out.put<std::uint8_t>(contact_search_needed);
@@ -199,6 +207,13 @@ namespace tmfdem
       in.get(body_reaction, body_reaction.size());
       in.get(condition_reaction);
       in.get(body_velocity_now, body_velocity_now.size());
+      in.get(relaxed_x);
+      in.get(relaxed_y);
+      in.get(relaxed_thermal_step);
+      in.get(damaged_before_relaxation);
+      in.get(damaged_after_relaxation);
+      in.get(predicted_relaxations);
+      in.get(velocity_resets);
       in.get(travel_since_search);
       std::uint8_t flag = 0;
       in.get(flag);

@@ -79,6 +79,14 @@ namespace tmfdem
     bool         relaxation_cap_is_error =
       false; ///< stop when a relaxation hits the cap
     double relaxation_force_tolerance = 1e-3; ///< |out-of-balance| / |internal|
+    /** Quasi-static: start of each relaxation, none (the last relaxed
+     *  state) or extrapolate (last state + its last increment scaled by
+     *  the ratio of the thermal steps). */
+    std::string relaxation_predictor = "none";
+    /** Quasi-static: mass (Discrete mechanics/Mass damping only) or
+     *  kinetic (velocities set to zero at every peak of the kinetic
+     *  energy, besides). */
+    std::string relaxation_damping = "mass";
     /** Quasi-static: thermal step n = Time step x growth^n [-]. */
     double thermal_step_growth = 1.;
     /** Quasi-static: cap of the growing thermal step, 0 = none [s]. */

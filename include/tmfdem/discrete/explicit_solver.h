@@ -61,13 +61,17 @@ namespace tmfdem
        *  geometry (thermo-mechanical runs) [J/m]. */
       double thermal_work = 0.;
       double elastic_work = 0.; ///< done on the solid's elastic stress
+      /** Strain and joint energy put in by the extrapolated starts of
+       *  quasi-static relaxations (Discrete heat/Relaxation predictor)
+       *  [J/m]. */
+      double relaxation_work = 0.;
 
       /** Energy in minus energy accounted for [J/m]. */
       double
       balance_error() const
       {
         return (initial_kinetic + initial_strain + external_work +
-                thermal_work) -
+                thermal_work + relaxation_work) -
                (kinetic + strain + joint_work + contact_work +
                 viscous_dissipation);
       }
@@ -237,6 +241,15 @@ namespace tmfdem
       /** |out-of-balance force| / |internal element forces| over the free
        *  node components after the last step (viscous force left out) [-]. */
       double relative_unbalanced_force = 0.;
+      /** Kinetic energy sum 1/2 m |v|^2 after the last step [J/m]. */
+      double step_kinetic = 0.;
+      /**
+       * Relaxation damping = kinetic: sets the velocities of the free node
+       * components to zero (the kinetic energy has just passed a peak),
+       * booking the energy removed as viscous dissipation.
+       */
+      void
+      reset_velocities();
       /** Adds the contact forces of all pairs of element @p e to its six
        *  nodal components @p f [N/m] (pair order: deterministic). */
       void
@@ -254,6 +267,29 @@ namespace tmfdem
       }
       /** Quasi-static coupling: relaxations that ended at the step cap. */
       unsigned int relaxations_at_cap = 0;
+      /** Quasi-static coupling, Relaxation predictor = extrapolate: node
+       *  positions at the end of the last relaxation [m]. */
+      std::vector<double> relaxed_x, relaxed_y;
+      /** The thermal step of the last relaxation [s]; 0 before the first. */
+      double relaxed_thermal_step = 0.;
+      /** Joints damaged or broken at the start of the last relaxation and
+       *  at its end [-]: the predictor extrapolates only where they agree. */
+      unsigned int damaged_before_relaxation = 0, damaged_after_relaxation = 0;
+      /** Relaxations started from an extrapolated state. */
+      unsigned int predicted_relaxations = 0;
+      /** Relaxation damping = kinetic: velocity resets so far. */
+      unsigned long velocity_resets = 0;
+      /** Joints that are damaged or broken [-]. */
+      unsigned int
+      n_damaged_or_broken_joints() const;
+      /**
+       * Relaxation predictor = extrapolate, before the relaxation of a
+       * thermal step @p dt [s]: moves the free node components by the last
+       * relaxation's increment times dt / (its thermal step), booking the
+       * strain and joint energy this changes as relaxation_work.
+       */
+      void
+      predict_relaxation(const double dt);
       /** Quasi-static coupling: length of the current thermal step [s]. */
       double current_thermal_step = 0.;
       /** Quasi-static coupling: index of the relaxation step under way. */
@@ -359,7 +395,7 @@ namespace tmfdem
       // bookkeeping: per chunk sums, summed in chunk order (thread-count
       // independent)
       static constexpr unsigned int      chunk_size = 512;
-      static constexpr unsigned int      n_sums     = 10;
+      static constexpr unsigned int      n_sums     = 11;
       static constexpr unsigned int      max_bodies = 8;
       std::vector<double>                chunk_sums; ///< n_sums + 2 max_bodies
       EnergyBalance                      balance;

@@ -1,0 +1,75 @@
+#!/usr/bin/python3
+"""Radial cracks of a hollow cylinder (or disc) centred at the origin, from
+the last cracks_*.vtu of a discrete run.
+
+    count_radial_cracks.py OUTPUT_FOLDER [OUTPUT_FOLDER ...] [--gap DEGREES]
+
+The broken joints are grouped by the polar angle of their midpoints: joints
+whose angles lie within --gap degrees (default 10) of a neighbour belong to
+one crack. Per crack: its angle, its number of joints and the radii it
+spans [m]. Needs only numpy.
+"""
+import argparse
+import os
+import sys
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_vtu import read_vtu  # noqa: E402
+
+
+def last_cracks(folder):
+    pvd = os.path.join(folder, "cracks.pvd")
+    sets = [(float(d.get("timestep")), d.get("file"))
+            for d in ET.parse(pvd).getroot().iter("DataSet")]
+    t, f = max(sets)
+    return t, os.path.join(folder, f)
+
+
+def cracks(vtu, gap):
+    """[(angle [deg], joints, r_min [m], r_max [m])] of the crack groups."""
+    pts, lines, _, _ = read_vtu(vtu, "break_time")
+    if len(lines) == 0:
+        return []
+    mid = np.array([0.5 * (pts[a] + pts[b]) for a, b in lines])
+    ang = np.degrees(np.arctan2(mid[:, 1], mid[:, 0])) % 360.
+    r = np.hypot(mid[:, 0], mid[:, 1])
+    order = np.argsort(ang)
+    ang, r = ang[order], r[order]
+    # split where consecutive angles differ by more than gap (cyclic)
+    diffs = np.diff(np.concatenate([ang, [ang[0] + 360.]]))
+    cuts = np.nonzero(diffs > gap)[0]
+    if len(cuts) == 0:
+        return [(float(np.mean(ang)), len(ang), r.min(), r.max())]
+    groups = []
+    start = (cuts[-1] + 1) % len(ang)
+    idx = [(start + k) % len(ang) for k in range(len(ang))]
+    current = [idx[0]]
+    for a, b in zip(idx[:-1], idx[1:]):
+        if a in cuts:
+            groups.append(current)
+            current = [b]
+        else:
+            current.append(b)
+    groups.append(current)
+    return [(float(ang[g].mean()), len(g), float(r[g].min()), float(r[g].max())) for g in groups]
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("folders", nargs="+")
+    p.add_argument("--gap", type=float, default=10.)
+    args = p.parse_args()
+    for folder in args.folders:
+        t, vtu = last_cracks(folder)
+        found = cracks(vtu, args.gap)
+        print(f"{folder}: t = {t:g} s, {sum(c[1] for c in found)} broken joints in "
+              f"{len(found)} crack(s)")
+        for a, n, r0, r1 in found:
+            print(f"  {a:6.1f} deg: {n:3d} joints, r = {r0:.4f} .. {r1:.4f} m")
+
+
+if __name__ == "__main__":
+    main()
