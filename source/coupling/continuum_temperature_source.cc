@@ -253,20 +253,10 @@ namespace tmfdem
       out.put<std::uint64_t>(heat_solver->steps_taken());
       out.put(values);
       const auto &b = heat_solver->heat_balance();
-      out.put<std::uint64_t>(b.boundary_heat_in.size());
-      for (const auto &[id, q] : b.boundary_heat_in)
-        {
-          out.put(id);
-          out.put(q);
-        }
+      out.put(b.boundary_heat_in);
       out.put(b.source_heat);
       out.put(b.stored_heat);
-      out.put<std::uint64_t>(last_rate.size());
-      for (const auto &[id, q] : last_rate)
-        {
-          out.put(id);
-          out.put(q);
-        }
+      out.put(last_rate);
     }
 
     void
@@ -278,27 +268,11 @@ namespace tmfdem
       in.get(steps);
       std::vector<double> values;
       in.get(values, heat_solver->get_dof_handler().n_dofs());
-      const auto read_map = [&](std::map<types::boundary_id, double> &map) {
-        std::uint64_t size = 0;
-        in.get(size);
-        if (size > 65536)
-          throw InputError("the checkpoint '" + in.name() +
-                           "' is corrupt (boundary map size).");
-        map.clear();
-        for (std::uint64_t i = 0; i < size; ++i)
-          {
-            types::boundary_id id;
-            double             q;
-            in.get(id);
-            in.get(q);
-            map[id] = q;
-          }
-      };
       HeatSolver::HeatBalance balance;
-      read_map(balance.boundary_heat_in);
+      in.get(balance.boundary_heat_in);
       in.get(balance.source_heat);
       in.get(balance.stored_heat);
-      read_map(last_rate);
+      in.get(last_rate);
       heat_solver->restore_state(time, steps, balance, values);
       transfer();
       copy_balance();

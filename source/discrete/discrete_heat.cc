@@ -854,22 +854,12 @@ namespace tmfdem
     DiscreteHeat::save(CheckpointWriter &out) const
     {
       out.put_array(T.begin(), T.size());
-      out.put<std::uint64_t>(heat_balance.boundary_heat_in.size());
-      for (const auto &[id, q] : heat_balance.boundary_heat_in)
-        {
-          out.put(id);
-          out.put(q);
-        }
+      out.put(heat_balance.boundary_heat_in);
       out.put(heat_balance.source_heat);
       out.put(heat_balance.contact_heat);
       out.put(heat_balance.contact_exchange);
       out.put(heat_balance.stored_heat);
-      out.put<std::uint64_t>(last_rate.size());
-      for (const auto &[id, q] : last_rate)
-        {
-          out.put(id);
-          out.put(q);
-        }
+      out.put(last_rate);
       out.put(iterations);
       out.put(last_contact_exchange);
     }
@@ -878,28 +868,12 @@ namespace tmfdem
     DiscreteHeat::load(CheckpointReader &in)
     {
       in.get_array(T.begin(), T.size());
-      const auto read_map = [&](std::map<types::boundary_id, double> &map) {
-        std::uint64_t n = 0;
-        in.get(n);
-        if (n > 65536)
-          throw InputError("the checkpoint '" + in.name() +
-                           "' is corrupt (boundary map size).");
-        map.clear();
-        for (std::uint64_t i = 0; i < n; ++i)
-          {
-            types::boundary_id id;
-            double             q;
-            in.get(id);
-            in.get(q);
-            map[id] = q;
-          }
-      };
-      read_map(heat_balance.boundary_heat_in);
+      in.get(heat_balance.boundary_heat_in);
       in.get(heat_balance.source_heat);
       in.get(heat_balance.contact_heat);
       in.get(heat_balance.contact_exchange);
       in.get(heat_balance.stored_heat);
-      read_map(last_rate);
+      in.get(last_rate);
       in.get(iterations);
       in.get(last_contact_exchange);
     }

@@ -20,6 +20,7 @@
 #include <csignal>
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <string>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/parameters.h>
@@ -100,6 +101,18 @@ namespace tmfdem
     /** Appends a string (size and characters). */
     void
     put(const std::string &text);
+    /** Appends a map of plain keys and values (size, then the pairs). */
+    template <typename K, typename V>
+    void
+    put(const std::map<K, V> &map)
+    {
+      put<std::uint64_t>(map.size());
+      for (const auto &[key, value] : map)
+        {
+          put(key);
+          put(value);
+        }
+    }
 
     /** The complete file content: header and payload. */
     std::string
@@ -156,6 +169,27 @@ namespace tmfdem
     /** Reads a string. */
     void
     get(std::string &text);
+    /** Reads a map written by CheckpointWriter::put(map); InputError if it
+     *  claims more than @p max_size entries (a corrupt file). */
+    template <typename K, typename V>
+    void
+    get(std::map<K, V> &map, const std::uint64_t max_size = 65536)
+    {
+      std::uint64_t n = 0;
+      get(n);
+      if (n > max_size)
+        throw InputError("the checkpoint '" + file_name +
+                         "' is corrupt (map size).");
+      map.clear();
+      for (std::uint64_t i = 0; i < n; ++i)
+        {
+          K key;
+          V value;
+          get(key);
+          get(value);
+          map[key] = value;
+        }
+    }
     /** Throws unless everything was read. */
     void
     finish() const;
