@@ -34,7 +34,7 @@ namespace tmfdem
       inverse_basis.assign(4 * n_elements, 0.);
       reference_area.assign(n_elements, 0.);
       material.assign(n_elements, 0);
-      body.assign(n_elements, 255);
+      body.assign(n_elements, no_body);
       thermal_stretch.assign(n_elements, 1.);
       stress.assign(3 * n_elements, 0.);
       edge_joint.assign(3 * n_elements, -1);

@@ -142,7 +142,7 @@ namespace tmfdem
           syy[e]      = model.stress[3 * e + 1];
           sxy[e]      = model.stress[3 * e + 2];
           material[e] = model.material[e];
-          body[e]     = model.body[e] == 255 ? -1 : model.body[e];
+          body[e]     = model.body[e] == no_body ? -1 : model.body[e];
           for (unsigned int k = 0; k < 3; ++k)
             {
               const int code = model.edge_joint[3 * e + k];

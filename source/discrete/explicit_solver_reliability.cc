@@ -118,9 +118,9 @@ namespace tmfdem
       out.put(model.joint_force);
       // energy terms and reactions
       out.put(balance);
-      out.put(body_reaction);
-      out.put(condition_reaction);
-      out.put(body_velocity_now);
+      out.put(drivers.body_reaction);
+      out.put(drivers.condition_reaction);
+      out.put(drivers.body_velocity_now);
       // relaxation predictor
       out.put(relaxed_x);
       out.put(relaxed_y);
@@ -130,10 +130,7 @@ namespace tmfdem
       out.put(predicted_relaxations);
       out.put(velocity_resets);
       // contact candidates with their friction history
-      out.put(travel_since_search);
-      out.put<std::uint8_t>(contact_search_needed);
-      out.put<std::uint64_t>(n_contact_searches);
-      out.put(pairs);
+      contact.save(out);
       // output counters and series
       out.put(next_output);
       out.put(next_history);
@@ -204,9 +201,9 @@ namespace tmfdem
       in.get(model.joint_break_time, j);
       in.get(model.joint_force, model.joint_force.size());
       in.get(balance);
-      in.get(body_reaction, body_reaction.size());
-      in.get(condition_reaction);
-      in.get(body_velocity_now, body_velocity_now.size());
+      in.get(drivers.body_reaction, drivers.body_reaction.size());
+      in.get(drivers.condition_reaction);
+      in.get(drivers.body_velocity_now, drivers.body_velocity_now.size());
       in.get(relaxed_x);
       in.get(relaxed_y);
       in.get(relaxed_thermal_step);
@@ -214,19 +211,7 @@ namespace tmfdem
       in.get(damaged_after_relaxation);
       in.get(predicted_relaxations);
       in.get(velocity_resets);
-      in.get(travel_since_search);
-      std::uint8_t flag = 0;
-      in.get(flag);
-      contact_search_needed = flag != 0;
-      in.get(count);
-      n_contact_searches = count;
-      in.get(pairs);
-      for (const auto &p : pairs)
-        if (p.first >= e || p.second >= e)
-          throw InputError("the checkpoint '" + file +
-                           "' is corrupt (contact pair of element " +
-                           std::to_string(std::max(p.first, p.second)) + ").");
-      index_contact_pairs();
+      contact.load(in, e);
       in.get(next_output);
       in.get(next_history);
       in.get(history_interval);
@@ -252,7 +237,8 @@ namespace tmfdem
       for (auto &b : csv_bytes)
         in.get(b);
       in.get(resumed_wall_time);
-      wall_time = resumed_wall_time;
+      wall_time         = resumed_wall_time;
+      std::uint8_t flag = 0;
       in.get(flag);
       if ((flag != 0) != with_heat)
         throw InputError("the checkpoint '" + file +

@@ -35,6 +35,10 @@ namespace tmfdem
       mixed   = 3  ///< broken in mixed mode
     };
 
+    /** The body index of elements and nodes that belong to no body
+     *  (Discrete bodies): they move freely. */
+    constexpr unsigned char no_body = 255;
+
     /** The flat state of the discrete layer. Units SI. */
     struct DiscreteModel
     {
@@ -55,7 +59,7 @@ namespace tmfdem
       std::vector<double>             inverse_basis;
       std::vector<double>             reference_area; ///< [m^2]
       std::vector<types::material_id> material;
-      /** Body index per element (see DiscreteBodyParameters), or 255. */
+      /** Body index per element (see DiscreteBodyParameters), or no_body. */
       std::vector<unsigned char> body;
       /** In-plane thermal stretch s of F_T = s I per element [-]; 1 here,
        *  set by the thermal coupling. */

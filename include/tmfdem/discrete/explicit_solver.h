@@ -21,9 +21,11 @@
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/base/simulation.h>
 #include <tmfdem/discrete/cohesive_law.h>
-#include <tmfdem/discrete/contact.h>
+#include <tmfdem/discrete/contact_system.h>
 #include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/drivers.h>
+#include <tmfdem/discrete/energy.h>
 #include <tmfdem/discrete/solid.h>
 #include <tmfdem/discrete/stable_step.h>
 #include <tmfdem/discrete/temperature_source.h>
@@ -37,48 +39,6 @@ namespace tmfdem
   namespace discrete
   {
     class VtuSeries;
-
-    /**
-     * Energy terms of the discrete layer [J/m] (per unit thickness). Works
-     * are integrated with the trapezoidal rule consistent with the central
-     * difference scheme, so that kinetic energy + strain energy + joint,
-     * contact and viscous work = external work + initial energy holds to the
-     * time-integration error, which is reported as the balance error.
-     */
-    struct EnergyBalance
-    {
-      double kinetic              = 0.;
-      double strain               = 0.;
-      double initial_kinetic      = 0.;
-      double initial_strain       = 0.;
-      double joint_work           = 0.; ///< done on the joints
-      double joint_stored         = 0.; ///< recoverable part, intact joints
-      double contact_work         = 0.; ///< done on contacts (incl. friction)
-      double friction_dissipation = 0.;
-      double viscous_dissipation  = 0.;
-      double external_work        = 0.; ///< gravity and driven/fixed bodies
-      /** Strain energy put in by changes of the thermal stretch at fixed
-       *  geometry (thermo-mechanical runs) [J/m]. */
-      double thermal_work = 0.;
-      double elastic_work = 0.; ///< done on the solid's elastic stress
-      /** Strain and joint energy put in by the extrapolated starts of
-       *  quasi-static relaxations (Discrete heat/Relaxation predictor)
-       *  [J/m]. */
-      double relaxation_work = 0.;
-
-      /** Energy in minus energy accounted for [J/m]. */
-      double
-      balance_error() const
-      {
-        return (initial_kinetic + initial_strain + external_work +
-                thermal_work + relaxation_work) -
-               (kinetic + strain + joint_work + contact_work +
-                viscous_dissipation);
-      }
-      /** The largest term, the scale of the relative balance error. */
-      double
-      scale() const;
-    };
 
     /** Explicit FDEM mechanics (paper Sec. 2). */
     class ExplicitSolver : public Simulation
@@ -145,24 +105,23 @@ namespace tmfdem
 
       void
       setup_materials();
-      void
-      setup_joints();
       /** Per-element Lame constants (element_lame): the material's, or
        *  compensated for the element's joints (Joint compliance
        *  compensation, joint_compliance.h); and the viscosity of the
        *  Damping ratio from them. */
       void
       setup_element_stiffness();
+      /** Contact settings (penalties from the stiffest material, buffer
+       *  from the smallest element) into `contact`. */
       void
-      setup_bodies();
-      void
-      setup_boundary_conditions();
+      setup_contact();
       /** F_T = s I per element from its mean nodal temperature; the strain
        *  energy this changes at fixed geometry is booked as thermal work. */
       void
       update_thermal_stretch();
-      void
-      evaluate_boundary_conditions();
+      /** When imposed motions are evaluated in the step under way. */
+      ImposedMotionClock
+      imposed_motion_clock() const;
       void
       compute_stable_time_step();
       /**
@@ -173,15 +132,9 @@ namespace tmfdem
        */
       ElementStepInput
       element_step_input(const unsigned int e, const bool deformed) const;
-      void
-      update_contact_candidates();
-      void
-      compute_joint_forces();
-      template <SofteningLaw law>
-      void
-      compute_joint_forces_with();
-      void
-      compute_contact_forces();
+      /** The fused node update (node_update.cc): element stresses and
+       *  forces, joint and contact forces gathered per node, bodies and
+       *  conditions, central-difference update, energy and reaction sums. */
       void
       update_nodes();
       void
@@ -231,13 +184,6 @@ namespace tmfdem
       double joint_utilisation = 0.;
       /** Quasi-static coupling: its rate over the last thermal step [1/s]. */
       double joint_utilisation_rate = 0.;
-      /**
-       * The largest strength utilisation over the undamaged intact joints
-       * [-]: max over their Gauss points of opening / peak opening and
-       * |slip| / peak slip (1 at the peak of the cohesive law).
-       */
-      double
-      max_joint_utilisation() const;
       /** |out-of-balance force| / |internal element forces| over the free
        *  node components after the last step (viscous force left out) [-]. */
       double relative_unbalanced_force = 0.;
@@ -250,21 +196,6 @@ namespace tmfdem
        */
       void
       reset_velocities();
-      /** Adds the contact forces of all pairs of element @p e to its six
-       *  nodal components @p f [N/m] (pair order: deterministic). */
-      void
-      add_contact_forces(const unsigned int e, double *f) const
-      {
-        for (unsigned int p = element_pair_start[e];
-             p < element_pair_start[e + 1];
-             ++p)
-          {
-            const unsigned int entry = element_pair_entries[p];
-            const double *pf = &pair_force[12 * (entry / 2) + 6 * (entry % 2)];
-            for (unsigned int i = 0; i < 6; ++i)
-              f[i] += pf[i];
-          }
-      }
       /** Quasi-static coupling: relaxations that ended at the step cap. */
       unsigned int relaxations_at_cap = 0;
       /** Quasi-static coupling, Relaxation predictor = extrapolate: node
@@ -279,9 +210,6 @@ namespace tmfdem
       unsigned int predicted_relaxations = 0;
       /** Relaxation damping = kinetic: velocity resets so far. */
       unsigned long velocity_resets = 0;
-      /** Joints that are damaged or broken [-]. */
-      unsigned int
-      n_damaged_or_broken_joints() const;
       /**
        * Relaxation predictor = extrapolate, before the relaxation of a
        * thermal step @p dt [s]: moves the free node components by the last
@@ -324,59 +252,28 @@ namespace tmfdem
       quasi_static_thermal_step() const;
       /** One explicit mechanical step without advancing the clock. */
       void
-             mechanical_step();
-      double thermal_time = 0.;
+      mechanical_step();
+      /** Multi-rate coupling, after the mechanical step that completes a
+       *  thermal step: heat over it, then the thermal stretch
+       *  (source/coupling/discrete_thermo_mechanics.cc). */
+      void
+      multi_rate_thermal_step();
+      /** Quasi-static coupling: one thermal step, then the relaxation of
+       *  the mechanics at its temperatures
+       *  (source/coupling/discrete_thermo_mechanics.cc). */
+      void
+      quasi_static_step();
+      /** Relaxation steps over which the motion imposed in one thermal step
+       *  is ramped in (quasi-static coupling). */
+      static constexpr unsigned int ramp_steps   = 100;
+      double                        thermal_time = 0.;
 
-      // bodies: motion per node, driven velocities
-      std::vector<unsigned char>        node_body; ///< body index or 255 (free)
-      std::vector<DiscreteBody::Motion> body_motion;
-      std::vector<std::unique_ptr<FunctionParser<2>>> body_velocity;
-      std::vector<std::array<double, 2>>              body_velocity_now;
-      std::array<double, 2>                           gravity{{0., 0.}};
-
-      // mechanical boundary conditions on boundary ids, per node: slot into
-      // the compact arrays below, or -1
-      std::vector<int> node_condition_slot;
-      struct NodeCondition
-      {
-        unsigned int node;
-        unsigned int condition;          ///< index into `conditions`
-        bool         prescribed[2];      ///< velocity component prescribed
-        double       velocity[2];        ///< prescribed velocity [m/s]
-        double       force[2];           ///< traction force [N/m]
-        double       traction_length;    ///< reference length share [m]
-        int          traction_condition; ///< its traction condition, or -1
-      };
-      std::vector<NodeCondition> node_conditions;
-      struct ConditionFunctions
-      {
-        MechanicalBoundaryCondition::Type                 type;
-        std::array<std::unique_ptr<FunctionParser<2>>, 2> value;
-        std::array<bool, 2> time_dependent{{false, false}};
-      };
-      std::vector<ConditionFunctions> conditions;
-      bool                            boundary_conditions_change = false;
-      static constexpr unsigned int   max_conditions =
-        MechanicalBoundaryParameters::max_conditions;
-      /** Reaction of each condition's supports [N/m], last step. */
-      std::vector<std::array<double, 2>> condition_reaction;
-
-      // contact
-      bool                      contact_enabled            = true;
-      double                    contact_penalty            = 0.;
-      double                    contact_tangential_penalty = 0.;
-      double                    friction_coefficient       = 0.;
-      double                    contact_buffer             = 0.;
-      double                    travel_since_search        = 0.;
-      bool                      contact_search_needed      = true;
-      LinkedCellSearch          linked_cells;
-      std::vector<ContactPair>  pairs;
-      std::vector<double>       pair_force;    ///< 12 per pair
-      std::vector<double>       pair_friction; ///< dissipation this step
-      std::vector<unsigned int> element_pair_start;
-      std::vector<unsigned int> element_pair_entries; ///< 2 pair + side
-      std::vector<unsigned int> active_elements;
-      unsigned long             n_contact_searches = 0;
+      /** Bodies, gravity and boundary conditions, and their reactions. */
+      Drivers drivers;
+      /** Contact: pair search, law, pair forces. */
+      ContactSystem contact;
+      /** Per element: its fixed or driven body, or no_body (contact). */
+      std::vector<unsigned char> rigid_group;
 
       // time
       double        time              = 0.;
@@ -394,13 +291,12 @@ namespace tmfdem
 
       // bookkeeping: per chunk sums, summed in chunk order (thread-count
       // independent)
-      static constexpr unsigned int      chunk_size = 512;
-      static constexpr unsigned int      n_sums     = 11;
-      static constexpr unsigned int      max_bodies = 8;
-      std::vector<double>                chunk_sums; ///< n_sums + 2 max_bodies
-      EnergyBalance                      balance;
-      std::vector<std::array<double, 2>> body_reaction; ///< [N/m]
-      std::vector<char>                  joint_chunk_broke;
+      static constexpr unsigned int chunk_size = 512;
+      static constexpr unsigned int n_sums     = 11;
+      /** n_sums + 2 max_bodies + 2 max_conditions per chunk */
+      std::vector<double> chunk_sums;
+      EnergyBalance       balance;
+      std::vector<char>   joint_chunk_broke; ///< scratch of the joint forces
 
       // output
       std::unique_ptr<VtuSeries>   solution_series, crack_series;
@@ -429,9 +325,6 @@ namespace tmfdem
       /** A CSV series: new with @p header, or continued on --resume. */
       std::unique_ptr<CsvSeries>
       open_csv(const std::string &file_name, const std::string &header) const;
-      /** Re-indexes the contact pairs per element after @p pairs changed. */
-      void
-      index_contact_pairs();
       /** After every step: a checkpoint when due; on SIGINT/SIGTERM the
        *  outputs, a checkpoint and StopRequested. */
       void

@@ -1,0 +1,176 @@
+/**
+ * @file
+ * Contact of the discrete layer as one unit: which elements take part
+ * (those with a free edge and their intact neighbours), the broad-phase
+ * pair search (LinkedCellSearch, contact.h) rebuilt when the accumulated
+ * travel passes half the buffer, the contact law (a policy,
+ * contact_law.h), the forces of every pair and their index per element
+ * for the fused node update.
+ */
+#ifndef tmfdem_discrete_contact_system_h
+#define tmfdem_discrete_contact_system_h
+
+#include <tmfdem/base/threads.h>
+#include <tmfdem/discrete/contact.h>
+#include <tmfdem/discrete/contact_law.h>
+#include <tmfdem/discrete/discrete_model.h>
+#include <vector>
+
+namespace tmfdem
+{
+  class CheckpointWriter;
+  class CheckpointReader;
+
+  namespace discrete
+  {
+    /** What the contact of a run is made of (Discrete mechanics). */
+    struct ContactSettings
+    {
+      bool                  enabled = true; ///< Discrete mechanics/Contact
+      ContactLaw            law     = ContactLaw::penalty_coulomb;
+      PenaltyCoulombContact penalty_coulomb; ///< its constants
+      /** Search buffer: pairs are searched with boxes this much larger and
+       *  searched again when a node may have travelled half of it [m]. */
+      double buffer = 0.;
+    };
+
+    /**
+     * Potential contact between the triangles of a DiscreteModel: the pair
+     * list, the pair forces of the last step and the friction history they
+     * carry. The pair list is sorted and does not depend on the thread
+     * count; forces are summed per element in pair order.
+     */
+    class ContactSystem
+    {
+    public:
+      /** Takes the settings; no pairs yet. */
+      void
+      setup(const ContactSettings &settings);
+
+      const ContactSettings &
+      settings() const
+      {
+        return contact;
+      }
+      bool
+      enabled() const
+      {
+        return contact.enabled;
+      }
+      /** The law's stiffness bound per node for the stable step [N/m per m];
+       *  0 without contact. */
+      double
+      node_stiffness_bound() const;
+
+      /**
+       * Rebuilds the pair list from the current geometry of @p model: the
+       * active elements (with a free edge, and their intact neighbours),
+       * pairs of those not joined by an intact joint and not in the same
+       * rigid group: @p rigid_group per element is the index of its body if
+       * that body is fixed or driven (its elements never meet each other),
+       * or no_body. Friction history of pairs that persist is kept.
+       */
+      void
+      search(const DiscreteModel              &model,
+             const std::vector<unsigned char> &rigid_group,
+             tbb::task_arena                  &arena);
+
+      /** Forces of every pair at the current state, with the law of the
+       *  settings, over the step @p dt [s] (friction history). Returns the
+       *  energy dissipated by friction in this step [J/m]. */
+      double
+      compute_forces(const DiscreteModel &model,
+                     const double         dt,
+                     tbb::task_arena     &arena);
+
+      /** Adds the contact forces of all pairs of element @p e to its six
+       *  nodal components @p f [N/m] (pair order: deterministic). */
+      void
+      add_forces(const unsigned int e, double *f) const
+      {
+        for (unsigned int p = element_pair_start[e];
+             p < element_pair_start[e + 1];
+             ++p)
+          {
+            const unsigned int entry = element_pair_entries[p];
+            const double *pf = &pair_force[12 * (entry / 2) + 6 * (entry % 2)];
+            for (unsigned int i = 0; i < 6; ++i)
+              f[i] += pf[i];
+          }
+      }
+
+      /** After a step whose fastest node moved @p distance [m]: a search is
+       *  due when the travel since the last one passes half the buffer. */
+      void
+      add_travel(const double distance)
+      {
+        travel_since_search += distance;
+        if (2. * travel_since_search > contact.buffer)
+          search_is_needed = true;
+      }
+      /** Asks for a search before the next force computation (joints broke,
+       *  nodes jumped). */
+      void
+      request_search()
+      {
+        search_is_needed = true;
+      }
+      bool
+      search_needed() const
+      {
+        return search_is_needed;
+      }
+
+      /** The candidate pairs of the last search. */
+      const std::vector<ContactPair> &
+      pairs() const
+      {
+        return pair_list;
+      }
+      bool
+      has_pairs() const
+      {
+        return !pair_list.empty();
+      }
+      unsigned long
+      n_searches() const
+      {
+        return searches;
+      }
+
+      /** Writes the search state and the pairs with their friction
+       *  history to a checkpoint. */
+      void
+      save(CheckpointWriter &out) const;
+      /** Restores what save() wrote, for a model of @p n_elements. */
+      void
+      load(CheckpointReader &in, const unsigned int n_elements);
+
+    private:
+      /** Re-indexes the pairs per element after the pair list changed. */
+      void
+      index_pairs(const unsigned int n_elements);
+      template <typename Law>
+      double
+      compute_forces_with(const Law           &law,
+                          const DiscreteModel &model,
+                          const double         dt,
+                          tbb::task_arena     &arena);
+
+      ContactSettings          contact;
+      LinkedCellSearch         linked_cells;
+      std::vector<ContactPair> pair_list;
+      std::vector<double>      pair_force;    ///< 12 per pair [N/m]
+      std::vector<double>      pair_friction; ///< dissipation this step
+      /** Pairs of element e: element_pair_entries[start[e] .. start[e+1]),
+       *  each 2 pair + side. */
+      std::vector<unsigned int> element_pair_start, element_pair_entries;
+      std::vector<unsigned int> active_elements;
+      double                    travel_since_search = 0.; ///< [m]
+      bool                      search_is_needed    = true;
+      unsigned long             searches            = 0;
+    };
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif

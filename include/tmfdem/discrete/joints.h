@@ -1,0 +1,62 @@
+/**
+ * @file
+ * The cohesive joints of the discrete layer as a whole (the law of one
+ * joint is cohesive_law.h): their constants from the materials (with
+ * heterogeneous strengths), their forces at the current state, and the
+ * measures the coupling needs (strength utilisation, damaged count).
+ */
+#ifndef tmfdem_discrete_joints_h
+#define tmfdem_discrete_joints_h
+
+#include <tmfdem/base/parameters.h>
+#include <tmfdem/base/threads.h>
+#include <tmfdem/discrete/cohesive_law.h>
+#include <tmfdem/discrete/discrete_model.h>
+#include <vector>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    /**
+     * Joint constants of every joint of @p model from the materials on its
+     * two sides (interfaces take the weaker strength and fracture energy,
+     * the stiffer E for the penalties), with the strengths scaled by the
+     * heterogeneity of Discrete mechanics (Weibull or normal factors drawn
+     * in joint order from Random seed). Throws InputError naming the joint
+     * if a fracture energy is below the work stored before the peak.
+     */
+    void
+    setup_joint_constants(const Parameters  &parameters,
+                          const SofteningLaw law,
+                          DiscreteModel     &model);
+
+    /**
+     * Forces of all intact joints at time @p time [s] into
+     * model.joint_force (8 per joint: nodes a0, a1, b0, b1) [N/m]; joints
+     * whose damage reaches 1 at both Gauss points break (status by mode,
+     * break time @p time) and carry no force. Runs in @p arena over fixed
+     * chunks; @p broke_in_chunk is scratch. Returns whether a joint broke.
+     */
+    bool
+    compute_joint_forces(const SofteningLaw law,
+                         DiscreteModel     &model,
+                         const double       time,
+                         tbb::task_arena   &arena,
+                         std::vector<char> &broke_in_chunk);
+
+    /**
+     * The largest strength utilisation over the undamaged intact joints
+     * [-]: max over their Gauss points of opening / peak opening and
+     * |slip| / peak slip (1 at the peak of the cohesive law).
+     */
+    double
+    max_joint_utilisation(const DiscreteModel &model);
+
+    /** Joints that are damaged or broken [-]. */
+    unsigned int
+    n_damaged_or_broken_joints(const DiscreteModel &model);
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif

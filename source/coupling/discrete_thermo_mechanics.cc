@@ -1,0 +1,314 @@
+/**
+ * @file
+ * The staggered thermo-mechanical loops of the discrete layer (model
+ * `discrete thermo-mechanics`; theory manual, "Coupling"), each readable in
+ * one screen:
+ *
+ * - multi-rate (Discrete heat/Coupling = dynamic): one explicit mechanical
+ *   step per call of ExplicitSolver::step(); every n-th step one thermal
+ *   step of the temperature source over the same time (M -> T: current
+ *   geometry, broken joints, contacts), then the new thermal stretch
+ *   F_T = s I (T -> M): multi_rate_thermal_step();
+ * - quasi-static (Coupling = quasi-static): one thermal step of physical
+ *   time per call, then the mechanics relaxes at these temperatures without
+ *   advancing the clock (damped explicit steps until kinetic/strain energy
+ *   and out-of-balance force are below their tolerances), optionally from
+ *   an extrapolated start: quasi_static_step().
+ *
+ * The mechanical step itself is ExplicitSolver::mechanical_step()
+ * (source/discrete/explicit_solver.cc); the temperature source is a
+ * discrete::TemperatureSource (discrete heat or the continuum heat).
+ */
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <tmfdem/discrete/explicit_solver.h>
+#include <tmfdem/discrete/joints.h>
+#include <tmfdem/discrete/temperature_source.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    void
+    ExplicitSolver::multi_rate_thermal_step()
+    {
+      // M -> T: current geometry, broken joints, contacts
+      check_cracks_seen_by_heat();
+      heat->update_contact_pairs();
+      heat->step(thermal_time, time - thermal_time);
+      thermal_time = time;
+      ++n_thermal_steps;
+      // T -> M
+      update_thermal_stretch();
+    }
+
+    void
+    ExplicitSolver::quasi_static_step()
+    {
+      // one thermal step of physical time (M -> T: current geometry,
+      // joints, contacts) and the new thermal stretch (T -> M) ...
+      const double dt = quasi_static_thermal_step();
+      check_cracks_seen_by_heat();
+      heat->update_contact_pairs();
+      heat->step(time, dt);
+      time += dt;
+      thermal_time = time;
+      ++n_thermal_steps;
+      update_thermal_stretch();
+      // ... then the mechanics relaxes at these temperatures (no clock),
+      // from the extrapolated state where asked for
+      if (parameters.discrete_heat.relaxation_predictor == "extrapolate")
+        predict_relaxation(dt);
+      current_thermal_step = dt;
+      unsigned int i       = 0;
+      bool         relaxed = false;
+      // kinetic damping: the kinetic energy of the last step and the
+      // largest one since the last check (a reset just before a check
+      // must not pass for convergence)
+      const bool kinetic_damping =
+        parameters.discrete_heat.relaxation_damping == "kinetic";
+      double previous_kinetic = 0., window_kinetic = 0.;
+      while (i < steps_per_thermal_step)
+        {
+          relaxation_step = i;
+          mechanical_step();
+          ++i;
+          if (kinetic_damping)
+            {
+              window_kinetic = std::max(window_kinetic, step_kinetic);
+              if (step_kinetic < previous_kinetic)
+                {
+                  reset_velocities();
+                  previous_kinetic = 0.;
+                }
+              else
+                previous_kinetic = step_kinetic;
+            }
+          if (i % 50 == 0)
+            {
+              energy();
+              last_kinetic_to_strain =
+                (kinetic_damping ? window_kinetic : balance.kinetic) /
+                std::max(balance.strain, 1e-300);
+              window_kinetic = 0.;
+              if (i > quasi_static_ramp_steps &&
+                  last_kinetic_to_strain <
+                    parameters.discrete_heat.relaxation_tolerance &&
+                  relative_unbalanced_force <=
+                    parameters.discrete_heat.relaxation_force_tolerance)
+                {
+                  relaxed = true;
+                  break;
+                }
+            }
+        }
+      relaxation_step       = quasi_static_ramp_steps + 1;
+      last_relaxation_steps = i;
+      if (parameters.discrete_heat.relaxation_predictor == "extrapolate")
+        damaged_after_relaxation = n_damaged_or_broken_joints(model);
+      if (parameters.discrete_heat.maximum_utilisation_change > 0.)
+        {
+          const double u         = max_joint_utilisation(model);
+          joint_utilisation_rate = (u - joint_utilisation) / dt;
+          joint_utilisation      = u;
+        }
+      if (!relaxed)
+        {
+          ++relaxations_at_cap;
+          if (relaxations_at_cap == 1)
+            std::cerr
+              << "[tmfdem] warning: at t = " << time
+              << " s the relaxation reached its cap of "
+              << steps_per_thermal_step
+              << " mechanical steps (Discrete heat/Mechanical steps per "
+                 "thermal step) with kinetic / strain energy "
+              << last_kinetic_to_strain << " above Relaxation tolerance = "
+              << parameters.discrete_heat.relaxation_tolerance
+              << ": the state is not in equilibrium. Raise the cap, "
+                 "shorten the thermal step or add Mass damping; "
+                 "summary.json counts these steps "
+                 "(relaxations_at_cap).\n";
+          if (parameters.discrete_heat.relaxation_cap_is_error)
+            guard_failure(
+              "guard: the relaxation at t = " + Utilities::to_string(time) +
+              " s reached its cap of " +
+              std::to_string(steps_per_thermal_step) +
+              " mechanical steps without reaching Relaxation tolerance "
+              "(Discrete heat/Relaxation cap is error = true).");
+        }
+    }
+
+    double
+    ExplicitSolver::quasi_static_thermal_step() const
+    {
+      const DiscreteHeatParameters &dh = parameters.discrete_heat;
+      double                        dt =
+        parameters.time.time_step *
+        std::pow(dh.thermal_step_growth, static_cast<double>(n_thermal_steps));
+      if (dh.maximum_thermal_step > 0.)
+        dt = std::min(dt, dh.maximum_thermal_step);
+      dt = std::max(dt, parameters.time.time_step);
+      // joints approaching their strength: at most the allowed rise of the
+      // utilisation per step, predicted from its last rate (no shorter than
+      // 1e-3 Time step, so that a jump cannot stall the run)
+      if (dh.maximum_utilisation_change > 0.)
+        {
+          double limit = dt;
+          if (joint_utilisation_rate > 0.)
+            limit = dh.maximum_utilisation_change / joint_utilisation_rate;
+          // near the peak the rate may flatten while U creeps to 1: steps of
+          // at most this fraction of the elapsed time bracket the onset
+          if (joint_utilisation > 1. - 10. * dh.maximum_utilisation_change)
+            limit = std::min(limit,
+                             dh.maximum_utilisation_change *
+                               (time - parameters.time.start_time));
+          dt = std::min(dt, std::max(1e-3 * parameters.time.time_step, limit));
+        }
+      // land on the end time instead of stepping past it
+      const double left = parameters.time.end_time - time;
+      return left < 1.5 * dt ? left : dt;
+    }
+
+    void
+    ExplicitSolver::update_thermal_stretch()
+    {
+      const Vector<double> &T      = heat->temperature();
+      double                before = 0., after = 0.;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          const MaterialProperties &m = parameters.materials[model.material[e]];
+          const double dT = (T[3 * e] + T[3 * e + 1] + T[3 * e + 2]) / 3. -
+                            reference_temperature[e];
+          const double s_new = thermal_stretch(m.thermal_expansion,
+                                               m.poisson_ratio,
+                                               dT,
+                                               idealisation);
+          const double s_old = model.thermal_stretch[e];
+          if (s_new == s_old)
+            continue;
+          const unsigned int n0     = 3 * e;
+          const double      *ib     = &model.inverse_basis[4 * e];
+          const Matrix2      F      = multiply(element_basis(model.x[n0],
+                                                   model.y[n0],
+                                                   model.x[n0 + 1],
+                                                   model.y[n0 + 1],
+                                                   model.x[n0 + 2],
+                                                   model.y[n0 + 2]),
+                                     Matrix2{ib[0], ib[1], ib[2], ib[3]});
+          const auto         energy = [&](const double s) {
+            return model.reference_area[e] * s * s *
+                   strain_energy_density(
+                     {F.a00 / s, F.a01 / s, F.a10 / s, F.a11 / s},
+                     element_lame[e]);
+          };
+          before += energy(s_old);
+          after += energy(s_new);
+          model.thermal_stretch[e] = s_new;
+        }
+      balance.thermal_work += after - before;
+    }
+
+    void
+    ExplicitSolver::check_cracks_seen_by_heat()
+    {
+      if (heat->sees_cracks() || heat_across_cracks)
+        return;
+      const unsigned int broken = model.n_broken_joints();
+      if (broken == 0)
+        return;
+      const std::string what =
+        "Discrete heat/Temperature source = " + heat->name() + ": " +
+        std::to_string(broken) +
+        " joint(s) broken by t = " + Utilities::to_string(time) +
+        " s, and this source conducts across them as if intact (no crack, "
+        "no contact heat)";
+      if (!parameters.discrete_heat.accept_continuum_source_at_broken_joints)
+        guard_failure(what +
+                      "; the temperature near the cracks would be wrong from "
+                      "here on. Set Discrete heat/Continuum source at broken "
+                      "joints = accept to go on regardless, or Temperature "
+                      "source = discrete heat.");
+      heat_across_cracks = true;
+      std::cerr << "[tmfdem] warning: " << what
+                << "; going on (Continuum source at broken joints = "
+                   "accept); summary.json records "
+                   "continuum_heat_across_cracks.\n";
+    }
+
+    void
+    ExplicitSolver::reset_velocities()
+    {
+      double removed = 0.;
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        {
+          if (!drivers.node_is_free(n))
+            continue;
+          const bool   px = drivers.prescribed(n, 0);
+          const bool   py = drivers.prescribed(n, 1);
+          const double vx = px ? 0. : model.vx[n], vy = py ? 0. : model.vy[n];
+          removed += 0.5 * model.mass[n] * (vx * vx + vy * vy);
+          // back to the middle of the last step, where v^{n+1/2} lives:
+          // resting there (not at x^{n+1}) keeps the reset from feeding
+          // the highest modes, whose kinetic energy peaks every step
+          model.x[n] -= 0.5 * time_step * vx;
+          model.y[n] -= 0.5 * time_step * vy;
+          model.vx[n] = px ? model.vx[n] : 0.;
+          model.vy[n] = py ? model.vy[n] : 0.;
+        }
+      balance.viscous_dissipation += removed;
+      ++velocity_resets;
+    }
+
+    void
+    ExplicitSolver::predict_relaxation(const double dt)
+    {
+      // the last relaxation took the state from relaxed_x to x over the
+      // thermal step relaxed_thermal_step; a response linear in time goes on
+      // by the same increment per unit time. Not across a relaxation that
+      // damaged or broke joints (its increment holds the crack's jump).
+      const unsigned int damaged = n_damaged_or_broken_joints(model);
+      const bool         extrapolate =
+        relaxed_thermal_step > 0. && relaxed_x.size() == model.n_nodes &&
+        damaged_before_relaxation == damaged_after_relaxation &&
+        damaged == damaged_after_relaxation;
+      if (extrapolate)
+        {
+          const EnergyBalance before = energy();
+          const double        ratio  = dt / relaxed_thermal_step;
+          for (unsigned int n = 0; n < model.n_nodes; ++n)
+            {
+              const double dx = model.x[n] - relaxed_x[n];
+              const double dy = model.y[n] - relaxed_y[n];
+              relaxed_x[n]    = model.x[n];
+              relaxed_y[n]    = model.y[n];
+              if (!drivers.node_is_free(n))
+                continue;
+              if (!drivers.prescribed(n, 0))
+                model.x[n] += ratio * dx;
+              if (!drivers.prescribed(n, 1))
+                model.y[n] += ratio * dy;
+            }
+          energy();
+          // the jump's work on the solid and the intact joints (damaged
+          // joints and contacts: force x jump, not booked)
+          balance.relaxation_work += balance.strain - before.strain +
+                                     balance.joint_stored - before.joint_stored;
+          balance.joint_work += balance.joint_stored - before.joint_stored;
+          if (contact.enabled())
+            contact.request_search();
+          ++predicted_relaxations;
+        }
+      else
+        {
+          relaxed_x = model.x;
+          relaxed_y = model.y;
+        }
+      relaxed_thermal_step      = dt;
+      damaged_before_relaxation = damaged;
+    }
+
+  } // namespace discrete
+} // namespace tmfdem

@@ -1,0 +1,221 @@
+#include <string>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/discrete/contact_system.h>
+#include <tmfdem/io/checkpoint.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    void
+    ContactSystem::setup(const ContactSettings &settings)
+    {
+      contact = settings;
+      pair_list.clear();
+      index_pairs(0);
+      travel_since_search = 0.;
+      search_is_needed    = true;
+      searches            = 0;
+    }
+
+    double
+    ContactSystem::node_stiffness_bound() const
+    {
+      if (!contact.enabled)
+        return 0.;
+      switch (contact.law)
+        {
+          case ContactLaw::penalty_coulomb:
+            return contact.penalty_coulomb.node_stiffness_bound();
+        }
+      return 0.;
+    }
+
+    void
+    ContactSystem::search(const DiscreteModel              &model,
+                          const std::vector<unsigned char> &rigid_group,
+                          tbb::task_arena                  &arena)
+    {
+      // active: elements with a free edge, and their intact neighbours
+      std::vector<unsigned char> active(model.n_elements, 0);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        for (unsigned int k = 0; k < 3; ++k)
+          if (model.intact_neighbour(e, k) < 0)
+            {
+              active[e] = 1;
+              break;
+            }
+      std::vector<unsigned char> with_neighbours = active;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        if (active[e])
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              const int n = model.intact_neighbour(e, k);
+              if (n >= 0)
+                with_neighbours[n] = 1;
+            }
+      active_elements.clear();
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        if (with_neighbours[e])
+          active_elements.push_back(e);
+
+      const auto skip = [&](const unsigned int a, const unsigned int b) {
+        if (rigid_group[a] == rigid_group[b] && rigid_group[a] != no_body)
+          return true;
+        return model.joined(a, b);
+      };
+      linked_cells.rebuild(model.x,
+                           model.y,
+                           active_elements,
+                           contact.buffer,
+                           skip,
+                           pair_list,
+                           arena);
+      index_pairs(model.n_elements);
+      travel_since_search = 0.;
+      search_is_needed    = false;
+      ++searches;
+    }
+
+    void
+    ContactSystem::index_pairs(const unsigned int n_elements)
+    {
+      pair_force.assign(12 * pair_list.size(), 0.);
+      pair_friction.assign(pair_list.size(), 0.);
+      element_pair_start.assign(n_elements + 1, 0);
+      for (const auto &p : pair_list)
+        {
+          ++element_pair_start[p.first + 1];
+          ++element_pair_start[p.second + 1];
+        }
+      for (unsigned int e = 0; e < n_elements; ++e)
+        element_pair_start[e + 1] += element_pair_start[e];
+      element_pair_entries.resize(2 * pair_list.size());
+      std::vector<unsigned int> fill(element_pair_start.begin(),
+                                     element_pair_start.end() - 1);
+      for (unsigned int p = 0; p < pair_list.size(); ++p)
+        {
+          element_pair_entries[fill[pair_list[p].first]++]  = 2 * p;
+          element_pair_entries[fill[pair_list[p].second]++] = 2 * p + 1;
+        }
+    }
+
+    double
+    ContactSystem::compute_forces(const DiscreteModel &model,
+                                  const double         dt,
+                                  tbb::task_arena     &arena)
+    {
+      if (pair_list.empty())
+        return 0.;
+      switch (contact.law)
+        {
+          case ContactLaw::penalty_coulomb:
+            return compute_forces_with(contact.penalty_coulomb,
+                                       model,
+                                       dt,
+                                       arena);
+        }
+      return 0.;
+    }
+
+    template <typename Law>
+    double
+    ContactSystem::compute_forces_with(const Law           &law,
+                                       const DiscreteModel &m,
+                                       const double         dt,
+                                       tbb::task_arena     &arena)
+    {
+      for_each_chunk(
+        arena,
+        pair_list.size(),
+        256,
+        [&](const std::size_t begin, const std::size_t end, const std::size_t) {
+          for (std::size_t p = begin; p < end; ++p)
+            {
+              ContactPair &pair  = pair_list[p];
+              double      *force = &pair_force[12 * p];
+              for (unsigned int i = 0; i < 12; ++i)
+                force[i] = 0.;
+              double dissipated = 0.;
+              // each element is once the contactor, once the target
+              for (unsigned int direction = 0; direction < 2; ++direction)
+                {
+                  const unsigned int c =
+                    direction == 0 ? pair.first : pair.second;
+                  const unsigned int t =
+                    direction == 0 ? pair.second : pair.first;
+                  double       *fc = force + 6 * direction;
+                  double       *ft = force + 6 * (1 - direction);
+                  const double *tx = &m.x[3 * t], *ty = &m.y[3 * t];
+                  for (unsigned int edge = 0; edge < 3; ++edge)
+                    {
+                      double            &slip = pair.slip[3 * direction + edge];
+                      const unsigned int a    = 3 * c + edge,
+                                         b    = 3 * c + (edge + 1) % 3;
+                      EdgePotentialIntegrals I;
+                      if (!edge_potential_integrals(m.x[a],
+                                                    m.y[a],
+                                                    m.x[b],
+                                                    m.y[b],
+                                                    tx,
+                                                    ty,
+                                                    I))
+                        {
+                          slip = 0.; // the edge left the target
+                          continue;
+                        }
+                      dissipated += law.edge_forces(m.x.data(),
+                                                    m.y.data(),
+                                                    m.vx.data(),
+                                                    m.vy.data(),
+                                                    a,
+                                                    b,
+                                                    edge,
+                                                    (edge + 1) % 3,
+                                                    3 * t,
+                                                    I,
+                                                    dt,
+                                                    slip,
+                                                    fc,
+                                                    ft);
+                    }
+                }
+              pair_friction[p] = dissipated;
+            }
+        });
+      // friction dissipation, summed in pair order
+      double sum = 0.;
+      for (const double d : pair_friction)
+        sum += d;
+      return sum;
+    }
+
+    void
+    ContactSystem::save(CheckpointWriter &out) const
+    {
+      out.put(travel_since_search);
+      out.put<std::uint8_t>(search_is_needed);
+      out.put<std::uint64_t>(searches);
+      out.put(pair_list);
+    }
+
+    void
+    ContactSystem::load(CheckpointReader &in, const unsigned int n_elements)
+    {
+      in.get(travel_since_search);
+      std::uint8_t flag = 0;
+      in.get(flag);
+      search_is_needed    = flag != 0;
+      std::uint64_t count = 0;
+      in.get(count);
+      searches = count;
+      in.get(pair_list);
+      for (const auto &p : pair_list)
+        if (p.first >= n_elements || p.second >= n_elements)
+          throw InputError("the checkpoint '" + in.name() +
+                           "' is corrupt (contact pair of element " +
+                           std::to_string(std::max(p.first, p.second)) + ").");
+      index_pairs(n_elements);
+    }
+  } // namespace discrete
+} // namespace tmfdem

@@ -1,0 +1,78 @@
+#include <algorithm>
+#include <cmath>
+#include <tmfdem/discrete/energy.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    double
+    EnergyBalance::scale() const
+    {
+      return std::max({std::abs(initial_kinetic + initial_strain),
+                       std::abs(external_work),
+                       std::abs(kinetic),
+                       std::abs(strain),
+                       std::abs(joint_work),
+                       std::abs(contact_work),
+                       std::abs(viscous_dissipation),
+                       std::abs(relaxation_work),
+                       1e-9}); // [J/m]: below this nothing happened
+    }
+
+    void
+    measure_stored_energy(const DiscreteModel              &model,
+                          const std::vector<LameConstants> &element_lame,
+                          EnergyBalance                    &balance)
+    {
+      double kinetic = 0., strain = 0., stored = 0.;
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        kinetic += 0.5 * model.mass[n] *
+                   (model.vx[n] * model.vx[n] + model.vy[n] * model.vy[n]);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          const unsigned int n0 = 3 * e;
+          const double      *ib = &model.inverse_basis[4 * e];
+          const Matrix2      F  = multiply(element_basis(model.x[n0],
+                                                   model.y[n0],
+                                                   model.x[n0 + 1],
+                                                   model.y[n0 + 1],
+                                                   model.x[n0 + 2],
+                                                   model.y[n0 + 2]),
+                                     Matrix2{ib[0], ib[1], ib[2], ib[3]});
+          const double       s  = model.thermal_stretch[e];
+          const Matrix2      Fe{F.a00 / s, F.a01 / s, F.a10 / s, F.a11 / s};
+          strain += model.reference_area[e] * s * s *
+                    strain_energy_density(Fe, element_lame[e]);
+        }
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        if (model.joint_status[j] == JointStatus::intact &&
+            model.joint_damage[2 * j] == 0. &&
+            model.joint_damage[2 * j + 1] == 0.)
+          {
+            const unsigned int *n  = &model.joint_nodes[4 * j];
+            const double        ex = model.x[n[1]] - model.x[n[0]];
+            const double        ey = model.y[n[1]] - model.y[n[0]];
+            const double        L  = std::hypot(ex, ey);
+            const double        tx = ex / L, ty = ey / L;
+            const double        d0x = model.x[n[2]] - model.x[n[0]];
+            const double        d0y = model.y[n[2]] - model.y[n[0]];
+            const double        d1x = model.x[n[3]] - model.x[n[1]];
+            const double        d1y = model.y[n[3]] - model.y[n[1]];
+            // the two Gauss points of the force computation (joints.cc)
+            for (const double u : {0.21132486540518713, 0.78867513459481287})
+              {
+                const double dx = (1. - u) * d0x + u * d1x;
+                const double dy = (1. - u) * d0y + u * d1y;
+                stored += 0.5 * L *
+                          stored_joint_energy(dx * ty - dy * tx,
+                                              dx * tx + dy * ty,
+                                              model.joint_constants[j]);
+              }
+          }
+      balance.kinetic      = kinetic;
+      balance.strain       = strain;
+      balance.joint_stored = stored;
+    }
+  } // namespace discrete
+} // namespace tmfdem

@@ -1,0 +1,335 @@
+/**
+ * @file
+ * The outputs of the explicit discrete solver (doc/verification.md, output
+ * contract): solution and crack vtu series, history.csv (energy terms,
+ * broken joints, reactions), probes.csv and lines.csv (monitor stresses
+ * recovered at the vertices, stress_recovery.h) and summary.json.
+ */
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <sys/resource.h>
+#include <tmfdem/discrete/contact_heat.h>
+#include <tmfdem/discrete/discrete_output.h>
+#include <tmfdem/discrete/explicit_solver.h>
+#include <tmfdem/discrete/stress_recovery.h>
+#include <tmfdem/discrete/temperature_source.h>
+#include <tmfdem/io/output_files.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    EnergyBalance
+    ExplicitSolver::energy()
+    {
+      measure_stored_energy(model, element_lame, balance);
+      return balance;
+    }
+
+    // -------------------------------------------------------------- output
+    void
+    ExplicitSolver::write_history_row()
+    {
+      energy();
+      std::ostringstream row;
+      row << std::setprecision(10) << time << ',' << step_number << ','
+          << balance.kinetic << ',' << balance.strain << ','
+          << balance.joint_work << ',' << balance.contact_work << ','
+          << balance.friction_dissipation << ',' << balance.viscous_dissipation
+          << ',' << balance.external_work << ',' << balance.balance_error()
+          << ',' << model.n_broken_joints() << ',' << model.n_damaged_joints();
+      for (const auto &r : drivers.body_reaction)
+        row << ',' << r[0] << ',' << r[1];
+      for (const auto &r : drivers.condition_reaction)
+        row << ',' << r[0] << ',' << r[1];
+      row << '\n';
+      history_csv->append(row.str());
+    }
+
+    void
+    ExplicitSolver::write_output()
+    {
+      if (parameters.output.write_vtu)
+        {
+          if (with_heat)
+            {
+              std::vector<double> T(heat->temperature().begin(),
+                                    heat->temperature().end());
+              solution_series->write(time,
+                                     discrete_solution_vtu(model, {{"T", &T}}));
+            }
+          else
+            solution_series->write(time, discrete_solution_vtu(model));
+          crack_series->write(time, crack_vtu(model));
+        }
+      // monitor stresses: recovered at the mesh vertices (vtu files hold
+      // the raw element values); stress_recovery.h. What is known on each
+      // boundary edge: the traction (free edges: zero; traction
+      // conditions: the applied one), one component (rollers) or nothing
+      // (supports, driven bodies, contact)
+      std::vector<BoundaryEdgeKnowledge> boundary(3 * model.n_elements);
+      {
+        using Type = MechanicalBoundaryCondition::Type;
+        std::vector<int> condition_of_id(256, -1);
+        const auto      &mechanical = parameters.mechanical_boundary.conditions;
+        for (unsigned int c = 0; c < mechanical.size(); ++c)
+          for (const auto id : mechanical[c].boundary_ids)
+            if (id < condition_of_id.size())
+              condition_of_id[id] = c;
+        for (unsigned int e = 0; e < model.n_elements; ++e)
+          {
+            if (model.body[e] != no_body &&
+                drivers.body_motion[model.body[e]] !=
+                  DiscreteBody::Motion::free)
+              continue;
+            // in contact: contact forces on the element above 1e-3 of its
+            // internal forces (|sigma| times the perimeter; elements that
+            // share only a vertex exchange tiny forces in an intact mesh)
+            if (contact.has_pairs())
+              {
+                double f[6] = {0., 0., 0., 0., 0., 0.};
+                contact.add_forces(e, f);
+                double contact = 0., perimeter = 0.;
+                for (unsigned int k = 0; k < 3; ++k)
+                  {
+                    contact += std::hypot(f[2 * k], f[2 * k + 1]);
+                    perimeter += std::hypot(model.x[3 * e + (k + 1) % 3] -
+                                              model.x[3 * e + k],
+                                            model.y[3 * e + (k + 1) % 3] -
+                                              model.y[3 * e + k]);
+                  }
+                const double stress =
+                  std::max({std::abs(model.stress[3 * e]),
+                            std::abs(model.stress[3 * e + 1]),
+                            std::abs(model.stress[3 * e + 2])});
+                if (contact > 1e-3 * stress * perimeter)
+                  continue;
+              }
+            const MaterialProperties &m =
+              parameters.materials[model.material[e]];
+            for (unsigned int k = 0; k < 3; ++k)
+              {
+                const types::boundary_id id = model.edge_boundary[3 * e + k];
+                if (id == numbers::internal_face_boundary_id)
+                  continue;
+                const unsigned int     a = 3 * e + k, b = 3 * e + (k + 1) % 3;
+                BoundaryEdgeKnowledge &edge = boundary[a];
+                edge.lame                   = element_lame[e];
+                edge.thermal_stretch        = model.thermal_stretch[e];
+                if (with_heat)
+                  edge.thermal_stretch =
+                    thermal_stretch(m.thermal_expansion,
+                                    m.poisson_ratio,
+                                    0.5 * (heat->temperature()[a] +
+                                           heat->temperature()[b]) -
+                                      reference_temperature[e],
+                                    idealisation);
+                const int c =
+                  id < condition_of_id.size() ? condition_of_id[id] : -1;
+                if (c < 0)
+                  edge.kind = BoundaryEdgeKnowledge::Kind::traction;
+                else if (drivers.conditions[c].type == Type::traction)
+                  {
+                    edge.kind = BoundaryEdgeKnowledge::Kind::traction;
+                    for (unsigned int d = 0; d < 2; ++d)
+                      {
+                        drivers.conditions[c].value[d]->set_time(time);
+                        // the mean of the ends, as the nodal loads
+                        edge.traction[d] =
+                          0.5 * (drivers.conditions[c].value[d]->value(
+                                   Point<2>(model.x_ref[a], model.y_ref[a])) +
+                                 drivers.conditions[c].value[d]->value(
+                                   Point<2>(model.x_ref[b], model.y_ref[b])));
+                      }
+                  }
+                else if (drivers.conditions[c].type == Type::roller_x ||
+                         drivers.conditions[c].type == Type::roller_y)
+                  {
+                    // roller x holds u_x: no traction along y, and v.v.
+                    edge.kind = BoundaryEdgeKnowledge::Kind::component;
+                    edge.component =
+                      drivers.conditions[c].type == Type::roller_x ? 1 : 0;
+                  }
+              }
+          }
+      }
+      const std::vector<double> vertex_stress =
+        recover_vertex_stress(model, boundary);
+      auto rows = [&](const std::vector<ReferenceSample> &samples) {
+        std::ostringstream out;
+        out << std::setprecision(10);
+        for (const auto &s : samples)
+          {
+            double ux = 0., uy = 0.;
+            for (unsigned int k = 0; k < 3; ++k)
+              {
+                const unsigned int n = 3 * s.element + k;
+                ux += s.lambda[k] * (model.x[n] - model.x_ref[n]);
+                uy += s.lambda[k] * (model.y[n] - model.y_ref[n]);
+              }
+            out << time << ',' << s.name << ',' << s.x << ',' << s.y << ',';
+            if (with_heat)
+              {
+                double T = 0.;
+                for (unsigned int k = 0; k < 3; ++k)
+                  T += s.lambda[k] * heat->temperature()[3 * s.element + k];
+                out << T << ',';
+              }
+            double stress[3] = {0., 0., 0.};
+            for (unsigned int k = 0; k < 3; ++k)
+              for (unsigned int c = 0; c < 3; ++c)
+                stress[c] +=
+                  s.lambda[k] *
+                  vertex_stress[3 * model.node_vertex[3 * s.element + k] + c];
+            out << ux << ',' << uy << ',' << stress[0] << ',' << stress[1]
+                << ',' << stress[2] << '\n';
+          }
+        return out.str();
+      };
+      if (!probe_samples.empty())
+        probes_csv->append(rows(probe_samples));
+      if (!line_samples.empty())
+        lines_csv->append(rows(line_samples));
+    }
+
+    void
+    ExplicitSolver::write_summary(const bool finished) const
+    {
+      JsonObject energies;
+      energies.add("kinetic", balance.kinetic)
+        .add("strain", balance.strain)
+        .add("initial_kinetic", balance.initial_kinetic)
+        .add("initial_strain", balance.initial_strain)
+        .add("joint_work", balance.joint_work)
+        .add("joint_stored", balance.joint_stored)
+        .add("joint_dissipated", balance.joint_work - balance.joint_stored)
+        .add("contact_work", balance.contact_work)
+        .add("contact_penalty",
+             balance.contact_work - balance.friction_dissipation)
+        .add("friction_dissipation", balance.friction_dissipation)
+        .add("viscous_dissipation", balance.viscous_dissipation)
+        .add("external_work", balance.external_work)
+        .add("thermal_work", balance.thermal_work)
+        .add("relaxation_work", balance.relaxation_work)
+        .add("elastic_work", balance.elastic_work)
+        .add("balance_error", balance.balance_error())
+        .add("relative_balance_error",
+             std::abs(balance.balance_error()) / balance.scale());
+      unsigned int by_mode[4] = {0, 0, 0, 0};
+      for (const auto s : model.joint_status)
+        ++by_mode[static_cast<unsigned int>(s)];
+      double px = 0., py = 0.;
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        {
+          px += model.mass[n] * model.vx[n];
+          py += model.mass[n] * model.vy[n];
+        }
+      std::vector<JsonObject> reactions;
+      for (unsigned int b = 0; b < drivers.body_reaction.size(); ++b)
+        {
+          JsonObject r;
+          r.add("body", parameters.discrete_bodies.bodies[b].name)
+            .add("force_x", drivers.body_reaction[b][0])
+            .add("force_y", drivers.body_reaction[b][1]);
+          reactions.push_back(r);
+        }
+      JsonObject summary;
+      summary
+        .add("model",
+             std::string(with_heat ? "discrete thermo-mechanics" :
+                                     "discrete mechanics"))
+        .add("finished", finished)
+        .add("elements", model.n_elements)
+        .add("nodes", model.n_nodes)
+        .add("joints", model.n_joints)
+        .add("steps", static_cast<long long>(step_number))
+        .add("end_time", time)
+        .add("time_step", time_step)
+        .add("stable_time_step", stable_time_step)
+        .add("joint_compliance_compensation",
+             parameters.discrete_mechanics.joint_compliance_compensation)
+        .add("compensation_max_share", compensation_share)
+        .add("compensation_capped_elements", compensation_capped)
+        .add("threads", n_threads)
+        .add("threads_requested", threads_requested)
+        .add("threads_available", threads_available)
+        .add("threads_used", threads_used)
+        .add("cpu_time_s", loop_cpu_time)
+        .add("wall_time_s", loop_wall_time)
+        .add("cpu_time_busiest_thread_s",
+             loop_thread_cpu_times.empty() ? 0. : loop_thread_cpu_times[0])
+        .add("cpu_time_other_threads_s",
+             [this] {
+               double other = 0.;
+               for (std::size_t k = 1; k < loop_thread_cpu_times.size(); ++k)
+                 other += loop_thread_cpu_times[k];
+               return other;
+             }())
+        .add("wall_time", wall_time)
+        .add("element_steps_per_second",
+             wall_time > 0. ?
+               model.n_elements * double(step_number) / wall_time :
+               0.)
+        .add("broken_joints", model.n_broken_joints())
+        .add("broken_mode_I", by_mode[1])
+        .add("broken_mode_II", by_mode[2])
+        .add("broken_mixed", by_mode[3])
+        .add("cracks", model.n_cracks())
+        .add("contact_searches", static_cast<long long>(contact.n_searches()))
+        .add("contact_pairs", static_cast<unsigned int>(contact.pairs().size()))
+        .add("peak_resident_memory_bytes",
+             [] {
+               rusage usage;
+               getrusage(RUSAGE_SELF, &usage);
+               return static_cast<long long>(usage.ru_maxrss) * 1024;
+             }())
+        .add("momentum_x", px)
+        .add("momentum_y", py)
+        .add("energy", energies)
+        .add("body_reactions", reactions);
+      if (!stop_reason.empty())
+        summary.add("stop_reason", stop_reason);
+      if (with_heat)
+        {
+          const HeatBalance &b = heat->balance();
+          JsonObject         boundary;
+          for (const auto &[id, q] : b.boundary_heat_in)
+            boundary.add(std::to_string(id), q);
+          JsonObject hb;
+          hb.add("boundary_heat_in", boundary)
+            .add("source_heat", b.source_heat)
+            .add("contact_exchange", b.contact_exchange)
+            .add("stored_heat", b.stored_heat)
+            .add("imbalance", b.imbalance())
+            .add("relative_imbalance", std::abs(b.imbalance()) / b.scale());
+          JsonObject rates;
+          for (const auto &[id, q] : heat->last_boundary_rate())
+            rates.add(std::to_string(id), q);
+          hb.add("boundary_heat_rate_last_step", rates);
+          summary.add("coupling", parameters.discrete_heat.coupling)
+            .add("temperature_source", heat->name())
+            .add("contact_heat_model",
+                 contact_heat_model_name(
+                   parameters.discrete_heat.contact_heat_model))
+            .add("continuum_heat_across_cracks", heat_across_cracks)
+            .add("thermal_steps", static_cast<long long>(n_thermal_steps))
+            .add("last_relaxation_steps", last_relaxation_steps)
+            .add("relaxations_at_cap", relaxations_at_cap)
+            .add("predicted_relaxations", predicted_relaxations)
+            .add("velocity_resets", static_cast<long long>(velocity_resets))
+            .add("last_relative_unbalanced_force", relative_unbalanced_force)
+            .add("last_kinetic_to_strain_energy", last_kinetic_to_strain)
+            .add("mechanical_steps_per_thermal_step", steps_per_thermal_step)
+            .add("thermal_time_step",
+                 quasi_static ? parameters.time.time_step :
+                                steps_per_thermal_step * time_step)
+            .add("heat_balance", hb);
+        }
+      write_file_atomically(parameters.output.directory + "/summary.json",
+                            summary.str() + "\n");
+    }
+
+  } // namespace discrete
+} // namespace tmfdem

@@ -1,0 +1,279 @@
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/discrete/joints.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    namespace
+    {
+      /** Gauss points of a joint, parameter u in [0, 1] along the edge. */
+      constexpr double gauss_0 = 0.21132486540518713,
+                       gauss_1 = 0.78867513459481287;
+
+      /** Joint elements per chunk of the threaded loop. */
+      constexpr unsigned int joint_chunk_size = 512;
+
+      /**
+       * The frame of joint @p j at the current state: the gaps d0, d1 of
+       * its two node pairs (B - A) and the unit tangent and normal of the
+       * mean edge (normal outward of element A).
+       */
+      struct JointFrame
+      {
+        double d0x, d0y, d1x, d1y;
+        double L, tx, ty, nx, ny;
+      };
+
+      inline JointFrame
+      joint_frame(const DiscreteModel &m, const unsigned int j)
+      {
+        JointFrame          g;
+        const unsigned int *n = &m.joint_nodes[4 * j];
+        g.d0x                 = m.x[n[2]] - m.x[n[0]];
+        g.d0y                 = m.y[n[2]] - m.y[n[0]];
+        g.d1x                 = m.x[n[3]] - m.x[n[1]];
+        g.d1y                 = m.y[n[3]] - m.y[n[1]];
+        const double ex = 0.5 * (m.x[n[1]] + m.x[n[3]] - m.x[n[0]] - m.x[n[2]]);
+        const double ey = 0.5 * (m.y[n[1]] + m.y[n[3]] - m.y[n[0]] - m.y[n[2]]);
+        g.L             = std::sqrt(ex * ex + ey * ey);
+        g.tx            = ex / g.L;
+        g.ty            = ey / g.L;
+        g.nx            = g.ty;
+        g.ny            = -g.tx;
+        return g;
+      }
+
+      template <SofteningLaw law>
+      bool
+      compute_joint_forces_with(DiscreteModel     &m,
+                                const double       t,
+                                tbb::task_arena   &arena,
+                                std::vector<char> &broke_in_chunk)
+      {
+        broke_in_chunk.assign((m.n_joints + joint_chunk_size - 1) /
+                                joint_chunk_size,
+                              0);
+        for_each_chunk(
+          arena,
+          m.n_joints,
+          joint_chunk_size,
+          [&](const std::size_t begin,
+              const std::size_t end,
+              const std::size_t c) {
+            for (std::size_t j = begin; j < end; ++j)
+              {
+                double *f = &m.joint_force[8 * j];
+                if (m.joint_status[j] != JointStatus::intact)
+                  continue;
+                const JointFrame      g    = joint_frame(m, j);
+                const JointConstants &k    = m.joint_constants[j];
+                double                fa0x = 0, fa0y = 0, fa1x = 0, fa1y = 0;
+                double                last_do = 0., last_ds = 0.;
+                for (unsigned int q = 0; q < 2; ++q)
+                  {
+                    const double        u  = q == 0 ? gauss_0 : gauss_1;
+                    const double        dx = (1. - u) * g.d0x + u * g.d1x;
+                    const double        dy = (1. - u) * g.d0y + u * g.d1y;
+                    const double        o  = dx * g.nx + dy * g.ny;
+                    const double        s  = dx * g.tx + dy * g.ty;
+                    const JointTraction tr =
+                      cohesive_traction<law>(o,
+                                             s,
+                                             k,
+                                             m.joint_damage[2 * j + q]);
+                    last_do = std::max(last_do, tr.d_opening);
+                    last_ds = std::max(last_ds, tr.d_slip);
+                    // traction on A (pulls A toward B), weight L/2
+                    const double w  = 0.5 * g.L;
+                    const double px = w * (tr.normal * g.nx + tr.shear * g.tx);
+                    const double py = w * (tr.normal * g.ny + tr.shear * g.ty);
+                    fa0x += (1. - u) * px;
+                    fa0y += (1. - u) * py;
+                    fa1x += u * px;
+                    fa1y += u * py;
+                  }
+                if (m.joint_damage[2 * j] >= 1. &&
+                    m.joint_damage[2 * j + 1] >= 1.)
+                  {
+                    const double ratio =
+                      last_do * last_do /
+                      std::max(1e-300, last_do * last_do + last_ds * last_ds);
+                    m.joint_status[j]     = ratio > 0.9 ? JointStatus::mode_I :
+                                            ratio < 0.1 ? JointStatus::mode_II :
+                                                          JointStatus::mixed;
+                    m.joint_break_time[j] = t;
+                    for (unsigned int i = 0; i < 8; ++i)
+                      f[i] = 0.;
+                    broke_in_chunk[c] = 1;
+                    continue;
+                  }
+                f[0] = fa0x;
+                f[1] = fa0y;
+                f[2] = fa1x;
+                f[3] = fa1y;
+                f[4] = -fa0x;
+                f[5] = -fa0y;
+                f[6] = -fa1x;
+                f[7] = -fa1y;
+              }
+          });
+        for (const char b : broke_in_chunk)
+          if (b)
+            return true;
+        return false;
+      }
+    } // namespace
+
+    void
+    setup_joint_constants(const Parameters  &parameters,
+                          const SofteningLaw softening_law,
+                          DiscreteModel     &model)
+    {
+      const auto     &dm = parameters.discrete_mechanics;
+      std::mt19937_64 generator(dm.random_seed);
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        {
+          const unsigned int        ea = model.joint_elements[2 * j];
+          const unsigned int        eb = model.joint_elements[2 * j + 1];
+          const MaterialProperties &ma =
+            parameters.materials[model.material[ea]];
+          const MaterialProperties &mb =
+            parameters.materials[model.material[eb]];
+          // interfaces between materials take the weaker of both
+          double       ft  = std::min(ma.tensile_strength, mb.tensile_strength);
+          double       coh = std::min(ma.cohesion, mb.cohesion);
+          const double phi = std::min(ma.friction_angle, mb.friction_angle);
+          const double GI =
+            std::min(ma.fracture_energy_I, mb.fracture_energy_I);
+          const double GII =
+            std::min(ma.fracture_energy_II, mb.fracture_energy_II);
+          const double E = std::max(ma.youngs_modulus, mb.youngs_modulus);
+          if (dm.heterogeneity != "none")
+            {
+              double factor = 1.;
+              if (dm.heterogeneity == "Weibull")
+                {
+                  // Weibull with mean 1: scale = 1 / Gamma(1 + 1/m)
+                  const double                      m = dm.weibull_modulus;
+                  std::weibull_distribution<double> weibull(
+                    m,
+                    1. / std::tgamma(1. + 1. / m));
+                  factor = weibull(generator);
+                }
+              else
+                {
+                  std::normal_distribution<double> normal(
+                    1.,
+                    dm.coefficient_of_variation);
+                  factor = std::max(0.01, normal(generator));
+                }
+              ft *= factor;
+              coh *= factor;
+            }
+          const bool ok =
+            make_joint_constants(ft,
+                                 coh,
+                                 phi,
+                                 GI,
+                                 GII,
+                                 dm.joint_normal_penalty_factor * E,
+                                 dm.joint_tangential_penalty_factor * E,
+                                 model.joint_length[j],
+                                 softening_law,
+                                 model.joint_constants[j]);
+          if (!ok)
+            {
+              const double h = model.joint_length[j];
+              const double stored_I =
+                4. / 3. * ft * ft * h / (dm.joint_normal_penalty_factor * E);
+              const double stored_II = 4. / 3. * coh * coh * h /
+                                       (dm.joint_tangential_penalty_factor * E);
+              const bool mode_I = GI <= stored_I;
+              throw InputError(
+                "joint " + std::to_string(j) + " between materials " +
+                std::to_string(model.material[ea]) + " and " +
+                std::to_string(model.material[eb]) + " (length " +
+                Utilities::to_string(h) + " m): Mode " + (mode_I ? "I" : "II") +
+                " fracture energy " + Utilities::to_string(mode_I ? GI : GII) +
+                " J/m^2 is below the work stored before the peak, 4 f^2 h / "
+                "(3 p) = " +
+                Utilities::to_string(mode_I ? stored_I : stored_II) +
+                " J/m^2; allowed are larger fracture energies or larger "
+                "joint penalty factors (Discrete mechanics).");
+            }
+        }
+    }
+
+    bool
+    compute_joint_forces(const SofteningLaw law,
+                         DiscreteModel     &model,
+                         const double       time,
+                         tbb::task_arena   &arena,
+                         std::vector<char> &broke_in_chunk)
+    {
+      switch (law)
+        {
+          case SofteningLaw::linear:
+            return compute_joint_forces_with<SofteningLaw::linear>(
+              model,
+              time,
+              arena,
+              broke_in_chunk);
+          case SofteningLaw::munjiza:
+            return compute_joint_forces_with<SofteningLaw::munjiza>(
+              model,
+              time,
+              arena,
+              broke_in_chunk);
+        }
+      return false;
+    }
+
+    double
+    max_joint_utilisation(const DiscreteModel &model)
+    {
+      double highest = 0.;
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        {
+          if (model.joint_status[j] != JointStatus::intact ||
+              model.joint_damage[2 * j] > 0. ||
+              model.joint_damage[2 * j + 1] > 0.)
+            continue;
+          const JointFrame      g = joint_frame(model, j);
+          const JointConstants &k = model.joint_constants[j];
+          for (const double u : {gauss_0, gauss_1})
+            {
+              const double dx = (1. - u) * g.d0x + u * g.d1x;
+              const double dy = (1. - u) * g.d0y + u * g.d1y;
+              const double o  = dx * g.nx + dy * g.ny;
+              const double s  = dx * g.tx + dy * g.ty;
+              const double fs =
+                k.cohesion -
+                (o < 0. ? k.normal_stiffness * o : 0.) * k.friction_tangent;
+              highest =
+                std::max({highest,
+                          o * k.normal_stiffness / (2. * k.tensile_strength),
+                          std::abs(s) * k.tangential_stiffness / (2. * fs)});
+            }
+        }
+      return std::min(highest, 1.);
+    }
+
+    unsigned int
+    n_damaged_or_broken_joints(const DiscreteModel &model)
+    {
+      unsigned int n = 0;
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        n += model.joint_status[j] != JointStatus::intact ||
+             model.joint_damage[2 * j] > 0. ||
+             model.joint_damage[2 * j + 1] > 0.;
+      return n;
+    }
+  } // namespace discrete
+} // namespace tmfdem

@@ -1,0 +1,276 @@
+/**
+ * @file
+ * The hot path of the discrete layer: one fused pass over the elements per
+ * explicit step (paper Eq. 2). Per element: F and the elastic (Eq. 44 on
+ * F_e = F / s) and viscous stresses, their nodal forces, the joint forces
+ * (joints.cc) and contact forces (contact_system.cc) gathered per node,
+ * gravity, bodies and boundary conditions (drivers.h); then the
+ * central-difference update of velocities and positions, and per chunk the
+ * sums of works, reactions and guards, added in chunk order so that the
+ * result does not depend on the thread count.
+ */
+#include <algorithm>
+#include <cmath>
+#include <tmfdem/discrete/explicit_solver.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    void
+    ExplicitSolver::update_nodes()
+    {
+      DiscreteModel     &m          = model;
+      const double       dt         = time_step;
+      const Drivers     &d          = drivers;
+      const unsigned int n_bodies   = d.body_motion.size();
+      const unsigned int max_bodies = Drivers::max_bodies;
+      const unsigned int stride =
+        n_sums + 2 * max_bodies + 2 * Drivers::max_conditions;
+      const std::size_t n_chunks = (m.n_elements + chunk_size - 1) / chunk_size;
+      chunk_sums.assign(n_chunks * stride, 0.);
+      const bool have_contact = contact.has_pairs();
+      // mass-proportional damping f_d = -c m v_avg, integrated exactly:
+      // v_new = (a v_old + dt f / m) with a = (1 - c dt/2) / (1 + c dt/2)
+      const double c_damp = parameters.discrete_mechanics.mass_damping;
+      const double damp_a = (1. - 0.5 * c_damp * dt) / (1. + 0.5 * c_damp * dt);
+      const double damp_b = dt / (1. + 0.5 * c_damp * dt);
+      for_each_chunk(
+        arena_for(n_threads),
+        m.n_elements,
+        chunk_size,
+        [&](const std::size_t begin,
+            const std::size_t end,
+            const std::size_t c) {
+          double *sums      = &chunk_sums[c * stride];
+          double  w_elastic = 0., w_viscous = 0., w_joint = 0., w_contact = 0.,
+                 w_external = 0., max_speed = 0.;
+          // out-of-balance force (free components, no viscous part) and the
+          // scale of the internal forces, both squared
+          double unbalanced = 0., internal = 0., kinetic = 0.;
+          // guards: first non-finite node and first inverted element
+          double bad_node = -1., inverted = -1.;
+          for (std::size_t e = begin; e < end; ++e)
+            {
+              const unsigned int n0 = 3 * e;
+              const double      *X = &m.x[n0], *Y = &m.y[n0];
+              const double      *VX = &m.vx[n0], *VY = &m.vy[n0];
+              const double      *ib = &m.inverse_basis[4 * e];
+              const Matrix2      Fi_inv{ib[0], ib[1], ib[2], ib[3]};
+              const Matrix2      F =
+                multiply(element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2]),
+                         Fi_inv);
+              if (!(F.a00 * F.a11 - F.a01 * F.a10 > 0.) && inverted < 0.)
+                inverted = e;
+              const double  s     = m.thermal_stretch[e];
+              const double  inv_s = 1. / s;
+              const Matrix2 Fe{F.a00 * inv_s,
+                               F.a01 * inv_s,
+                               F.a10 * inv_s,
+                               F.a11 * inv_s};
+              const Stress2 sigma = elastic_stress(Fe, element_lame[e]);
+              // viscous stress 2 eta sym(dF/dt F^-1), only where eta > 0
+              const double eta = viscosity[e];
+              Stress2      sigma_v;
+              double       f_el[6], f_v[6] = {0., 0., 0., 0., 0., 0.};
+              nodal_forces(sigma, X[0], Y[0], X[1], Y[1], X[2], Y[2], f_el);
+              if (eta > 0.)
+                {
+                  const Matrix2 Fdot = multiply(
+                    element_basis(VX[0], VY[0], VX[1], VY[1], VX[2], VY[2]),
+                    Fi_inv);
+                  const Matrix2 L = multiply(Fdot, inverse(F));
+                  sigma_v         = {2. * eta * L.a00,
+                                     2. * eta * L.a11,
+                                     eta * (L.a01 + L.a10)};
+                  nodal_forces(sigma_v,
+                               X[0],
+                               Y[0],
+                               X[1],
+                               Y[1],
+                               X[2],
+                               Y[2],
+                               f_v);
+                }
+              m.stress[3 * e]     = sigma.xx + sigma_v.xx;
+              m.stress[3 * e + 1] = sigma.yy + sigma_v.yy;
+              m.stress[3 * e + 2] = sigma.xy + sigma_v.xy;
+
+              double f_contact[6] = {0., 0., 0., 0., 0., 0.};
+              if (have_contact)
+                contact.add_forces(e, f_contact);
+              for (unsigned int k = 0; k < 3; ++k)
+                {
+                  const unsigned int node = n0 + k;
+                  // joints: node k starts edge k and ends edge k+2
+                  double    fjx = 0., fjy = 0.;
+                  const int start_code = m.edge_joint[n0 + k];
+                  if (start_code >= 0)
+                    {
+                      const double *jf = &m.joint_force[8 * (start_code / 2)];
+                      const unsigned int slot = start_code % 2 == 0 ? 0 : 3;
+                      fjx += jf[2 * slot];
+                      fjy += jf[2 * slot + 1];
+                    }
+                  const int end_code = m.edge_joint[n0 + (k + 2) % 3];
+                  if (end_code >= 0)
+                    {
+                      const double *jf = &m.joint_force[8 * (end_code / 2)];
+                      const unsigned int slot = end_code % 2 == 0 ? 1 : 2;
+                      fjx += jf[2 * slot];
+                      fjy += jf[2 * slot + 1];
+                    }
+                  const double mass = m.mass[node];
+                  const double fgx  = mass * d.gravity[0],
+                               fgy  = mass * d.gravity[1];
+                  const double fx =
+                    f_el[2 * k] + f_v[2 * k] + fjx + f_contact[2 * k] + fgx;
+                  const double fy = f_el[2 * k + 1] + f_v[2 * k + 1] + fjy +
+                                    f_contact[2 * k + 1] + fgy;
+                  const double        vx_old = m.vx[node], vy_old = m.vy[node];
+                  double              vx_new, vy_new;
+                  const unsigned char b    = d.node_body[node];
+                  const int           slot = d.node_condition_slot[node];
+                  if (slot >= 0)
+                    {
+                      // boundary conditions of boundary ids
+                      const Drivers::NodeCondition &nc =
+                        d.node_conditions[slot];
+                      const double tx = nc.force[0], ty = nc.force[1];
+                      double       gx = fx + tx, gy = fy + ty;
+                      vx_new = damp_a * vx_old + damp_b * gx / mass;
+                      vy_new = damp_a * vy_old + damp_b * gy / mass;
+                      if (!nc.prescribed[0])
+                        unbalanced += (gx - f_v[2 * k]) * (gx - f_v[2 * k]);
+                      if (!nc.prescribed[1])
+                        unbalanced +=
+                          (gy - f_v[2 * k + 1]) * (gy - f_v[2 * k + 1]);
+                      double rx = 0., ry = 0.;
+                      if (nc.prescribed[0])
+                        {
+                          vx_new = nc.velocity[0];
+                          rx     = mass * (vx_new - vx_old) / dt - gx;
+                        }
+                      if (nc.prescribed[1])
+                        {
+                          vy_new = nc.velocity[1];
+                          ry     = mass * (vy_new - vy_old) / dt - gy;
+                        }
+                      w_external += 0.5 * dt *
+                                    ((tx + rx) * (vx_old + vx_new) +
+                                     (ty + ry) * (vy_old + vy_new));
+                      double *r =
+                        sums + n_sums + 2 * max_bodies + 2 * nc.condition;
+                      r[0] += rx;
+                      r[1] += ry;
+                    }
+                  else if (b == no_body ||
+                           d.body_motion[b] == DiscreteBody::Motion::free)
+                    {
+                      vx_new          = damp_a * vx_old + damp_b * fx / mass;
+                      vy_new          = damp_a * vy_old + damp_b * fy / mass;
+                      const double ux = fx - f_v[2 * k],
+                                   uy = fy - f_v[2 * k + 1];
+                      unbalanced += ux * ux + uy * uy;
+                    }
+                  else
+                    {
+                      if (d.body_motion[b] == DiscreteBody::Motion::fixed)
+                        vx_new = vy_new = 0.;
+                      else
+                        {
+                          vx_new = d.body_velocity_now[b][0];
+                          vy_new = d.body_velocity_now[b][1];
+                        }
+                      // reaction of the support or driver
+                      const double rx = mass * (vx_new - vx_old) / dt - fx;
+                      const double ry = mass * (vy_new - vy_old) / dt - fy;
+                      w_external +=
+                        0.5 * dt *
+                        (rx * (vx_old + vx_new) + ry * (vy_old + vy_new));
+                      sums[n_sums + 2 * b] += rx;
+                      sums[n_sums + 2 * b + 1] += ry;
+                    }
+                  const double ax = 0.5 * dt * (vx_old + vx_new);
+                  const double ay = 0.5 * dt * (vy_old + vy_new);
+                  w_elastic += f_el[2 * k] * ax + f_el[2 * k + 1] * ay;
+                  internal += f_el[2 * k] * f_el[2 * k] +
+                              f_el[2 * k + 1] * f_el[2 * k + 1];
+                  w_viscous += f_v[2 * k] * ax + f_v[2 * k + 1] * ay;
+                  if (c_damp > 0. &&
+                      (b == no_body ||
+                       d.body_motion[b] == DiscreteBody::Motion::free))
+                    {
+                      // work of -c m v_avg on the components not prescribed
+                      const bool px = d.prescribed(node, 0);
+                      const bool py = d.prescribed(node, 1);
+                      w_viscous -= c_damp * mass / dt *
+                                   ((px ? 0. : ax * ax) + (py ? 0. : ay * ay));
+                    }
+                  w_joint += fjx * ax + fjy * ay;
+                  w_contact +=
+                    f_contact[2 * k] * ax + f_contact[2 * k + 1] * ay;
+                  w_external += fgx * ax + fgy * ay;
+                  m.vx[node] = vx_new;
+                  m.vy[node] = vy_new;
+                  m.x[node] += dt * vx_new;
+                  m.y[node] += dt * vy_new;
+                  const double v2 = vx_new * vx_new + vy_new * vy_new;
+                  max_speed       = std::max(max_speed, v2);
+                  kinetic += 0.5 * mass * v2;
+                  if (!(v2 < 1e300) && bad_node < 0.)
+                    bad_node = node;
+                }
+            }
+          sums[8]  = unbalanced;
+          sums[9]  = internal;
+          sums[10] = kinetic;
+          sums[0]  = w_elastic;
+          sums[1]  = w_viscous;
+          sums[2]  = w_joint;
+          sums[3]  = w_contact;
+          sums[4]  = w_external;
+          sums[5]  = max_speed;
+          sums[6]  = bad_node;
+          sums[7]  = inverted;
+        });
+      double max_speed = 0., unbalanced_sq = 0., internal_sq = 0., kinetic = 0.;
+      drivers.clear_reactions();
+      for (std::size_t c = 0; c < n_chunks; ++c)
+        {
+          const double *sums = &chunk_sums[c * stride];
+          balance.elastic_work -= sums[0];
+          balance.viscous_dissipation -= sums[1];
+          balance.joint_work -= sums[2];
+          balance.contact_work -= sums[3];
+          balance.external_work += sums[4];
+          max_speed = std::max(max_speed, sums[5]);
+          unbalanced_sq += sums[8];
+          internal_sq += sums[9];
+          kinetic += sums[10];
+          // chunks in element order: the first flagged is the lowest index
+          if (first_nonfinite_node < 0 && sums[6] >= 0.)
+            first_nonfinite_node = static_cast<long long>(sums[6]);
+          if (first_inverted_element < 0 && sums[7] >= 0.)
+            first_inverted_element = static_cast<long long>(sums[7]);
+          for (unsigned int b = 0; b < n_bodies; ++b)
+            {
+              drivers.body_reaction[b][0] += sums[n_sums + 2 * b];
+              drivers.body_reaction[b][1] += sums[n_sums + 2 * b + 1];
+            }
+          for (unsigned int k = 0; k < drivers.conditions.size(); ++k)
+            {
+              drivers.condition_reaction[k][0] +=
+                sums[n_sums + 2 * max_bodies + 2 * k];
+              drivers.condition_reaction[k][1] +=
+                sums[n_sums + 2 * max_bodies + 2 * k + 1];
+            }
+        }
+      relative_unbalanced_force =
+        std::sqrt(unbalanced_sq / std::max(internal_sq, 1e-300));
+      step_kinetic = kinetic;
+      contact.add_travel(std::sqrt(max_speed) * dt);
+    }
+
+  } // namespace discrete
+} // namespace tmfdem
