@@ -19,7 +19,15 @@ CPU time of its busiest thread. Where other processes take the cores the
 wall-clock speed-up says little; 1-thread CPU / busiest thread of the
 2-thread run is then the speed-up the split of the work allows (thread
 waits spin, so it is a bound, not a measurement of speed).
-usage: benchmarks/discrete_mechanics_throughput.py [path/to/tmfdem [REPEATS]]"""
+
+With --against REFERENCE (a second tmfdem binary, e.g. the build of the
+commit before a refactor) the program instead compares the two builds side
+by side on one thread: REPEATS rounds of (reference, candidate) runs of both
+cases, alternating, and prints each run's rate, the candidate / reference
+ratio of the median rates and of the median loop CPU times, and whether the
+two builds' history.csv are identical.
+usage: benchmarks/discrete_mechanics_throughput.py [path/to/tmfdem [REPEATS]]
+       benchmarks/discrete_mechanics_throughput.py --against REFERENCE path/to/tmfdem [REPEATS]"""
 import json
 import os
 import subprocess
@@ -27,8 +35,15 @@ import sys
 import tempfile
 
 here = os.path.dirname(os.path.abspath(__file__))
-binary = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "build-release", "tmfdem")
-repeats = int(sys.argv[2]) if len(sys.argv) > 2 else 3
+arguments = sys.argv[1:]
+reference = None
+if arguments[:1] == ["--against"]:
+    if len(arguments) < 3:
+        sys.exit(__doc__)
+    reference = arguments[1]
+    arguments = arguments[2:]
+binary = arguments[0] if arguments else os.path.join(here, "..", "build-release", "tmfdem")
+repeats = int(arguments[1]) if len(arguments) > 1 else 3
 work = tempfile.mkdtemp(prefix="tmfdem-bench-")
 
 
@@ -138,8 +153,8 @@ end
     return name
 
 
-def run(prm_file, threads, steps, out):
-    cmd = [binary, prm_file, "--set", f"Output/Directory={out}",
+def run(prm_file, threads, steps, out, program=None):
+    cmd = [program or binary, prm_file, "--set", f"Output/Directory={out}",
            "--set", f"Discrete mechanics/Threads={threads}",
            "--set", f"Discrete mechanics/Maximum steps={steps}"]
     subprocess.run(cmd, check=True, capture_output=True)
@@ -152,6 +167,47 @@ def identical(a, b):
             open(os.path.join(b, "history.csv"), "rb") as fb:
         return fa.read() == fb.read()
 
+
+def compare_builds():
+    """Reference and candidate side by side on one thread, alternating."""
+    print(f"cores: {os.cpu_count()}, load average before: "
+          f"{' '.join(f'{x:.2f}' for x in os.getloadavg())}; {repeats} rounds "
+          f"(reference, then candidate) per case, 1 thread\n"
+          f"reference: {reference}\ncandidate: {binary}")
+    print(f"{'case':>11} {'round':>5} {'build':>9} {'steps':>6} {'wall [s]':>8} "
+          f"{'cpu [s]':>7} {'triangle-steps/s':>16} {'load':>5}")
+    cases = (("intact", prm(plate_msh(60, False), True, False), 3000),
+             ("fragmented", prm(plate_msh(60, True), False, True), 6000))
+    for name, p, steps in cases:
+        rates = {"reference": [], "candidate": []}
+        cpus = {"reference": [], "candidate": []}
+        same = True
+        for r in range(repeats):
+            folders = {}
+            for build, program in (("reference", reference), ("candidate", binary)):
+                folder = os.path.join(work, f"{name}_{r}_{build}")
+                folders[build] = folder
+                s = run(p, 1, steps, folder, program)
+                rates[build].append(s["element_steps_per_second"])
+                cpus[build].append(s["cpu_time_s"])
+                print(f"{name:>11} {r + 1:>5} {build:>9} {s['steps']:>6} "
+                      f"{s['wall_time']:>8.2f} {s['cpu_time_s']:>7.2f} "
+                      f"{s['element_steps_per_second']:>16.3e} "
+                      f"{os.getloadavg()[0]:>5.2f}", flush=True)
+            same &= identical(folders["reference"], folders["candidate"])
+
+        def median(v):
+            return sorted(v)[len(v) // 2]
+        print(f"{name}: candidate / reference: median rate "
+              f"{median(rates['candidate']) / median(rates['reference']):.3f}, "
+              f"median loop CPU {median(cpus['candidate']) / median(cpus['reference']):.3f} "
+              f"(below 1: candidate faster); history.csv of the builds "
+              f"{'identical' if same else 'DIFFER'}", flush=True)
+
+
+if reference is not None:
+    compare_builds()
+    sys.exit(0)
 
 print(f"cores: {os.cpu_count()}, load average before: "
       f"{' '.join(f'{x:.2f}' for x in os.getloadavg())}; {repeats} paired "
