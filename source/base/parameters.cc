@@ -9,7 +9,6 @@
 #include <tmfdem/base/function_expression.h>
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/base/simulation.h>
-#include <tmfdem/mesh/block_generator.h>
 
 namespace tmfdem
 {
@@ -199,8 +198,8 @@ namespace tmfdem
     block_heap.seed             = prm.get_integer("Seed");
     prm.leave_subsection();
     prm.leave_subsection();
-    if (source == Source::block_heap)
-      check_block_heap_parameters(*this);
+    // the block heap's own checks run where it is generated
+    // (mesh/block_generator.h), before any output is written
 
     if (source != Source::file && !(element_size > 0.))
       throw InputError("Mesh/Element size = " + std::to_string(element_size) +
@@ -1169,6 +1168,69 @@ namespace tmfdem
     prm.leave_subsection();
   }
 
+  // ------------------------------------------------- registered sections
+  namespace
+  {
+    std::vector<ParameterSectionType> &
+    section_registry()
+    {
+      static std::vector<ParameterSectionType> registry;
+      return registry;
+    }
+  } // namespace
+
+  const std::vector<ParameterSectionType> &
+  registered_parameter_sections()
+  {
+    return section_registry();
+  }
+
+  bool
+  add_parameter_section(ParameterSectionType type)
+  {
+    for (const auto &t : section_registry())
+      if (t.type == type.type || t.name == type.name)
+        throw std::logic_error("the parameter section '" + type.name +
+                               "' is registered twice");
+    section_registry().push_back(std::move(type));
+    return true;
+  }
+
+  ParameterSections::ParameterSections()
+  {
+    for (const ParameterSectionType &type : registered_parameter_sections())
+      map.emplace(type.type, type.create());
+  }
+
+  ParameterSections::ParameterSections(const ParameterSections &other)
+  {
+    *this = other;
+  }
+
+  ParameterSections &
+  ParameterSections::operator=(const ParameterSections &other)
+  {
+    if (this == &other)
+      return *this;
+    map.clear();
+    for (const auto &[type, section] : other.map)
+      map.emplace(type, section->clone());
+    return *this;
+  }
+
+  ParameterSections::~ParameterSections() = default;
+
+  ParameterSection &
+  ParameterSections::find(const std::type_index &type) const
+  {
+    const auto found = map.find(type);
+    if (found == map.end())
+      throw std::logic_error(
+        std::string("Parameters::get: no parameter section of type ") +
+        type.name() + " is registered (register_parameter_section)");
+    return *found->second;
+  }
+
   // ------------------------------------------------------------ Parameters
   void
   Parameters::declare_parameters(ParameterHandler &prm)
@@ -1189,9 +1251,8 @@ namespace tmfdem
     MonitorParameters::declare_parameters(prm);
     MechanicsParameters::declare_parameters(prm);
     MechanicalBoundaryParameters::declare_parameters(prm);
-    DiscreteMechanicsParameters::declare_parameters(prm);
-    DiscreteBodyParameters::declare_parameters(prm);
-    DiscreteHeatParameters::declare_parameters(prm);
+    for (const ParameterSectionType &type : registered_parameter_sections())
+      type.declare(prm);
     CheckpointParameters::declare_parameters(prm);
     GuardParameters::declare_parameters(prm);
   }
@@ -1212,34 +1273,18 @@ namespace tmfdem
     monitors.parse_parameters(prm);
     mechanics.parse_parameters(prm);
     mechanical_boundary.parse_parameters(prm);
-    discrete_mechanics.parse_parameters(prm);
-    discrete_bodies.parse_parameters(prm);
-    discrete_heat.parse_parameters(prm);
+    for (const ParameterSectionType &type : registered_parameter_sections())
+      sections.find(type.type).parse(prm);
     checkpoint.parse_parameters(prm);
     guards.parse_parameters(prm);
 
-    // a body and one of its materials may not both set the initial
-    // temperature: two entries for the same cells
-    for (const auto &body : discrete_bodies.bodies)
-      if (!body.initial_temperature.empty())
-        for (const auto id : body.material_ids)
-          if (id < MaterialParameters::max_materials &&
-              !materials.materials[id].initial_temperature.empty())
-            throw InputError(
-              body.name + "/Initial temperature = '" +
-              body.initial_temperature + "' and Materials/Material " +
-              std::to_string(id) + "/Initial temperature = '" +
-              materials.materials[id].initial_temperature +
-              "' both set the initial temperature of material " +
-              std::to_string(id) + " (" + body.name +
-              "/Material ids); allowed is one of them: leave the other "
-              "empty.");
+    // what the registered sections add to the shared ones (initial
+    // temperatures of bodies), and their checks across sections
+    initial_temperature_overrides.clear();
+    for (const ParameterSectionType &type : registered_parameter_sections())
+      sections.find(type.type).complete(*this);
     // malformed expressions are refused here, naming the entry, whichever
     // layer runs and whether or not the mesh has that material
-    for (const auto &body : discrete_bodies.bodies)
-      if (!body.initial_temperature.empty())
-        make_expression_function(body.initial_temperature,
-                                 body.name + "/Initial temperature");
     for (unsigned int id = 0; id < MaterialParameters::max_materials; ++id)
       if (!materials.materials[id].initial_temperature.empty())
         make_expression_function(materials.materials[id].initial_temperature,
@@ -1250,11 +1295,10 @@ namespace tmfdem
   InitialTemperatureEntry
   Parameters::initial_temperature_of(const types::material_id id) const
   {
-    for (const auto &body : discrete_bodies.bodies)
-      if (!body.initial_temperature.empty() &&
-          std::find(body.material_ids.begin(), body.material_ids.end(), id) !=
-            body.material_ids.end())
-        return {body.initial_temperature, body.name + "/Initial temperature"};
+    for (const auto &o : initial_temperature_overrides)
+      if (std::find(o.material_ids.begin(), o.material_ids.end(), id) !=
+          o.material_ids.end())
+        return o.temperature;
     if (id < MaterialParameters::max_materials &&
         !materials.materials[id].initial_temperature.empty())
       return {materials.materials[id].initial_temperature,
@@ -1266,9 +1310,8 @@ namespace tmfdem
   bool
   Parameters::has_local_initial_temperature() const
   {
-    for (const auto &body : discrete_bodies.bodies)
-      if (!body.initial_temperature.empty())
-        return true;
+    if (!initial_temperature_overrides.empty())
+      return true;
     for (const auto &m : materials.materials)
       if (!m.initial_temperature.empty())
         return true;

@@ -11,6 +11,7 @@
 #include <tmfdem/continuum/heat_solver.h>
 #include <tmfdem/coupling/continuum_temperature_source.h>
 #include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/io/checkpoint.h>
 
 namespace tmfdem
@@ -40,10 +41,11 @@ namespace tmfdem
       Parameters
       continuum_heat_parameters(const Parameters &parameters)
       {
-        if (parameters.discrete_heat.time_integration != "implicit")
+        if (parameters.get<DiscreteHeatParameters>().time_integration !=
+            DiscreteHeatParameters::TimeIntegration::implicit)
           throw InputError(
             "Discrete heat/Time integration = " +
-            parameters.discrete_heat.time_integration +
+            parameters.get<DiscreteHeatParameters>().time_integration_name() +
             " applies to the discrete heat; Temperature source = continuum "
             "heat integrates with the theta scheme of Time stepping/Method; "
             "allowed is implicit (the default).");

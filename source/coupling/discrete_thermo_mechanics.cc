@@ -60,7 +60,8 @@ namespace tmfdem
       update_thermal_stretch();
       // ... then the mechanics relaxes at these temperatures (no clock),
       // from the extrapolated state where asked for
-      if (parameters.discrete_heat.relaxation_predictor == "extrapolate")
+      if (parameters.get<DiscreteHeatParameters>().relaxation_predictor ==
+          DiscreteHeatParameters::RelaxationPredictor::extrapolate)
         predict_relaxation(dt);
       current_thermal_step = dt;
       unsigned int i       = 0;
@@ -69,7 +70,8 @@ namespace tmfdem
       // largest one since the last check (a reset just before a check
       // must not pass for convergence)
       const bool kinetic_damping =
-        parameters.discrete_heat.relaxation_damping == "kinetic";
+        parameters.get<DiscreteHeatParameters>().relaxation_damping ==
+        DiscreteHeatParameters::RelaxationDamping::kinetic;
       double previous_kinetic = 0., window_kinetic = 0.;
       while (i < steps_per_thermal_step)
         {
@@ -96,9 +98,11 @@ namespace tmfdem
               window_kinetic = 0.;
               if (i > quasi_static_ramp_steps &&
                   last_kinetic_to_strain <
-                    parameters.discrete_heat.relaxation_tolerance &&
+                    parameters.get<DiscreteHeatParameters>()
+                      .relaxation_tolerance &&
                   relative_unbalanced_force <=
-                    parameters.discrete_heat.relaxation_force_tolerance)
+                    parameters.get<DiscreteHeatParameters>()
+                      .relaxation_force_tolerance)
                 {
                   relaxed = true;
                   break;
@@ -107,9 +111,11 @@ namespace tmfdem
         }
       relaxation_step       = quasi_static_ramp_steps + 1;
       last_relaxation_steps = i;
-      if (parameters.discrete_heat.relaxation_predictor == "extrapolate")
+      if (parameters.get<DiscreteHeatParameters>().relaxation_predictor ==
+          DiscreteHeatParameters::RelaxationPredictor::extrapolate)
         damaged_after_relaxation = n_damaged_or_broken_joints(model);
-      if (parameters.discrete_heat.maximum_utilisation_change > 0.)
+      if (parameters.get<DiscreteHeatParameters>().maximum_utilisation_change >
+          0.)
         {
           const double u         = max_joint_utilisation(model);
           joint_utilisation_rate = (u - joint_utilisation) / dt;
@@ -126,12 +132,12 @@ namespace tmfdem
               << " mechanical steps (Discrete heat/Mechanical steps per "
                  "thermal step) with kinetic / strain energy "
               << last_kinetic_to_strain << " above Relaxation tolerance = "
-              << parameters.discrete_heat.relaxation_tolerance
+              << parameters.get<DiscreteHeatParameters>().relaxation_tolerance
               << ": the state is not in equilibrium. Raise the cap, "
                  "shorten the thermal step or add Mass damping; "
                  "summary.json counts these steps "
                  "(relaxations_at_cap).\n";
-          if (parameters.discrete_heat.relaxation_cap_is_error)
+          if (parameters.get<DiscreteHeatParameters>().relaxation_cap_is_error)
             guard_failure(
               "guard: the relaxation at t = " + Utilities::to_string(time) +
               " s reached its cap of " +
@@ -144,8 +150,9 @@ namespace tmfdem
     double
     ExplicitSolver::quasi_static_thermal_step() const
     {
-      const DiscreteHeatParameters &dh = parameters.discrete_heat;
-      double                        dt =
+      const DiscreteHeatParameters &dh =
+        parameters.get<DiscreteHeatParameters>();
+      double dt =
         parameters.time.time_step *
         std::pow(dh.thermal_step_growth, static_cast<double>(n_thermal_steps));
       if (dh.maximum_thermal_step > 0.)
@@ -225,7 +232,8 @@ namespace tmfdem
         " joint(s) broken by t = " + Utilities::to_string(time) +
         " s, and this source conducts across them as if intact (no crack, "
         "no contact heat)";
-      if (!parameters.discrete_heat.accept_continuum_source_at_broken_joints)
+      if (!parameters.get<DiscreteHeatParameters>()
+             .accept_continuum_source_at_broken_joints)
         guard_failure(what +
                       "; the temperature near the cracks would be wrong from "
                       "here on. Set Discrete heat/Continuum source at broken "

@@ -13,6 +13,7 @@
 #include <tmfdem/discrete/contact.h>
 #include <tmfdem/discrete/contact_heat.h>
 #include <tmfdem/discrete/discrete_heat.h>
+#include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/io/checkpoint.h>
 
 namespace tmfdem
@@ -41,7 +42,7 @@ namespace tmfdem
       std::vector<ContactHeatTransfer> transfers(contact_pairs.size());
       std::vector<char>                overlapping(contact_pairs.size(), 0);
       const ContactHeatModel           contact_model =
-        parameters.discrete_heat.contact_heat_model;
+        parameters.get<DiscreteHeatParameters>().contact_heat_model;
       for_each_chunk(arena_for(n_threads),
                      contact_pairs.size(),
                      64,
@@ -161,8 +162,9 @@ namespace tmfdem
       : parameters(parameters)
       , model(model)
     {
-      const auto &dh      = parameters.discrete_heat;
-      use_implicit        = dh.time_integration == "implicit";
+      const auto &dh = parameters.get<DiscreteHeatParameters>();
+      use_implicit   = dh.time_integration ==
+                     DiscreteHeatParameters::TimeIntegration::implicit;
       beta                = dh.joint_conductance_factor;
       contact_conductance = dh.contact_conductance;
       T.reinit(model.n_nodes);
@@ -448,7 +450,7 @@ namespace tmfdem
             row[3 * t + k] +=
               2. * transfer.conductance * transfer.target_shape[k];
           }
-        if (parameters.discrete_heat.contact_heat_model ==
+        if (parameters.get<DiscreteHeatParameters>().contact_heat_model ==
             ContactHeatModel::paper_literal)
           {
             // Jacobian s_i dQ/dT_j, s = (N_c, -N_t): row sums of |.|
@@ -652,7 +654,7 @@ namespace tmfdem
           // neither symmetric nor definite, heat_jacobian() is zero): it is
           // taken at the start of the step, T = T_old, on the right-hand side
           const bool lagged_contact =
-            parameters.discrete_heat.contact_heat_model ==
+            parameters.get<DiscreteHeatParameters>().contact_heat_model ==
             ContactHeatModel::paper_literal;
           Vector<double> lagged_contact_heat;
           double         lagged_contact_exchange = 0.;
@@ -676,9 +678,10 @@ namespace tmfdem
                                              solution,
                                              rhs,
                                              true);
-          SolverControl control(std::max<unsigned int>(1000, model.n_nodes),
-                                parameters.discrete_heat.solver_tolerance *
-                                  std::max(1e-300, rhs.l2_norm()));
+          SolverControl control(
+            std::max<unsigned int>(1000, model.n_nodes),
+            parameters.get<DiscreteHeatParameters>().solver_tolerance *
+              std::max(1e-300, rhs.l2_norm()));
           SolverCG<Vector<double>>               cg(control);
           PreconditionSSOR<SparseMatrix<double>> ssor;
           ssor.initialize(matrix, 1.2);

@@ -6,6 +6,7 @@
 #include <tmfdem/discrete/contact_heat.h>
 #include <tmfdem/discrete/discrete_heat_solver.h>
 #include <tmfdem/discrete/discrete_output.h>
+#include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 
@@ -38,10 +39,11 @@ namespace tmfdem
     {
       if (input_checked)
         return;
-      if (parameters.discrete_heat.temperature_source != "discrete heat")
+      if (parameters.get<DiscreteHeatParameters>().temperature_source !=
+          "discrete heat")
         throw InputError(
           "Discrete heat/Temperature source = " +
-          parameters.discrete_heat.temperature_source +
+          parameters.get<DiscreteHeatParameters>().temperature_source +
           " applies to Model = discrete thermo-mechanics; Model = discrete "
           "heat is the discrete heat itself (for the continuum heat alone use "
           "Model = continuum heat); allowed here is discrete heat.");
@@ -55,7 +57,7 @@ namespace tmfdem
       {
         // Discrete mechanics/Threads, capped at the cores of this process
         // unless oversubscription is allowed (include/tmfdem/base/threads.h)
-        const auto        &dm        = parameters.discrete_mechanics;
+        const auto        &dm = parameters.get<DiscreteMechanicsParameters>();
         const unsigned int available = core_share(communicator).cores_per_rank;
         const unsigned int threads =
           dm.threads == 0                                      ? available :
@@ -311,10 +313,11 @@ namespace tmfdem
         .add("elements", model.n_elements)
         .add("nodes", model.n_nodes)
         .add("joints", model.n_joints)
-        .add("time_integration", parameters.discrete_heat.time_integration)
+        .add("time_integration",
+             parameters.get<DiscreteHeatParameters>().time_integration_name())
         .add("contact_heat_model",
              contact_heat_model_name(
-               parameters.discrete_heat.contact_heat_model))
+               parameters.get<DiscreteHeatParameters>().contact_heat_model))
         .add("steps", static_cast<long long>(steps))
         .add("end_time", time)
         .add("time_step", time_step)

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/discrete/discrete_mesh.h>
+#include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/io/output_files.h>
 #include <tmfdem/mesh/mesh_checks.h>
 #include <tmfdem/mesh/mesh_generator.h>
@@ -50,7 +51,8 @@ namespace tmfdem
       model.build(dof_handler);
 
       // pre-existing fractures: joints on the given segments start broken
-      const auto &cracks = parameters.discrete_mechanics.initial_cracks;
+      const auto &cracks =
+        parameters.get<DiscreteMechanicsParameters>().initial_cracks;
       for (unsigned int c = 0; c < cracks.size(); ++c)
         {
           const auto  &s  = cracks[c];

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 #include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/function_expression.h>
 #include <tmfdem/discrete/cohesive_law.h>
 #include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/discrete/temperature_source.h>
@@ -20,6 +21,13 @@ namespace tmfdem
         names += (names.empty() ? "" : "|") + name;
       return names;
     }
+
+    // the discrete layer's subsections, declared and parsed with the others
+    const bool registered =
+      register_parameter_section<DiscreteMechanicsParameters>(
+        "Discrete mechanics") &&
+      register_parameter_section<DiscreteBodyParameters>("Discrete bodies") &&
+      register_parameter_section<DiscreteHeatParameters>("Discrete heat");
 
     void
     require_positive(const double value, const std::string &entry)
@@ -188,16 +196,26 @@ namespace tmfdem
     contact_tangential_penalty_factor =
       prm.get_double("Contact tangential penalty factor");
     friction_coefficient = prm.get_double("Friction coefficient");
-    softening_law        = prm.get("Softening law");
-    damping_ratio        = prm.get_double("Damping ratio");
-    mass_damping         = prm.get_double("Mass damping");
-    gravity              = Utilities::string_to_double(
+    {
+      const std::string name = prm.get("Softening law");
+      for (const auto &[entry, law] : discrete::softening_law_registry())
+        if (entry == name)
+          softening_law = law;
+    }
+    damping_ratio = prm.get_double("Damping ratio");
+    mass_damping  = prm.get_double("Mass damping");
+    gravity       = Utilities::string_to_double(
       Utilities::split_string_list(prm.get("Gravity"), ','));
-    contact_buffer           = prm.get_double("Contact buffer");
-    contact                  = prm.get_bool("Contact");
-    threads                  = prm.get_integer("Threads");
-    allow_oversubscription   = prm.get_bool("Allow oversubscription");
-    heterogeneity            = prm.get("Heterogeneity");
+    contact_buffer         = prm.get_double("Contact buffer");
+    contact                = prm.get_bool("Contact");
+    threads                = prm.get_integer("Threads");
+    allow_oversubscription = prm.get_bool("Allow oversubscription");
+    {
+      const std::string name = prm.get("Heterogeneity");
+      heterogeneity          = name == "Weibull" ? Heterogeneity::weibull :
+                               name == "normal"  ? Heterogeneity::normal :
+                                                   Heterogeneity::none;
+    }
     weibull_modulus          = prm.get_double("Weibull modulus");
     coefficient_of_variation = prm.get_double("Coefficient of variation");
     random_seed              = prm.get_integer("Random seed");
@@ -418,21 +436,28 @@ namespace tmfdem
     temperature_source = prm.get("Temperature source");
     accept_continuum_source_at_broken_joints =
       prm.get("Continuum source at broken joints") == "accept";
-    time_integration         = prm.get("Time integration");
+    time_integration         = prm.get("Time integration") == "explicit" ?
+                                 TimeIntegration::explicit_euler :
+                                 TimeIntegration::implicit;
     joint_conductance_factor = prm.get_double("Joint conductance factor");
     contact_conductance      = prm.get_double("Contact conductance");
     safety_factor            = prm.get_double("Safety factor");
     solver_tolerance         = prm.get_double("Linear solver tolerance");
     mechanical_steps_per_thermal_step =
       prm.get_integer("Mechanical steps per thermal step");
-    coupling                   = prm.get("Coupling");
+    coupling = prm.get("Coupling") == "quasi-static" ? Coupling::quasi_static :
+                                                       Coupling::dynamic;
     relaxation_tolerance       = prm.get_double("Relaxation tolerance");
     relaxation_cap_is_error    = prm.get_bool("Relaxation cap is error");
     relaxation_force_tolerance = prm.get_double("Relaxation force tolerance");
-    relaxation_predictor       = prm.get("Relaxation predictor");
-    relaxation_damping         = prm.get("Relaxation damping");
-    thermal_step_growth        = prm.get_double("Thermal step growth factor");
-    maximum_thermal_step       = prm.get_double("Maximum thermal step");
+    relaxation_predictor = prm.get("Relaxation predictor") == "extrapolate" ?
+                             RelaxationPredictor::extrapolate :
+                             RelaxationPredictor::none;
+    relaxation_damping   = prm.get("Relaxation damping") == "kinetic" ?
+                             RelaxationDamping::kinetic :
+                             RelaxationDamping::mass;
+    thermal_step_growth  = prm.get_double("Thermal step growth factor");
+    maximum_thermal_step = prm.get_double("Maximum thermal step");
     maximum_utilisation_change = prm.get_double("Maximum utilisation change");
     {
       const std::string name  = prm.get("Contact heat model");
@@ -448,7 +473,7 @@ namespace tmfdem
                          "': unknown.");
     }
     prm.leave_subsection();
-    if (thermal_step_growth > 1. && coupling != "quasi-static")
+    if (thermal_step_growth > 1. && coupling != Coupling::quasi_static)
       throw InputError(
         "Discrete heat/Thermal step growth factor = " +
         Utilities::to_string(thermal_step_growth) +
@@ -555,5 +580,51 @@ namespace tmfdem
           bodies.push_back(body);
       }
     prm.leave_subsection();
+  }
+
+  std::string
+  DiscreteHeatParameters::coupling_name() const
+  {
+    return coupling == Coupling::quasi_static ? "quasi-static" : "dynamic";
+  }
+
+  std::string
+  DiscreteHeatParameters::time_integration_name() const
+  {
+    return time_integration == TimeIntegration::explicit_euler ? "explicit" :
+                                                                 "implicit";
+  }
+
+  void
+  DiscreteBodyParameters::complete(Parameters &parameters) const
+  {
+    const auto &materials = parameters.materials.materials;
+    // a body and one of its materials may not both set the initial
+    // temperature: two entries for the same cells
+    for (const auto &body : bodies)
+      if (!body.initial_temperature.empty())
+        for (const auto id : body.material_ids)
+          if (id < MaterialParameters::max_materials &&
+              !materials[id].initial_temperature.empty())
+            throw InputError(
+              body.name + "/Initial temperature = '" +
+              body.initial_temperature + "' and Materials/Material " +
+              std::to_string(id) + "/Initial temperature = '" +
+              materials[id].initial_temperature +
+              "' both set the initial temperature of material " +
+              std::to_string(id) + " (" + body.name +
+              "/Material ids); allowed is one of them: leave the other "
+              "empty.");
+    // malformed expressions are refused here, naming the entry, whichever
+    // layer runs and whether or not the mesh has that material
+    for (const auto &body : bodies)
+      if (!body.initial_temperature.empty())
+        {
+          make_expression_function(body.initial_temperature,
+                                   body.name + "/Initial temperature");
+          parameters.initial_temperature_overrides.push_back(
+            {body.material_ids,
+             {body.initial_temperature, body.name + "/Initial temperature"}});
+        }
   }
 } // namespace tmfdem

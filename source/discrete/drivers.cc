@@ -11,7 +11,7 @@ namespace tmfdem
     void
     Drivers::setup_bodies(const Parameters &parameters, DiscreteModel &model)
     {
-      const auto &bodies = parameters.discrete_bodies.bodies;
+      const auto &bodies = parameters.get<DiscreteBodyParameters>().bodies;
       body_motion.clear();
       body_velocity.clear();
       for (const auto &b : bodies)
@@ -61,8 +61,8 @@ namespace tmfdem
                 model.vy[n] = vy0->value(p);
               }
         }
-      gravity = {{parameters.discrete_mechanics.gravity[0],
-                  parameters.discrete_mechanics.gravity[1]}};
+      gravity = {{parameters.get<DiscreteMechanicsParameters>().gravity[0],
+                  parameters.get<DiscreteMechanicsParameters>().gravity[1]}};
     }
 
     void

@@ -162,8 +162,9 @@ namespace tmfdem
                                 start,
                                 end,
                                 true);
-      const unsigned long max_steps = parameters.discrete_mechanics.max_steps;
-      const double        advance =
+      const unsigned long max_steps =
+        parameters.get<DiscreteMechanicsParameters>().max_steps;
+      const double advance =
         quasi_static ? parameters.time.time_step : time_step;
       if (quasi_static)
         {

@@ -230,7 +230,7 @@ namespace tmfdem
       for (unsigned int b = 0; b < drivers.body_reaction.size(); ++b)
         {
           JsonObject r;
-          r.add("body", parameters.discrete_bodies.bodies[b].name)
+          r.add("body", parameters.get<DiscreteBodyParameters>().bodies[b].name)
             .add("force_x", drivers.body_reaction[b][0])
             .add("force_y", drivers.body_reaction[b][1]);
           reactions.push_back(r);
@@ -249,7 +249,8 @@ namespace tmfdem
         .add("time_step", time_step)
         .add("stable_time_step", stable_time_step)
         .add("joint_compliance_compensation",
-             parameters.discrete_mechanics.joint_compliance_compensation)
+             parameters.get<DiscreteMechanicsParameters>()
+               .joint_compliance_compensation)
         .add("compensation_max_share", compensation_share)
         .add("compensation_capped_elements", compensation_capped)
         .add("threads", n_threads)
@@ -308,11 +309,13 @@ namespace tmfdem
           for (const auto &[id, q] : heat->last_boundary_rate())
             rates.add(std::to_string(id), q);
           hb.add("boundary_heat_rate_last_step", rates);
-          summary.add("coupling", parameters.discrete_heat.coupling)
+          summary
+            .add("coupling",
+                 parameters.get<DiscreteHeatParameters>().coupling_name())
             .add("temperature_source", heat->name())
             .add("contact_heat_model",
                  contact_heat_model_name(
-                   parameters.discrete_heat.contact_heat_model))
+                   parameters.get<DiscreteHeatParameters>().contact_heat_model))
             .add("continuum_heat_across_cracks", heat_across_cracks)
             .add("thermal_steps", static_cast<long long>(n_thermal_steps))
             .add("last_relaxation_steps", last_relaxation_steps)

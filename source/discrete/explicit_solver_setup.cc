@@ -28,14 +28,12 @@ namespace tmfdem
       if (input_checked)
         return;
 
-      const auto &dm = parameters.discrete_mechanics;
+      const auto &dm = parameters.get<DiscreteMechanicsParameters>();
       idealisation   = parameters.mechanics.idealisation ==
                          MechanicsParameters::Idealisation::plane_strain ?
                          Idealisation::plane_strain :
                          Idealisation::plane_stress;
-      for (const auto &[name, law] : softening_law_registry())
-        if (name == dm.softening_law)
-          softening_law = law;
+      softening_law  = dm.softening_law;
 
       build_discrete_mesh(parameters,
                           communicator,
@@ -69,14 +67,15 @@ namespace tmfdem
       if (with_heat)
         {
           heat = create_temperature_source(
-            parameters.discrete_heat.temperature_source,
+            parameters.get<DiscreteHeatParameters>().temperature_source,
             parameters,
             model,
             communicator);
           heat->initialise(time);
-          const unsigned int n =
-            parameters.discrete_heat.mechanical_steps_per_thermal_step;
-          quasi_static = parameters.discrete_heat.coupling == "quasi-static";
+          const unsigned int n = parameters.get<DiscreteHeatParameters>()
+                                   .mechanical_steps_per_thermal_step;
+          quasi_static = parameters.get<DiscreteHeatParameters>().coupling ==
+                         DiscreteHeatParameters::Coupling::quasi_static;
           if (n > 0)
             steps_per_thermal_step = n;
           else if (quasi_static)
@@ -86,10 +85,11 @@ namespace tmfdem
               std::max(1.,
                        std::floor(parameters.time.time_step / time_step + 0.5));
           else
-            steps_per_thermal_step =
-              std::max(1.,
-                       std::floor(parameters.discrete_heat.safety_factor *
-                                  heat->stable_time_step() / time_step));
+            steps_per_thermal_step = std::max(
+              1.,
+              std::floor(
+                parameters.get<DiscreteHeatParameters>().safety_factor *
+                heat->stable_time_step() / time_step));
           const double thermal_step = quasi_static ?
                                         parameters.time.time_step :
                                         steps_per_thermal_step * time_step;
@@ -138,7 +138,8 @@ namespace tmfdem
                          "time for the discrete layer.");
       const double n_steps = (parameters.time.end_time - time) / time_step;
       const bool   quasi_static_run =
-        with_heat && parameters.discrete_heat.coupling == "quasi-static";
+        with_heat && parameters.get<DiscreteHeatParameters>().coupling ==
+                       DiscreteHeatParameters::Coupling::quasi_static;
       if (n_steps > 1e10 && !quasi_static_run)
         throw InputError(
           "Time stepping/End time: " + Utilities::to_string(n_steps) +
@@ -197,7 +198,7 @@ namespace tmfdem
     void
     ExplicitSolver::setup_element_stiffness()
     {
-      const auto &dm = parameters.discrete_mechanics;
+      const auto &dm = parameters.get<DiscreteMechanicsParameters>();
       element_lame.resize(model.n_elements);
       unsigned int n_capped  = 0;
       double       max_share = 0.;
@@ -266,7 +267,7 @@ namespace tmfdem
     void
     ExplicitSolver::setup_contact()
     {
-      const auto     &dm = parameters.discrete_mechanics;
+      const auto     &dm = parameters.get<DiscreteMechanicsParameters>();
       ContactSettings settings;
       settings.enabled = dm.contact;
       settings.law     = ContactLaw::penalty_coulomb;

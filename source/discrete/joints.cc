@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 #include <tmfdem/base/exceptions.h>
+#include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/discrete/joints.h>
 
 namespace tmfdem
@@ -135,7 +136,7 @@ namespace tmfdem
                           const SofteningLaw softening_law,
                           DiscreteModel     &model)
     {
-      const auto     &dm = parameters.discrete_mechanics;
+      const auto     &dm = parameters.get<DiscreteMechanicsParameters>();
       std::mt19937_64 generator(dm.random_seed);
       for (unsigned int j = 0; j < model.n_joints; ++j)
         {
@@ -154,10 +155,12 @@ namespace tmfdem
           const double GII =
             std::min(ma.fracture_energy_II, mb.fracture_energy_II);
           const double E = std::max(ma.youngs_modulus, mb.youngs_modulus);
-          if (dm.heterogeneity != "none")
+          if (dm.heterogeneity !=
+              DiscreteMechanicsParameters::Heterogeneity::none)
             {
               double factor = 1.;
-              if (dm.heterogeneity == "Weibull")
+              if (dm.heterogeneity ==
+                  DiscreteMechanicsParameters::Heterogeneity::weibull)
                 {
                   // Weibull with mean 1: scale = 1 / Gamma(1 + 1/m)
                   const double                      m = dm.weibull_modulus;

@@ -32,7 +32,8 @@ namespace tmfdem
       const bool have_contact = contact.has_pairs();
       // mass-proportional damping f_d = -c m v_avg, integrated exactly:
       // v_new = (a v_old + dt f / m) with a = (1 - c dt/2) / (1 + c dt/2)
-      const double c_damp = parameters.discrete_mechanics.mass_damping;
+      const double c_damp =
+        parameters.get<DiscreteMechanicsParameters>().mass_damping;
       const double damp_a = (1. - 0.5 * c_damp * dt) / (1. + 0.5 * c_damp * dt);
       const double damp_b = dt / (1. + 0.5 * c_damp * dt);
       for_each_chunk(

@@ -16,6 +16,7 @@
 #include <tmfdem/coupling/continuum_temperature_source.h>
 #include <tmfdem/discrete/discrete_heat.h>
 #include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/discrete_parameters.h>
 
 using namespace dealii;
 using namespace tmfdem;
@@ -124,13 +125,14 @@ TEST(DiscreteHeatAnisotropy, RigidRotationGivesTheSameIncrements)
   dof_handler.distribute_dofs(fe);
 
   Parameters parameters;
-  auto      &m                              = parameters.materials.materials[0];
-  m.anisotropic_conductivity                = true;
-  m.conductivity_along                      = 4.;
-  m.conductivity_across                     = 1.;
-  m.conductivity_direction                  = 30.;
-  parameters.discrete_heat.time_integration = "explicit";
-  parameters.discrete_heat.contact_conductance = 0.;
+  auto      &m               = parameters.materials.materials[0];
+  m.anisotropic_conductivity = true;
+  m.conductivity_along       = 4.;
+  m.conductivity_across      = 1.;
+  m.conductivity_direction   = 30.;
+  parameters.get<DiscreteHeatParameters>().time_integration =
+    DiscreteHeatParameters::TimeIntegration::explicit_euler;
+  parameters.get<DiscreteHeatParameters>().contact_conductance = 0.;
 
   std::vector<double> increments[2];
   for (unsigned int rotated = 0; rotated < 2; ++rotated)

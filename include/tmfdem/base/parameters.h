@@ -5,6 +5,13 @@
  * ASPECT and Lethe style). Every entry carries a pattern, its units and a
  * documentation string; `tmfdem --print-parameters` prints them all.
  *
+ * The subsections here are those every model shares. Subsections that
+ * belong to one part of the code (the discrete layer's `Discrete
+ * mechanics`, `Discrete bodies`, `Discrete heat`) are declared where that
+ * part lives and registered with register_parameter_section() (as ASPECT's
+ * plugins declare theirs); they are reached with Parameters::get<T>(), and
+ * base/ knows nothing of them.
+ *
  * All quantities are SI; temperatures are in degrees Celsius.
  */
 #ifndef tmfdem_base_parameters_h
@@ -18,8 +25,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
+#include <memory>
 #include <string>
-#include <tmfdem/discrete/discrete_parameters.h>
+#include <typeindex>
 #include <vector>
 
 namespace dealii
@@ -479,6 +488,141 @@ namespace tmfdem
     std::string entry;      ///< e.g. "Materials/Material 2/Initial temperature"
   };
 
+  struct Parameters;
+
+  /**
+   * A prm subsection owned by a part of tmfdem above base/, held by
+   * Parameters (see register_parameter_section()).
+   */
+  class ParameterSection
+  {
+  public:
+    virtual ~ParameterSection() = default;
+    /** A copy (Parameters are copied with all their sections). */
+    virtual std::unique_ptr<ParameterSection>
+    clone() const = 0;
+    /** Reads the section from @p prm (declared by its declare function). */
+    virtual void
+    parse(ParameterHandler &prm) = 0;
+    /** After all sections are parsed: checks across sections, and what the
+     *  section contributes to the shared ones (may throw InputError). */
+    virtual void
+    complete(Parameters &parameters) const = 0;
+  };
+
+  /**
+   * Holds a T with `static void declare_parameters(ParameterHandler &)`
+   * and `void parse_parameters(ParameterHandler &)`; if T has
+   * `void complete(Parameters &) const`, it is called after all sections
+   * are parsed.
+   */
+  template <typename T>
+  class ParameterSectionOf : public ParameterSection
+  {
+  public:
+    T value;
+
+    std::unique_ptr<ParameterSection>
+    clone() const override
+    {
+      return std::make_unique<ParameterSectionOf<T>>(*this);
+    }
+    void
+    parse(ParameterHandler &prm) override
+    {
+      value.parse_parameters(prm);
+    }
+    void
+    complete(Parameters &parameters) const override
+    {
+      complete_if_defined(value, parameters, 0);
+    }
+
+  private:
+    template <typename U>
+    static auto
+    complete_if_defined(const U &u, Parameters &parameters, int)
+      -> decltype(u.complete(parameters), void())
+    {
+      u.complete(parameters);
+    }
+    template <typename U>
+    static void
+    complete_if_defined(const U &, Parameters &, long)
+    {}
+  };
+
+  /** One registered section: its type, how to declare it, a default. */
+  struct ParameterSectionType
+  {
+    std::type_index type;
+    std::string     name; ///< the prm subsection, for messages
+    void (*declare)(ParameterHandler &prm);
+    std::unique_ptr<ParameterSection> (*create)();
+  };
+
+  /** All registered sections, in registration order. */
+  const std::vector<ParameterSectionType> &
+  registered_parameter_sections();
+
+  /** Adds a section type (use register_parameter_section()). */
+  bool
+  add_parameter_section(ParameterSectionType type);
+
+  /**
+   * Registers T as a prm subsection named @p name: declared with the
+   * others (Parameters::declare_parameters, --print-parameters), parsed
+   * with them, reached with Parameters::get<T>(). Call it from a
+   * namespace-scope initialiser in the file that defines T.
+   */
+  template <typename T>
+  bool
+  register_parameter_section(const std::string &name)
+  {
+    return add_parameter_section(
+      {std::type_index(typeid(T)),
+       name,
+       &T::declare_parameters,
+       []() -> std::unique_ptr<ParameterSection> {
+         return std::make_unique<ParameterSectionOf<T>>();
+       }});
+  }
+
+  /**
+   * The registered sections of one Parameters, by type: every registered
+   * section with its defaults on construction, deep copies on copy.
+   */
+  class ParameterSections
+  {
+  public:
+    ParameterSections();
+    ParameterSections(const ParameterSections &other);
+    ParameterSections &
+    operator=(const ParameterSections &other);
+    ParameterSections(ParameterSections &&) noexcept = default;
+    ParameterSections &
+    operator=(ParameterSections &&) noexcept = default;
+    ~ParameterSections();
+
+    /** The section of @p type; throws std::logic_error if unregistered. */
+    ParameterSection &
+    find(const std::type_index &type) const;
+
+  private:
+    std::map<std::type_index, std::unique_ptr<ParameterSection>> map;
+  };
+
+  /**
+   * An initial temperature that a registered section sets for the cells of
+   * some material ids (e.g. a discrete body's), in precedence above the
+   * material's and the global entry.
+   */
+  struct InitialTemperatureOverride
+  {
+    std::vector<types::material_id> material_ids;
+    InitialTemperatureEntry         temperature;
+  };
+
   /** All parameters of a run. */
   struct Parameters
   {
@@ -495,9 +639,6 @@ namespace tmfdem
     MonitorParameters            monitors;
     MechanicsParameters          mechanics;
     MechanicalBoundaryParameters mechanical_boundary;
-    DiscreteMechanicsParameters  discrete_mechanics;
-    DiscreteBodyParameters       discrete_bodies;
-    DiscreteHeatParameters       discrete_heat;
     CheckpointParameters         checkpoint;
     GuardParameters              guards;
     /** Digest of the input that decides the results (every entry except
@@ -506,6 +647,28 @@ namespace tmfdem
     std::string input_digest;
     /** Continue from the newest checkpoint (command line --resume). */
     bool resume = false;
+    /** Initial temperatures set by registered sections (discrete bodies),
+     *  filled when they complete; first match wins. */
+    std::vector<InitialTemperatureOverride> initial_temperature_overrides;
+
+    /** The registered section T (e.g. DiscreteMechanicsParameters). */
+    template <typename T>
+    const T &
+    get() const
+    {
+      return static_cast<const ParameterSectionOf<T> &>(
+               sections.find(std::type_index(typeid(T))))
+        .value;
+    }
+    /** The same, to change (tests, overrides). */
+    template <typename T>
+    T &
+    get()
+    {
+      return static_cast<ParameterSectionOf<T> &>(
+               sections.find(std::type_index(typeid(T))))
+        .value;
+    }
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -514,12 +677,12 @@ namespace tmfdem
 
     /**
      * Initial temperature of the cells of material @p id, by precedence
-     * body > material > global: `Discrete bodies/Body <n>/Initial
-     * temperature` of the body whose Material ids contain @p id, if set;
-     * else `Materials/Material <id>/Initial temperature`, if set; else
-     * `Initial conditions/Temperature`. (A body and one of its materials
-     * both setting it is refused by parse_parameters().) Ids without a
-     * Materials subsection take the global entry.
+     * override > material > global: the first of
+     * initial_temperature_overrides naming @p id (`Discrete bodies/Body
+     * <n>/Initial temperature` of the body whose Material ids contain
+     * @p id, if set); else `Materials/Material <id>/Initial temperature`, if
+     * set; else `Initial conditions/Temperature`. Ids without a Materials
+     * subsection take the global entry.
      */
     InitialTemperatureEntry
     initial_temperature_of(const types::material_id id) const;
@@ -527,6 +690,9 @@ namespace tmfdem
     /** True if some body or material sets its own initial temperature. */
     bool
     has_local_initial_temperature() const;
+
+    /** The registered sections, each with its defaults until parsed. */
+    ParameterSections sections;
   };
 
   /**

@@ -13,6 +13,8 @@
 
 #include <array>
 #include <string>
+#include <tmfdem/base/parameters.h>
+#include <tmfdem/discrete/cohesive_law.h>
 #include <tmfdem/discrete/contact_heat.h>
 #include <vector>
 
@@ -34,23 +36,31 @@ namespace tmfdem
     double joint_tangential_penalty_factor = 10.; ///< p_t / E [-]
     /** Stiffen each triangle by its joints' compliance (joint_compliance.h).
      */
-    bool        joint_compliance_compensation     = true;
-    double      contact_penalty_factor            = 10.; ///< p_c / E [-]
-    double      contact_tangential_penalty_factor = 1.;  ///< p_ct / E [-]
-    double      friction_coefficient              = 0.5; ///< mu [-]
-    std::string softening_law                     = "Munjiza";
+    bool   joint_compliance_compensation     = true;
+    double contact_penalty_factor            = 10.; ///< p_c / E [-]
+    double contact_tangential_penalty_factor = 1.;  ///< p_ct / E [-]
+    double friction_coefficient              = 0.5; ///< mu [-]
+    /** Softening law (cohesive_law.h registry). */
+    discrete::SofteningLaw softening_law = discrete::SofteningLaw::munjiza;
     double damping_ratio = 1.; ///< modal ratio of the highest element mode [-]
     double mass_damping  = 0.; ///< c of -c m v [1/s]
-    std::vector<double> gravity           = {0., 0.}; ///< [m/s^2]
-    double              contact_buffer    = 0.; ///< [m]; 0: 0.25 x smallest h
-    unsigned int        threads           = 0;  ///< 0: all cores
-    bool         allow_oversubscription   = false; ///< threads beyond the cores
-    std::string  heterogeneity            = "none"; ///< none|Weibull|normal
-    double       weibull_modulus          = 10.;    ///< m [-]
-    double       coefficient_of_variation = 0.1;    ///< normal: std/mean [-]
-    unsigned int random_seed              = 1;
-    unsigned int max_steps                = 0; ///< 0: no limit
-    bool         contact                  = true;
+    std::vector<double> gravity        = {0., 0.}; ///< [m/s^2]
+    double              contact_buffer = 0.;    ///< [m]; 0: 0.25 x smallest h
+    unsigned int        threads        = 0;     ///< 0: all cores
+    bool allow_oversubscription        = false; ///< threads beyond the cores
+    /** How joint strengths scatter (Heterogeneity). */
+    enum class Heterogeneity
+    {
+      none,
+      weibull, ///< Weibull factors of mean 1, modulus weibull_modulus
+      normal   ///< normal factors of mean 1, coefficient_of_variation
+    };
+    Heterogeneity heterogeneity            = Heterogeneity::none;
+    double        weibull_modulus          = 10.; ///< m [-]
+    double        coefficient_of_variation = 0.1; ///< normal: std/mean [-]
+    unsigned int  random_seed              = 1;
+    unsigned int  max_steps                = 0; ///< 0: no limit
+    bool          contact                  = true;
     /** Pre-existing fractures: segments (x0, y0, x1, y1) [m]; the joints
      *  lying on them start broken. */
     std::vector<std::array<double, 4>> initial_cracks;
@@ -67,26 +77,48 @@ namespace tmfdem
     /** Name of a registered discrete::TemperatureSource. */
     std::string temperature_source = "discrete heat";
     /** Temperature source = continuum heat goes on past broken joints. */
-    bool         accept_continuum_source_at_broken_joints = false;
-    std::string  time_integration         = "implicit"; ///< implicit|explicit
-    double       joint_conductance_factor = 1000.;      ///< beta [-]
-    double       contact_conductance      = 1e4;        ///< h_c [W/(m^2 K)]
-    double       safety_factor            = 0.9;        ///< explicit [-]
-    double       solver_tolerance         = 1e-12;      ///< relative
-    unsigned int mechanical_steps_per_thermal_step = 0; ///< 0: automatic
-    std::string  coupling             = "dynamic"; ///< dynamic|quasi-static
-    double       relaxation_tolerance = 1e-6;      ///< kinetic / strain energy
-    bool         relaxation_cap_is_error =
+    bool accept_continuum_source_at_broken_joints = false;
+    /** Time integration of the discrete heat. */
+    enum class TimeIntegration
+    {
+      implicit,
+      explicit_euler
+    };
+    TimeIntegration time_integration         = TimeIntegration::implicit;
+    double          joint_conductance_factor = 1000.;      ///< beta [-]
+    double          contact_conductance      = 1e4;        ///< h_c [W/(m^2 K)]
+    double          safety_factor            = 0.9;        ///< explicit [-]
+    double          solver_tolerance         = 1e-12;      ///< relative
+    unsigned int    mechanical_steps_per_thermal_step = 0; ///< 0: automatic
+    /** How heat and mechanics take turns (Coupling). */
+    enum class Coupling
+    {
+      dynamic,     ///< multi-rate: a thermal step every n mechanical steps
+      quasi_static ///< a thermal step, then the mechanics relaxes
+    };
+    Coupling coupling             = Coupling::dynamic;
+    double   relaxation_tolerance = 1e-6; ///< kinetic / strain energy
+    bool     relaxation_cap_is_error =
       false; ///< stop when a relaxation hits the cap
     double relaxation_force_tolerance = 1e-3; ///< |out-of-balance| / |internal|
     /** Quasi-static: start of each relaxation, none (the last relaxed
      *  state) or extrapolate (last state + its last increment scaled by
      *  the ratio of the thermal steps). */
-    std::string relaxation_predictor = "none";
+    enum class RelaxationPredictor
+    {
+      none,
+      extrapolate
+    };
+    RelaxationPredictor relaxation_predictor = RelaxationPredictor::none;
     /** Quasi-static: mass (Discrete mechanics/Mass damping only) or
      *  kinetic (velocities set to zero at every peak of the kinetic
      *  energy, besides). */
-    std::string relaxation_damping = "mass";
+    enum class RelaxationDamping
+    {
+      mass,
+      kinetic
+    };
+    RelaxationDamping relaxation_damping = RelaxationDamping::mass;
     /** Quasi-static: thermal step n = Time step x growth^n [-]. */
     double thermal_step_growth = 1.;
     /** Quasi-static: cap of the growing thermal step, 0 = none [s]. */
@@ -97,6 +129,12 @@ namespace tmfdem
     /** Driving term of the contact heat (`Contact heat model`). */
     discrete::ContactHeatModel contact_heat_model =
       discrete::ContactHeatModel::temperature_difference;
+
+    /** The prm names of the options (summary.json, messages). */
+    std::string
+    coupling_name() const;
+    std::string
+    time_integration_name() const;
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -136,6 +174,11 @@ namespace tmfdem
     declare_parameters(ParameterHandler &prm);
     void
     parse_parameters(ParameterHandler &prm);
+    /** After all sections are parsed: the bodies' initial temperatures
+     *  become overrides of @p parameters (Parameters::initial_temperature_of);
+     *  a body and one of its materials both setting one is refused. */
+    void
+    complete(Parameters &parameters) const;
   };
 } // namespace tmfdem
 

@@ -16,6 +16,7 @@
 #include <memory>
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/discrete_parameters.h>
 #include <vector>
 
 namespace tmfdem

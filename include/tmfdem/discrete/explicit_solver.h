@@ -24,6 +24,7 @@
 #include <tmfdem/discrete/contact_system.h>
 #include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/discrete/drivers.h>
 #include <tmfdem/discrete/energy.h>
 #include <tmfdem/discrete/solid.h>
