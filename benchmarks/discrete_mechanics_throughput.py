@@ -21,7 +21,8 @@ wall-clock speed-up says little; 1-thread CPU / busiest thread of the
 waits spin, so it is a bound, not a measurement of speed).
 
 With --against REFERENCE (a second tmfdem binary, e.g. the build of the
-commit before a refactor) the program instead compares the two builds side
+commit before a refactor, in its own build folder or copied together with
+its libtmfdem.so: a copy of tmfdem alone loads its build folder's library) the program instead compares the two builds side
 by side on one thread: REPEATS rounds of (reference, candidate) runs of both
 cases, alternating, and prints each run's rate, the candidate / reference
 ratio of the median rates and of the median loop CPU times, and whether the
@@ -157,7 +158,12 @@ def run(prm_file, threads, steps, out, program=None):
     cmd = [program or binary, prm_file, "--set", f"Output/Directory={out}",
            "--set", f"Discrete mechanics/Threads={threads}",
            "--set", f"Discrete mechanics/Maximum steps={steps}"]
-    subprocess.run(cmd, check=True, capture_output=True)
+    env = dict(os.environ)
+    folder = os.path.dirname(os.path.abspath(cmd[0]))
+    if os.path.exists(os.path.join(folder, "libtmfdem.so")):
+        # a copied build: tmfdem with its own libtmfdem.so beside it
+        env["LD_LIBRARY_PATH"] = folder + os.pathsep + env.get("LD_LIBRARY_PATH", "")
+    subprocess.run(cmd, check=True, capture_output=True, env=env)
     with open(os.path.join(out, "summary.json")) as f:
         return json.load(f)
 

@@ -25,6 +25,11 @@ case is identical, 1 when any differs (the differing files are listed),
 Build the reference in a worktree of the commit before the change, e.g.
   git worktree add /tmp/before HEAD~1 && (cd /tmp/before && bash scripts/build.sh)
   scripts/results_neutral.py /tmp/before/build-release/tmfdem build-release/tmfdem
+A copy of the tmfdem program alone is not a reference: it still loads the
+libtmfdem.so of the build folder it came from, which the next build
+replaces. A folder holding copies of both tmfdem and libtmfdem.so is run with
+that libtmfdem.so (LD_LIBRARY_PATH). The check refuses two binaries that
+load the same libtmfdem.so.
 """
 import argparse
 import filecmp
@@ -54,6 +59,27 @@ def prm_value(prm, entry, default=None):
     return default
 
 
+def environment(binary):
+    """The environment to run @p binary in: with LD_LIBRARY_PATH on its own
+    folder when a libtmfdem.so lies next to it (a copied build)."""
+    env = dict(os.environ)
+    folder = os.path.dirname(os.path.abspath(binary))
+    if os.path.exists(os.path.join(folder, "libtmfdem.so")):
+        env["LD_LIBRARY_PATH"] = folder + os.pathsep + env.get("LD_LIBRARY_PATH", "")
+    return env
+
+
+def library_of(binary):
+    """The libtmfdem.so @p binary loads (ldd), or None if not found."""
+    r = subprocess.run(["ldd", binary], capture_output=True, text=True,
+                       env=environment(binary))
+    for line in r.stdout.splitlines():
+        if "libtmfdem.so" in line and "=>" in line:
+            path = line.split("=>")[1].split("(")[0].strip()
+            return os.path.realpath(path) if path and path != "not" else None
+    return None
+
+
 def span(binary, prm, mechanical_steps, thermal_steps, work):
     """End time [s] for the short span of this case, or None (whole run)."""
     model = prm_value(prm, "Model", "continuum heat")
@@ -62,6 +88,7 @@ def span(binary, prm, mechanical_steps, thermal_steps, work):
     if model.startswith("continuum") and mode == "steady":
         return None
     r = subprocess.run([binary, "--validate", prm, "--set", f"Output/Directory={work}"],
+                       env=environment(binary),
                        capture_output=True, text=True)
     if r.returncode != 0:
         raise RuntimeError(f"--validate failed ({r.returncode}): {r.stderr.strip()[-400:]}")
@@ -86,7 +113,7 @@ def run(binary, prm, folder, end):
            "--set", "Discrete mechanics/Threads=1"]
     if end is not None:
         cmd += ["--set", f"Time stepping/End time={end!r}"]
-    r = subprocess.run(cmd, capture_output=True, text=True)
+    r = subprocess.run(cmd, capture_output=True, text=True, env=environment(binary))
     if r.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)}: exit {r.returncode}: {r.stderr.strip()[-400:]}")
 
@@ -144,6 +171,14 @@ def main():
     for b in (args.reference, args.candidate):
         if not os.access(b, os.X_OK):
             sys.exit(f"error: '{b}' is not an executable tmfdem binary")
+    libraries = [library_of(b) for b in (args.reference, args.candidate)]
+    for b, lib in zip((args.reference, args.candidate), libraries):
+        print(f"{b} loads {lib}")
+    if (libraries[0] is not None and libraries[0] == libraries[1] and
+            os.path.realpath(args.reference) != os.path.realpath(args.candidate)):
+        sys.exit(f"error: both binaries load the same {libraries[0]}: the comparison "
+                 "would run one library twice. Build the reference in its own folder "
+                 "(a git worktree), or copy tmfdem together with its libtmfdem.so.")
     prms = sorted(glob.glob(os.path.join(ROOT, "prm", "*.prm")))
     if args.cases:
         names = set(args.cases)

@@ -33,11 +33,22 @@ namespace tmfdem
   namespace discrete
   {
     void
+    ExplicitSolver::update_heat_contact_pairs()
+    {
+      // one pair search feeds contact forces and contact heat: bring the
+      // mechanics' candidates up to date (the next mechanical step would
+      // search at these same positions) before the source filters them
+      if (contact.enabled() && contact.search_needed())
+        contact.search(model, arena_for(n_threads));
+      heat->update_contact_pairs();
+    }
+
+    void
     ExplicitSolver::multi_rate_thermal_step()
     {
       // M -> T: current geometry, broken joints, contacts
       check_cracks_seen_by_heat();
-      heat->update_contact_pairs();
+      update_heat_contact_pairs();
       heat->step(thermal_time, time - thermal_time);
       thermal_time = time;
       ++n_thermal_steps;
@@ -52,7 +63,7 @@ namespace tmfdem
       // joints, contacts) and the new thermal stretch (T -> M) ...
       const double dt = quasi_static_thermal_step();
       check_cracks_seen_by_heat();
-      heat->update_contact_pairs();
+      update_heat_contact_pairs();
       heat->step(time, dt);
       time += dt;
       thermal_time = time;

@@ -8,9 +8,11 @@ namespace tmfdem
   namespace discrete
   {
     void
-    ContactSystem::setup(const ContactSettings &settings)
+    ContactSystem::setup(const ContactSettings            &settings,
+                         const std::vector<unsigned char> &rigid_groups)
     {
-      contact = settings;
+      contact     = settings;
+      rigid_group = rigid_groups;
       pair_list.clear();
       index_pairs(0);
       travel_since_search = 0.;
@@ -32,9 +34,7 @@ namespace tmfdem
     }
 
     void
-    ContactSystem::search(const DiscreteModel              &model,
-                          const std::vector<unsigned char> &rigid_group,
-                          tbb::task_arena                  &arena)
+    ContactSystem::search(const DiscreteModel &model, tbb::task_arena &arena)
     {
       // active: elements with a free edge, and their intact neighbours
       std::vector<unsigned char> active(model.n_elements, 0);
@@ -60,8 +60,6 @@ namespace tmfdem
           active_elements.push_back(e);
 
       const auto skip = [&](const unsigned int a, const unsigned int b) {
-        if (rigid_group[a] == rigid_group[b] && rigid_group[a] != no_body)
-          return true;
         return model.joined(a, b);
       };
       linked_cells.rebuild(model.x,
@@ -72,9 +70,31 @@ namespace tmfdem
                            pair_list,
                            arena);
       index_pairs(model.n_elements);
+      flag_rigid_pairs();
       travel_since_search = 0.;
       search_is_needed    = false;
       ++searches;
+    }
+
+    void
+    ContactSystem::flag_rigid_pairs()
+    {
+      pair_is_rigid.resize(pair_list.size());
+      for (std::size_t p = 0; p < pair_list.size(); ++p)
+        {
+          const unsigned char a = rigid_group[pair_list[p].first];
+          pair_is_rigid[p] =
+            a != no_body && a == rigid_group[pair_list[p].second];
+        }
+    }
+
+    unsigned int
+    ContactSystem::n_mechanical_pairs() const
+    {
+      unsigned int n = 0;
+      for (const char rigid : pair_is_rigid)
+        n += rigid ? 0 : 1;
+      return n;
     }
 
     void
@@ -137,6 +157,11 @@ namespace tmfdem
               for (unsigned int i = 0; i < 12; ++i)
                 force[i] = 0.;
               double dissipated = 0.;
+              if (pair_is_rigid[p])
+                {
+                  pair_friction[p] = 0.;
+                  continue;
+                }
               // each element is once the contactor, once the target
               for (unsigned int direction = 0; direction < 2; ++direction)
                 {
@@ -216,6 +241,7 @@ namespace tmfdem
                            "' is corrupt (contact pair of element " +
                            std::to_string(std::max(p.first, p.second)) + ").");
       index_pairs(n_elements);
+      flag_rigid_pairs();
     }
   } // namespace discrete
 } // namespace tmfdem

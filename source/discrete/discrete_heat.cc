@@ -343,33 +343,12 @@ namespace tmfdem
       sparsity.reinit(0, 0, 0); // couplings change: rebuild the pattern
       if (contact_conductance <= 0.)
         return;
-      std::vector<unsigned char> active(model.n_elements, 0);
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        for (unsigned int k = 0; k < 3; ++k)
-          if (model.intact_neighbour(e, k) < 0)
-            active[e] = 1;
-      std::vector<unsigned char> with_neighbours = active;
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        if (active[e])
-          for (unsigned int k = 0; k < 3; ++k)
-            if (model.intact_neighbour(e, k) >= 0)
-              with_neighbours[model.intact_neighbour(e, k)] = 1;
-      std::vector<unsigned int> elements;
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        if (with_neighbours[e])
-          elements.push_back(e);
-      LinkedCellSearch         search;
-      std::vector<ContactPair> candidates;
-      search.rebuild(
-        model.x,
-        model.y,
-        elements,
-        0.,
-        [&](const unsigned int a, const unsigned int b) {
-          return model.joined(a, b);
-        },
-        candidates,
-        arena_for(n_threads));
+      // candidates: the mechanics' (one search for both), or our own
+      std::vector<ContactPair>        own_candidates;
+      const std::vector<ContactPair> &candidates =
+        shared_candidates ? *shared_candidates : own_candidates;
+      if (!shared_candidates)
+        search_contact_candidates(own_candidates);
       std::vector<char> touching(candidates.size(), 0);
       for_each_chunk(
         arena_for(n_threads),
@@ -391,6 +370,40 @@ namespace tmfdem
       for (std::size_t p = 0; p < candidates.size(); ++p)
         if (touching[p])
           contact_pairs.emplace_back(candidates[p].first, candidates[p].second);
+    }
+
+    void
+    DiscreteHeat::search_contact_candidates(
+      std::vector<ContactPair> &candidates) const
+    {
+      // triangles with a free edge and their intact neighbours; boxes
+      // that overlap (no buffer); pairs joined by an intact joint excluded
+      std::vector<unsigned char> active(model.n_elements, 0);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        for (unsigned int k = 0; k < 3; ++k)
+          if (model.intact_neighbour(e, k) < 0)
+            active[e] = 1;
+      std::vector<unsigned char> with_neighbours = active;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        if (active[e])
+          for (unsigned int k = 0; k < 3; ++k)
+            if (model.intact_neighbour(e, k) >= 0)
+              with_neighbours[model.intact_neighbour(e, k)] = 1;
+      std::vector<unsigned int> elements;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        if (with_neighbours[e])
+          elements.push_back(e);
+      LinkedCellSearch search;
+      search.rebuild(
+        model.x,
+        model.y,
+        elements,
+        0.,
+        [&](const unsigned int a, const unsigned int b) {
+          return model.joined(a, b);
+        },
+        candidates,
+        arena_for(n_threads));
     }
 
     double

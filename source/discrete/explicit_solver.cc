@@ -93,7 +93,7 @@ namespace tmfdem
       if (contact.enabled())
         {
           if (contact.search_needed())
-            contact.search(model, rigid_group, arena_for(n_threads));
+            contact.search(model, arena_for(n_threads));
           balance.friction_dissipation +=
             contact.compute_forces(model, time_step, arena_for(n_threads));
         }

@@ -279,7 +279,7 @@ namespace tmfdem
         .add("broken_mixed", by_mode[3])
         .add("cracks", model.n_cracks())
         .add("contact_searches", static_cast<long long>(contact.n_searches()))
-        .add("contact_pairs", static_cast<unsigned int>(contact.pairs().size()))
+        .add("contact_pairs", contact.n_mechanical_pairs())
         .add("peak_resident_memory_bytes",
              [] {
                rusage usage;

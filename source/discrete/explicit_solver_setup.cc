@@ -47,7 +47,6 @@ namespace tmfdem
       drivers.setup_boundary_conditions(parameters,
                                         model,
                                         imposed_motion_clock());
-      rigid_group = drivers.rigid_groups(model);
       setup_joint_constants(parameters, softening_law, model);
       setup_element_stiffness();
       setup_contact();
@@ -72,6 +71,9 @@ namespace tmfdem
             model,
             communicator);
           heat->initialise(time);
+          // contact heat takes its candidates from the contact search
+          if (contact.enabled())
+            heat->share_contact_candidates(&contact.pairs());
           const unsigned int n = parameters.get<DiscreteHeatParameters>()
                                    .mechanical_steps_per_thermal_step;
           quasi_static = parameters.get<DiscreteHeatParameters>().coupling ==
@@ -290,7 +292,7 @@ namespace tmfdem
         min_h = std::min(min_h, std::sqrt(2. * model.reference_area[e]));
       settings.buffer =
         dm.contact_buffer > 0. ? dm.contact_buffer : 0.25 * min_h;
-      contact.setup(settings);
+      contact.setup(settings, drivers.rigid_groups(model));
     }
 
     ElementStepInput

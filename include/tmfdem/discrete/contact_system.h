@@ -43,9 +43,14 @@ namespace tmfdem
     class ContactSystem
     {
     public:
-      /** Takes the settings; no pairs yet. */
+      /**
+       * Takes the settings; no pairs yet. @p rigid_group per element is the
+       * index of its body if that body is fixed or driven (its elements
+       * never push each other), or no_body.
+       */
       void
-      setup(const ContactSettings &settings);
+      setup(const ContactSettings            &settings,
+            const std::vector<unsigned char> &rigid_group);
 
       const ContactSettings &
       settings() const
@@ -65,15 +70,13 @@ namespace tmfdem
       /**
        * Rebuilds the pair list from the current geometry of @p model: the
        * active elements (with a free edge, and their intact neighbours),
-       * pairs of those not joined by an intact joint and not in the same
-       * rigid group: @p rigid_group per element is the index of its body if
-       * that body is fixed or driven (its elements never meet each other),
-       * or no_body. Friction history of pairs that persist is kept.
+       * pairs of those whose boxes come within the buffer and that are not
+       * joined by an intact joint. Pairs within one rigid group stay in the
+       * list (contact heat flows between them) but carry no force. Friction
+       * history of pairs that persist is kept.
        */
       void
-      search(const DiscreteModel              &model,
-             const std::vector<unsigned char> &rigid_group,
-             tbb::task_arena                  &arena);
+      search(const DiscreteModel &model, tbb::task_arena &arena);
 
       /** Forces of every pair at the current state, with the law of the
        *  settings, over the step @p dt [s] (friction history). Returns the
@@ -121,7 +124,8 @@ namespace tmfdem
         return search_is_needed;
       }
 
-      /** The candidate pairs of the last search. */
+      /** The candidate pairs of the last search, sorted by (first, second):
+       *  the mechanical contacts and the candidates of contact heat. */
       const std::vector<ContactPair> &
       pairs() const
       {
@@ -132,6 +136,9 @@ namespace tmfdem
       {
         return !pair_list.empty();
       }
+      /** Pairs that carry contact forces (not within a rigid group). */
+      unsigned int
+      n_mechanical_pairs() const;
       unsigned long
       n_searches() const
       {
@@ -157,11 +164,17 @@ namespace tmfdem
                           const double         dt,
                           tbb::task_arena     &arena);
 
-      ContactSettings          contact;
-      LinkedCellSearch         linked_cells;
-      std::vector<ContactPair> pair_list;
-      std::vector<double>      pair_force;    ///< 12 per pair [N/m]
-      std::vector<double>      pair_friction; ///< dissipation this step
+      /** Flags the pairs within one rigid group (no force). */
+      void
+      flag_rigid_pairs();
+
+      ContactSettings            contact;
+      std::vector<unsigned char> rigid_group;   ///< per element
+      std::vector<char>          pair_is_rigid; ///< per pair
+      LinkedCellSearch           linked_cells;
+      std::vector<ContactPair>   pair_list;
+      std::vector<double>        pair_force;    ///< 12 per pair [N/m]
+      std::vector<double>        pair_friction; ///< dissipation this step
       /** Pairs of element e: element_pair_entries[start[e] .. start[e+1]),
        *  each 2 pair + side. */
       std::vector<unsigned int> element_pair_start, element_pair_entries;

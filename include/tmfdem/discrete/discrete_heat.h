@@ -138,6 +138,14 @@ namespace tmfdem
        */
       void
       update_contact_pairs() override;
+      /** Takes the conducting pairs from @p candidates (the mechanics'
+       *  contact search) from now on, instead of its own search. */
+      void
+      share_contact_candidates(
+        const std::vector<ContactPair> *candidates) override
+      {
+        shared_candidates = candidates;
+      }
 
       /** Number of overlapping (conducting) contact pairs. */
       unsigned int
@@ -239,8 +247,13 @@ namespace tmfdem
 
       /** Conducting pairs: (contactor, target) triangles. */
       std::vector<std::pair<unsigned int, unsigned int>> contact_pairs;
-      double       contact_conductance = 0.;
-      unsigned int n_threads           = 1;
+      /** Candidate pairs of its own linked-cell search (no mechanics). */
+      void
+      search_contact_candidates(std::vector<ContactPair> &candidates) const;
+      /** The mechanics' contact candidates, or nullptr (own search). */
+      const std::vector<ContactPair> *shared_candidates   = nullptr;
+      double                          contact_conductance = 0.;
+      unsigned int                    n_threads           = 1;
       /** Calls @p f(contactor, target, transfer) for every overlapping
        *  pair at the current temperatures. */
       template <typename Function>

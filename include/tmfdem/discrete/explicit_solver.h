@@ -254,6 +254,10 @@ namespace tmfdem
       /** One explicit mechanical step without advancing the clock. */
       void
       mechanical_step();
+      /** Before a thermal step: the contact search brought up to date and
+       *  the source's conducting pairs taken from it. */
+      void
+      update_heat_contact_pairs();
       /** Multi-rate coupling, after the mechanical step that completes a
        *  thermal step: heat over it, then the thermal stretch
        *  (source/coupling/discrete_thermo_mechanics.cc). */
@@ -273,8 +277,6 @@ namespace tmfdem
       Drivers drivers;
       /** Contact: pair search, law, pair forces. */
       ContactSystem contact;
-      /** Per element: its fixed or driven body, or no_body (contact). */
-      std::vector<unsigned char> rigid_group;
 
       // time
       double        time              = 0.;

@@ -29,6 +29,8 @@ namespace tmfdem
 
   namespace discrete
   {
+    struct ContactPair;
+
     struct DiscreteModel;
 
     /** Heat that crossed each boundary id, joints and contacts, and the
@@ -90,6 +92,19 @@ namespace tmfdem
        *  that sees contacts finds its conducting pairs again. */
       virtual void
       update_contact_pairs() = 0;
+
+      /**
+       * The mechanics' contact candidates (ContactSystem::pairs(), a
+       * superset of the overlapping pairs while its search is current), for
+       * a source that sees contacts to take its conducting pairs from
+       * instead of searching itself; nullptr: search itself. The caller
+       * keeps @p candidates alive and current before update_contact_pairs().
+       */
+      virtual void
+      share_contact_candidates(const std::vector<ContactPair> *candidates)
+      {
+        (void)candidates;
+      }
 
       /** Advances from @p time by @p time_step [s]. */
       virtual void
