@@ -109,6 +109,12 @@ namespace tmfdem
           thermal_time = time;
           if (quasi_static)
             {
+              // an unloaded body relaxes at once (strains below 1e-10)
+              double EA = 0.;
+              for (unsigned int e = 0; e < model.n_elements; ++e)
+                EA += parameters.materials[model.material[e]].youngs_modulus *
+                      model.reference_area[e];
+              unloaded_energy = 1e-20 * EA;
               // motions imposed in thermal time are ramped in over the
               // first relaxation steps of each thermal step
               const bool imposed      = drivers.imposes_motion();

@@ -268,6 +268,10 @@ namespace tmfdem
        *  (source/coupling/discrete_thermo_mechanics.cc). */
       void
       quasi_static_step();
+      /** Quasi-static coupling: energy below which the body counts as
+       *  unloaded and relaxed: that of a uniform strain of 1e-10 at the
+       *  materials' E, 1e-20 sum E A [J/m]. */
+      double unloaded_energy = 0.;
       /** Relaxation steps over which the motion imposed in one thermal step
        *  is ramped in (quasi-static coupling). */
       static constexpr unsigned int ramp_steps   = 100;
