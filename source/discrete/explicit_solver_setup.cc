@@ -29,10 +29,7 @@ namespace tmfdem
         return;
 
       const auto &dm = parameters.discrete_mechanics;
-      idealisation   = parameters.mechanics.idealisation ==
-                         MechanicsParameters::Idealisation::plane_strain ?
-                         Idealisation::plane_strain :
-                         Idealisation::plane_stress;
+      idealisation   = parameters.mechanics.idealisation; // one enum
       for (const auto &[name, law] : softening_law_registry())
         if (name == dm.softening_law)
           softening_law = law;

@@ -19,6 +19,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <tmfdem/base/constitutive.h>
 #include <tmfdem/discrete/discrete_parameters.h>
 #include <vector>
 
@@ -306,12 +307,11 @@ namespace tmfdem
    */
   struct MechanicsParameters
   {
-    /** Out-of-plane assumption of the 2D model. */
-    enum class Idealisation
-    {
-      plane_stress,
-      plane_strain
-    };
+    /**
+     * Out-of-plane assumption of the 2D model: the one enum of the
+     * constitutive core (base/constitutive.h), shared by both layers.
+     */
+    using Idealisation = constitutive::Idealisation;
     /** Small-strain linear or finite-strain (Eq. 44 on F_e) kinematics. */
     enum class StrainMeasure
     {
