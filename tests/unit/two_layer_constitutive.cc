@@ -88,10 +88,8 @@ namespace
                                 k.temperature - reference_temperature,
                                 idealisation);
     const double            inv_s = 1. / s;
-    const discrete::Matrix2 Fe    = {k.f00 * inv_s,
-                                     k.f01 * inv_s,
-                                     k.f10 * inv_s,
-                                     k.f11 * inv_s};
+    const discrete::Matrix2 Fe =
+      discrete::matrix2(k.f00, k.f01, k.f10, k.f11) * inv_s;
     return {continuum.cauchy(grad_u, k.temperature),
             discrete::elastic_stress(Fe, lame)};
   }

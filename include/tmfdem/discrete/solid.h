@@ -11,22 +11,40 @@
  * Eq. 44 on F_e) is the core both layers share, base/constitutive.h; this
  * header adds the triangle's kinematics and forces around it. Everything
  * here is plain inline arithmetic on doubles: these functions run once per
- * triangle per explicit step.
+ * triangle per explicit step. The 2x2 algebra is Eigen's (Matrix2 =
+ * Eigen::Matrix2d: F = basis * inverse_basis, F.determinant(),
+ * F.inverse()).
  */
 #ifndef tmfdem_discrete_solid_h
 #define tmfdem_discrete_solid_h
 
+#include <Eigen/Core>
+#include <Eigen/LU>
 #include <tmfdem/base/constitutive.h>
 
 namespace tmfdem
 {
   namespace discrete
   {
-    /** A 2x2 matrix stored row-major: {a00, a01, a10, a11}. */
-    struct Matrix2
+    /**
+     * A 2x2 matrix: Eigen's fixed-size type (no allocation; its product,
+     * determinant and inverse form every entry in the same order as the
+     * hand-written code they replaced, so results are bitwise unchanged:
+     * doc/performance.md, "Eigen for the element algebra").
+     */
+    using Matrix2 = Eigen::Matrix2d;
+
+    /** The matrix [a00, a01; a10, a11]. */
+    inline Matrix2
+    matrix2(const double a00,
+            const double a01,
+            const double a10,
+            const double a11)
     {
-      double a00 = 0, a01 = 0, a10 = 0, a11 = 0;
-    };
+      Matrix2 m;
+      m << a00, a01, a10, a11;
+      return m;
+    }
 
     // The constitutive law itself (idealisation, Lame constants, thermal
     // stretch, Eq. 44 and its energy) is the one core of both layers in
@@ -36,34 +54,6 @@ namespace tmfdem
     using constitutive::LameConstants;
     using constitutive::Stress2;
     using constitutive::thermal_stretch;
-
-    /** Determinant. */
-    inline double
-    determinant(const Matrix2 &m)
-    {
-      return m.a00 * m.a11 - m.a01 * m.a10;
-    }
-
-    /** Inverse (the caller guarantees det != 0). */
-    inline Matrix2
-    inverse(const Matrix2 &m)
-    {
-      const double inv_det = 1. / determinant(m);
-      return {m.a11 * inv_det,
-              -m.a01 * inv_det,
-              -m.a10 * inv_det,
-              m.a00 * inv_det};
-    }
-
-    /** Product a b. */
-    inline Matrix2
-    multiply(const Matrix2 &a, const Matrix2 &b)
-    {
-      return {a.a00 * b.a00 + a.a01 * b.a10,
-              a.a00 * b.a01 + a.a01 * b.a11,
-              a.a10 * b.a00 + a.a11 * b.a10,
-              a.a10 * b.a01 + a.a11 * b.a11};
-    }
 
     /**
      * The element basis [x1-x0, x2-x0; y1-y0, y2-y0] of a triangle with the
@@ -77,7 +67,7 @@ namespace tmfdem
                   const double x2,
                   const double y2)
     {
-      return {x1 - x0, x2 - x0, y1 - y0, y2 - y0};
+      return matrix2(x1 - x0, x2 - x0, y1 - y0, y2 - y0);
     }
 
     /**
@@ -87,7 +77,11 @@ namespace tmfdem
     inline Stress2
     elastic_stress(const Matrix2 &Fe, const LameConstants &lame)
     {
-      return constitutive::elastic_stress(Fe.a00, Fe.a01, Fe.a10, Fe.a11, lame);
+      return constitutive::elastic_stress(Fe(0, 0),
+                                          Fe(0, 1),
+                                          Fe(1, 0),
+                                          Fe(1, 1),
+                                          lame);
     }
 
     /**
@@ -97,10 +91,10 @@ namespace tmfdem
     inline double
     strain_energy_density(const Matrix2 &Fe, const LameConstants &lame)
     {
-      return constitutive::strain_energy_density(Fe.a00,
-                                                 Fe.a01,
-                                                 Fe.a10,
-                                                 Fe.a11,
+      return constitutive::strain_energy_density(Fe(0, 0),
+                                                 Fe(0, 1),
+                                                 Fe(1, 0),
+                                                 Fe(1, 1),
                                                  lame);
     }
 
