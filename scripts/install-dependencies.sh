@@ -3,7 +3,7 @@
 # apt command to run (when not root). Idempotent: installs only what is
 # missing.
 set -euo pipefail
-packages=(build-essential cmake libdeal.ii-dev gmsh openmpi-bin libgtest-dev
+packages=(build-essential cmake libdeal.ii-dev libeigen3-dev gmsh openmpi-bin libgtest-dev
           python3 python3-numpy python3-matplotlib python3-scipy)
 missing=()
 for p in "${packages[@]}"; do

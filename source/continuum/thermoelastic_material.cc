@@ -16,18 +16,11 @@ namespace tmfdem
     , alpha(properties.thermal_expansion)
     , reference_temperature(properties.reference_temperature)
   {
-    const double E = youngs_modulus, nu = poisson_ratio;
-    shear_modulus = E / (2. * (1. + nu));
-    if (idealisation == MechanicsParameters::Idealisation::plane_strain)
-      {
-        lambda_2d = E * nu / ((1. + nu) * (1. - 2. * nu));
-        beta      = (1. + nu) * alpha;
-      }
-    else
-      {
-        lambda_2d = E * nu / (1. - nu * nu);
-        beta      = alpha;
-      }
+    const constitutive::LameConstants lame =
+      constitutive::lame_constants(youngs_modulus, poisson_ratio, idealisation);
+    shear_modulus = lame.mu;
+    lambda_2d     = lame.lambda;
+    beta = constitutive::in_plane_expansion(alpha, poisson_ratio, idealisation);
   }
 
   Tensor<2, 2>
@@ -104,13 +97,21 @@ namespace tmfdem
   {
     if (strain_measure == MechanicsParameters::StrainMeasure::small)
       return first_piola(grad_u, temperature);
-    // Eq. 44 on the elastic part
+    // Eq. 44 on the elastic part, the core both layers share
     const Tensor<2, 2> I   = unit_symmetric_tensor<2>();
     const Tensor<2, 2> F_e = (I + grad_u) / thermal_stretch(temperature);
-    const double       J_e = determinant(F_e);
-    const Tensor<2, 2> B_e = F_e * transpose(F_e);
-    return shear_modulus / J_e * (B_e - I) +
-           0.5 * lambda_2d * (J_e - 1. / J_e) * I;
+    const constitutive::Stress2 s =
+      constitutive::elastic_stress(F_e[0][0],
+                                   F_e[0][1],
+                                   F_e[1][0],
+                                   F_e[1][1],
+                                   lame_constants());
+    Tensor<2, 2> sigma;
+    sigma[0][0] = s.xx;
+    sigma[1][1] = s.yy;
+    sigma[0][1] = s.xy;
+    sigma[1][0] = s.xy;
+    return sigma;
   }
 
   double

@@ -218,20 +218,18 @@ namespace tmfdem
           const double s_old = model.thermal_stretch[e];
           if (s_new == s_old)
             continue;
-          const unsigned int n0     = 3 * e;
-          const double      *ib     = &model.inverse_basis[4 * e];
-          const Matrix2      F      = multiply(element_basis(model.x[n0],
-                                                   model.y[n0],
-                                                   model.x[n0 + 1],
-                                                   model.y[n0 + 1],
-                                                   model.x[n0 + 2],
-                                                   model.y[n0 + 2]),
-                                     Matrix2{ib[0], ib[1], ib[2], ib[3]});
-          const auto         energy = [&](const double s) {
+          const unsigned int n0 = 3 * e;
+          const double      *ib = &model.inverse_basis[4 * e];
+          const Matrix2      F  = element_basis(model.x[n0],
+                                          model.y[n0],
+                                          model.x[n0 + 1],
+                                          model.y[n0 + 1],
+                                          model.x[n0 + 2],
+                                          model.y[n0 + 2]) *
+                            matrix2(ib[0], ib[1], ib[2], ib[3]);
+          const auto energy = [&](const double s) {
             return model.reference_area[e] * s * s *
-                   strain_energy_density(
-                     {F.a00 / s, F.a01 / s, F.a10 / s, F.a11 / s},
-                     element_lame[e]);
+                   strain_energy_density(Matrix2(F / s), element_lame[e]);
           };
           before += energy(s_old);
           after += energy(s_new);

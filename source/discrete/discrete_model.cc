@@ -82,7 +82,7 @@ namespace tmfdem
                                               y_ref[3 * e + 1],
                                               x_ref[3 * e + 2],
                                               y_ref[3 * e + 2]);
-          const double  det   = determinant(basis);
+          const double  det   = basis.determinant();
           if (!(det > 0.))
             {
               std::ostringstream where;
@@ -95,11 +95,11 @@ namespace tmfdem
                                "; every triangle must have positive area "
                                "with counter-clockwise nodes.");
             }
-          const Matrix2 inv        = inverse(basis);
-          inverse_basis[4 * e + 0] = inv.a00;
-          inverse_basis[4 * e + 1] = inv.a01;
-          inverse_basis[4 * e + 2] = inv.a10;
-          inverse_basis[4 * e + 3] = inv.a11;
+          const Matrix2 inv        = basis.inverse();
+          inverse_basis[4 * e + 0] = inv(0, 0);
+          inverse_basis[4 * e + 1] = inv(0, 1);
+          inverse_basis[4 * e + 2] = inv(1, 0);
+          inverse_basis[4 * e + 3] = inv(1, 1);
           reference_area[e]        = 0.5 * det;
 
           for (unsigned int f = 0; f < 3; ++f)

@@ -33,15 +33,15 @@ namespace tmfdem
         {
           const unsigned int n0 = 3 * e;
           const double      *ib = &model.inverse_basis[4 * e];
-          const Matrix2      F  = multiply(element_basis(model.x[n0],
-                                                   model.y[n0],
-                                                   model.x[n0 + 1],
-                                                   model.y[n0 + 1],
-                                                   model.x[n0 + 2],
-                                                   model.y[n0 + 2]),
-                                     Matrix2{ib[0], ib[1], ib[2], ib[3]});
-          const double       s  = model.thermal_stretch[e];
-          const Matrix2      Fe{F.a00 / s, F.a01 / s, F.a10 / s, F.a11 / s};
+          const Matrix2      F  = element_basis(model.x[n0],
+                                          model.y[n0],
+                                          model.x[n0 + 1],
+                                          model.y[n0 + 1],
+                                          model.x[n0 + 2],
+                                          model.y[n0 + 2]) *
+                            matrix2(ib[0], ib[1], ib[2], ib[3]);
+          const double  s  = model.thermal_stretch[e];
+          const Matrix2 Fe = F / s;
           strain += model.reference_area[e] * s * s *
                     strain_energy_density(Fe, element_lame[e]);
         }

@@ -29,10 +29,7 @@ namespace tmfdem
         return;
 
       const auto &dm = parameters.get<DiscreteMechanicsParameters>();
-      idealisation   = parameters.mechanics.idealisation ==
-                         MechanicsParameters::Idealisation::plane_strain ?
-                         Idealisation::plane_strain :
-                         Idealisation::plane_stress;
+      idealisation   = parameters.mechanics.idealisation; // one enum
       softening_law  = dm.softening_law;
 
       build_discrete_mesh(parameters,

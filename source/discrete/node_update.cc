@@ -56,19 +56,15 @@ namespace tmfdem
               const unsigned int n0 = 3 * e;
               const double      *X = &m.x[n0], *Y = &m.y[n0];
               const double      *VX = &m.vx[n0], *VY = &m.vy[n0];
-              const double      *ib = &m.inverse_basis[4 * e];
-              const Matrix2      Fi_inv{ib[0], ib[1], ib[2], ib[3]};
+              const double      *ib     = &m.inverse_basis[4 * e];
+              const Matrix2      Fi_inv = matrix2(ib[0], ib[1], ib[2], ib[3]);
               const Matrix2      F =
-                multiply(element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2]),
-                         Fi_inv);
-              if (!(F.a00 * F.a11 - F.a01 * F.a10 > 0.) && inverted < 0.)
+                element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2]) * Fi_inv;
+              if (!(F.determinant() > 0.) && inverted < 0.)
                 inverted = e;
               const double  s     = m.thermal_stretch[e];
               const double  inv_s = 1. / s;
-              const Matrix2 Fe{F.a00 * inv_s,
-                               F.a01 * inv_s,
-                               F.a10 * inv_s,
-                               F.a11 * inv_s};
+              const Matrix2 Fe    = F * inv_s;
               const Stress2 sigma = elastic_stress(Fe, element_lame[e]);
               // viscous stress 2 eta sym(dF/dt F^-1), only where eta > 0
               const double eta = viscosity[e];
@@ -77,13 +73,13 @@ namespace tmfdem
               nodal_forces(sigma, X[0], Y[0], X[1], Y[1], X[2], Y[2], f_el);
               if (eta > 0.)
                 {
-                  const Matrix2 Fdot = multiply(
-                    element_basis(VX[0], VY[0], VX[1], VY[1], VX[2], VY[2]),
-                    Fi_inv);
-                  const Matrix2 L = multiply(Fdot, inverse(F));
-                  sigma_v         = {2. * eta * L.a00,
-                                     2. * eta * L.a11,
-                                     eta * (L.a01 + L.a10)};
+                  const Matrix2 Fdot =
+                    element_basis(VX[0], VY[0], VX[1], VY[1], VX[2], VY[2]) *
+                    Fi_inv;
+                  const Matrix2 L = Fdot * F.inverse();
+                  sigma_v         = {2. * eta * L(0, 0),
+                                     2. * eta * L(1, 1),
+                                     eta * (L(0, 1) + L(1, 0))};
                   nodal_forces(sigma_v,
                                X[0],
                                Y[0],

@@ -48,8 +48,8 @@ namespace
                 double              *f)
   {
     const Matrix2 F =
-      multiply(element_basis(xs[0], ys[0], xs[1], ys[1], xs[2], ys[2]),
-               inverse(element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2])));
+      element_basis(xs[0], ys[0], xs[1], ys[1], xs[2], ys[2]) *
+      element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2]).inverse();
     nodal_forces(elastic_stress(F, lame),
                  xs[0],
                  ys[0],
@@ -70,10 +70,12 @@ namespace
                 double       *f)
   {
     const Matrix2 Fi_inv =
-      inverse(element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2]));
+      element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2]).inverse();
     const Matrix2 L =
-      multiply(element_basis(vx[0], vy[0], vx[1], vy[1], vx[2], vy[2]), Fi_inv);
-    const Stress2 s{2. * eta * L.a00, 2. * eta * L.a11, eta * (L.a01 + L.a10)};
+      element_basis(vx[0], vy[0], vx[1], vy[1], vx[2], vy[2]) * Fi_inv;
+    const Stress2 s{2. * eta * L(0, 0),
+                    2. * eta * L(1, 1),
+                    eta * (L(0, 1) + L(1, 0))};
     nodal_forces(s, X[0], Y[0], X[1], Y[1], X[2], Y[2], f);
   }
 

@@ -24,21 +24,24 @@ TEST(StressRecovery, BoundaryEdgeReproducesHomogeneousDeformation)
         edge.lame            = lame_constants(20e9, 0.2, idealisation);
         edge.thermal_stretch = 1. + 0.01 * u(random);
         // a finite homogeneous deformation (stretches up to 20 %, shear)
-        const Matrix2 F = {1. + 0.2 * u(random),
-                           0.2 * u(random),
-                           0.2 * u(random),
-                           1. + 0.2 * u(random)};
-        const double  s = edge.thermal_stretch;
-        const Stress2 sigma =
-          elastic_stress({F.a00 / s, F.a01 / s, F.a10 / s, F.a11 / s},
-                         edge.lame);
+        // (drawn in this order: the entries of a braced list are evaluated
+        // left to right, a function's arguments are not)
+        const double  f[4]  = {1. + 0.2 * u(random),
+                               0.2 * u(random),
+                               0.2 * u(random),
+                               1. + 0.2 * u(random)};
+        const Matrix2 F     = matrix2(f[0], f[1], f[2], f[3]);
+        const double  s     = edge.thermal_stretch;
+        const Stress2 sigma = elastic_stress(F / s, edge.lame);
         // a reference edge of any direction and its image
         const double angle = M_PI * u(random), L0 = 0.01;
         const double X0 = 0.3, Y0 = -0.2;
         const double X1 = X0 + L0 * std::cos(angle),
                      Y1 = Y0 + L0 * std::sin(angle);
-        const double x0 = F.a00 * X0 + F.a01 * Y0, y0 = F.a10 * X0 + F.a11 * Y0;
-        const double x1 = F.a00 * X1 + F.a01 * Y1, y1 = F.a10 * X1 + F.a11 * Y1;
+        const double x0 = F(0, 0) * X0 + F(0, 1) * Y0,
+                     y0 = F(1, 0) * X0 + F(1, 1) * Y0;
+        const double x1 = F(0, 0) * X1 + F(0, 1) * Y1,
+                     y1 = F(1, 0) * X1 + F(1, 1) * Y1;
         // Cauchy traction on the current outward normal (dy, -dx)/L
         const double  L  = std::hypot(x1 - x0, y1 - y0);
         const double  nx = (y1 - y0) / L, ny = -(x1 - x0) / L;

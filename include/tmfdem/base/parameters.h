@@ -28,6 +28,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <tmfdem/base/constitutive.h>
 #include <typeindex>
 #include <vector>
 
@@ -315,12 +316,11 @@ namespace tmfdem
    */
   struct MechanicsParameters
   {
-    /** Out-of-plane assumption of the 2D model. */
-    enum class Idealisation
-    {
-      plane_stress,
-      plane_strain
-    };
+    /**
+     * Out-of-plane assumption of the 2D model: the one enum of the
+     * constitutive core (base/constitutive.h), shared by both layers.
+     */
+    using Idealisation = constitutive::Idealisation;
     /** Small-strain linear or finite-strain (Eq. 44 on F_e) kinematics. */
     enum class StrainMeasure
     {

@@ -2,15 +2,19 @@
  * @file
  * The 2D thermoelastic constitutive law of tmfdem, small and finite strain,
  * plane stress and plane strain: stresses and consistent tangents as
- * functions of the displacement gradient and the temperature change. Shared
- * by the continuum solver and (later) the discrete layer; derivation in
- * doc/theory.md, chapter 3.
+ * functions of the displacement gradient and the temperature change, on
+ * deal.II tensors for the continuum solver. The Lame constants, the
+ * thermal stretch and the Cauchy stress of Eq. 44 on F_e come from the
+ * constitutive core both layers share (base/constitutive.h); this class
+ * adds the small-strain law, the first Piola-Kirchhoff stress and its
+ * tangent. Derivation in doc/theory.md, chapter 3.
  */
 #ifndef tmfdem_continuum_thermoelastic_material_h
 #define tmfdem_continuum_thermoelastic_material_h
 
 #include <deal.II/base/tensor.h>
 
+#include <tmfdem/base/constitutive.h>
 #include <tmfdem/base/parameters.h>
 
 namespace tmfdem
@@ -56,6 +60,12 @@ namespace tmfdem
     {
       return shear_modulus;
     }
+    /** Both Lame constants of the 2D idealisation [Pa]. */
+    constitutive::LameConstants
+    lame_constants() const
+    {
+      return {shear_modulus, lambda_2d};
+    }
     /** In-plane thermal expansion coefficient beta [1/K]. */
     double
     in_plane_expansion() const
@@ -68,11 +78,15 @@ namespace tmfdem
     {
       return temperature - reference_temperature;
     }
-    /** Thermal stretch 1 + beta dT [-]. */
+    /** Thermal stretch s = 1 + beta dT [-] (constitutive::thermal_stretch()).
+     */
     double
     thermal_stretch(const double temperature) const
     {
-      return 1. + beta * temperature_change(temperature);
+      return constitutive::thermal_stretch(alpha,
+                                           poisson_ratio,
+                                           temperature_change(temperature),
+                                           idealisation);
     }
 
     /**

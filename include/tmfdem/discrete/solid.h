@@ -7,109 +7,53 @@
  * stress of Eq. 44 evaluated with the ELASTIC part F_e, and the viscous
  * stress 2 eta D with D = sym(dF/dt F^-1) (Eqs. 45-46).
  *
- * Everything here is plain inline arithmetic on doubles: these functions run
- * once per triangle per explicit step.
+ * The constitutive law (Lame constants per idealisation, thermal stretch,
+ * Eq. 44 on F_e) is the core both layers share, base/constitutive.h; this
+ * header adds the triangle's kinematics and forces around it. Everything
+ * here is plain inline arithmetic on doubles: these functions run once per
+ * triangle per explicit step. The 2x2 algebra is Eigen's (Matrix2 =
+ * Eigen::Matrix2d: F = basis * inverse_basis, F.determinant(),
+ * F.inverse()).
  */
 #ifndef tmfdem_discrete_solid_h
 #define tmfdem_discrete_solid_h
 
-#include <cmath>
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <tmfdem/base/constitutive.h>
 
 namespace tmfdem
 {
   namespace discrete
   {
-    /** A 2x2 matrix stored row-major: {a00, a01, a10, a11}. */
-    struct Matrix2
-    {
-      double a00 = 0, a01 = 0, a10 = 0, a11 = 0;
-    };
-
-    /** Symmetric 2D stress {xx, yy, xy} [Pa], tension positive. */
-    struct Stress2
-    {
-      double xx = 0, yy = 0, xy = 0;
-    };
-
-    /** Elastic constants of the 2D idealisation [Pa]. */
-    struct LameConstants
-    {
-      double mu     = 0.;
-      double lambda = 0.;
-    };
-
-    /** How the out-of-plane direction is treated. */
-    enum class Idealisation
-    {
-      plane_stress,
-      plane_strain
-    };
-
     /**
-     * Lame constants of the in-plane law for @p idealisation: plane strain
-     * takes lambda = E nu / ((1+nu)(1-2nu)); plane stress the reduced
-     * lambda* = E nu / (1 - nu^2). mu = E / (2 (1+nu)) in both.
+     * A 2x2 matrix: Eigen's fixed-size type (no allocation; its product,
+     * determinant and inverse form every entry in the same order as the
+     * hand-written code they replaced, so results are bitwise unchanged:
+     * doc/performance.md, "Eigen for the element algebra").
      */
-    inline LameConstants
-    lame_constants(const double       youngs_modulus,
-                   const double       poisson_ratio,
-                   const Idealisation idealisation)
-    {
-      LameConstants c;
-      c.mu = youngs_modulus / (2. * (1. + poisson_ratio));
-      if (idealisation == Idealisation::plane_strain)
-        c.lambda = youngs_modulus * poisson_ratio /
-                   ((1. + poisson_ratio) * (1. - 2. * poisson_ratio));
-      else
-        c.lambda =
-          youngs_modulus * poisson_ratio / (1. - poisson_ratio * poisson_ratio);
-      return c;
-    }
+    using Matrix2 = Eigen::Matrix2d;
 
-    /**
-     * In-plane thermal stretch s of F_T = s I for a temperature change
-     * @p delta_T [K]: 1 + alpha dT in plane stress, 1 + (1+nu) alpha dT in
-     * plane strain (the out-of-plane constraint eps_zz = 0 adds nu alpha dT
-     * in plane; see doc/theory.md).
-     */
-    inline double
-    thermal_stretch(const double       expansion_coefficient,
-                    const double       poisson_ratio,
-                    const double       delta_T,
-                    const Idealisation idealisation)
-    {
-      return idealisation == Idealisation::plane_strain ?
-               1. + (1. + poisson_ratio) * expansion_coefficient * delta_T :
-               1. + expansion_coefficient * delta_T;
-    }
-
-    /** Determinant. */
-    inline double
-    determinant(const Matrix2 &m)
-    {
-      return m.a00 * m.a11 - m.a01 * m.a10;
-    }
-
-    /** Inverse (the caller guarantees det != 0). */
+    /** The matrix [a00, a01; a10, a11]. */
     inline Matrix2
-    inverse(const Matrix2 &m)
+    matrix2(const double a00,
+            const double a01,
+            const double a10,
+            const double a11)
     {
-      const double inv_det = 1. / determinant(m);
-      return {m.a11 * inv_det,
-              -m.a01 * inv_det,
-              -m.a10 * inv_det,
-              m.a00 * inv_det};
+      Matrix2 m;
+      m << a00, a01, a10, a11;
+      return m;
     }
 
-    /** Product a b. */
-    inline Matrix2
-    multiply(const Matrix2 &a, const Matrix2 &b)
-    {
-      return {a.a00 * b.a00 + a.a01 * b.a10,
-              a.a00 * b.a01 + a.a01 * b.a11,
-              a.a10 * b.a00 + a.a11 * b.a10,
-              a.a10 * b.a01 + a.a11 * b.a11};
-    }
+    // The constitutive law itself (idealisation, Lame constants, thermal
+    // stretch, Eq. 44 and its energy) is the one core of both layers in
+    // base/constitutive.h; the discrete layer uses it under its own names.
+    using constitutive::Idealisation;
+    using constitutive::lame_constants;
+    using constitutive::LameConstants;
+    using constitutive::Stress2;
+    using constitutive::thermal_stretch;
 
     /**
      * The element basis [x1-x0, x2-x0; y1-y0, y2-y0] of a triangle with the
@@ -123,41 +67,35 @@ namespace tmfdem
                   const double x2,
                   const double y2)
     {
-      return {x1 - x0, x2 - x0, y1 - y0, y2 - y0};
+      return matrix2(x1 - x0, x2 - x0, y1 - y0, y2 - y0);
     }
 
     /**
      * Cauchy stress of paper Eq. 44 on the elastic deformation gradient
-     * @p Fe [Pa]: sigma = mu/J (B - I) + lambda/2 (J - 1/J) I with
-     * J = det Fe, B = Fe Fe^T. Reduces to 2 mu eps + lambda tr(eps) I for
-     * small strain.
+     * @p Fe [Pa] (constitutive::elastic_stress()).
      */
     inline Stress2
     elastic_stress(const Matrix2 &Fe, const LameConstants &lame)
     {
-      const double J    = determinant(Fe);
-      const double b_xx = Fe.a00 * Fe.a00 + Fe.a01 * Fe.a01;
-      const double b_yy = Fe.a10 * Fe.a10 + Fe.a11 * Fe.a11;
-      const double b_xy = Fe.a00 * Fe.a10 + Fe.a01 * Fe.a11;
-      const double mu_J = lame.mu / J;
-      const double vol  = 0.5 * lame.lambda * (J - 1. / J);
-      return {mu_J * (b_xx - 1.) + vol, mu_J * (b_yy - 1.) + vol, mu_J * b_xy};
+      return constitutive::elastic_stress(Fe(0, 0),
+                                          Fe(0, 1),
+                                          Fe(1, 0),
+                                          Fe(1, 1),
+                                          lame);
     }
 
     /**
-     * Strain energy per unit area of the stress-free (intermediate)
-     * configuration [J/m^2] whose derivative is Eq. 44:
-     * psi = mu/2 (tr B - 2) - mu ln J + lambda/4 (J^2 - 1 - 2 ln J).
+     * Strain energy per unit area of the stress-free configuration [J/m^2]
+     * whose derivative is Eq. 44 (constitutive::strain_energy_density()).
      */
     inline double
     strain_energy_density(const Matrix2 &Fe, const LameConstants &lame)
     {
-      const double J = determinant(Fe);
-      const double trace_B =
-        Fe.a00 * Fe.a00 + Fe.a01 * Fe.a01 + Fe.a10 * Fe.a10 + Fe.a11 * Fe.a11;
-      const double log_J = std::log(J);
-      return 0.5 * lame.mu * (trace_B - 2.) - lame.mu * log_J +
-             0.25 * lame.lambda * (J * J - 1. - 2. * log_J);
+      return constitutive::strain_energy_density(Fe(0, 0),
+                                                 Fe(0, 1),
+                                                 Fe(1, 0),
+                                                 Fe(1, 1),
+                                                 lame);
     }
 
     /**

@@ -1,0 +1,154 @@
+/**
+ * @file
+ * The one thermoelastic constitutive core of tmfdem, shared by the continuum
+ * layer (continuum/thermoelastic_material.h, deal.II tensors) and the
+ * discrete layer (discrete/solid.h, the constant-strain triangle of the
+ * explicit hot path): the 2D idealisation, the Lame constants of each
+ * idealisation, the in-plane thermal stretch s of F_T = s I, and the Cauchy
+ * stress of paper Eq. 44 on the elastic part F_e of F = F_T F_e, with its
+ * strain energy. Derivation in doc/theory.md, chapter 3.
+ *
+ * Everything is header-only inline arithmetic on plain doubles, with no
+ * allocation: the discrete layer calls it once per triangle per explicit
+ * step. It lives in base/ because base/parameters.h parses the idealisation
+ * into the enum declared here, and base/ depends on no model folder.
+ *
+ * The order of the floating-point operations is part of the contract: both
+ * layers' results are bitwise those of the code this replaced
+ * (scripts/results_neutral.py), so rewrite no expression here without
+ * checking that.
+ */
+#ifndef tmfdem_base_constitutive_h
+#define tmfdem_base_constitutive_h
+
+#include <cmath>
+
+namespace tmfdem
+{
+  namespace constitutive
+  {
+    /**
+     * How the out-of-plane direction of the 2D model is treated (parameter
+     * `Mechanics/Idealisation`, read by both layers).
+     */
+    enum class Idealisation
+    {
+      plane_stress, ///< sigma_zz = 0
+      plane_strain  ///< eps_zz = 0
+    };
+
+    /** Elastic constants of the in-plane law [Pa]. */
+    struct LameConstants
+    {
+      double mu     = 0.; ///< shear modulus [Pa]
+      double lambda = 0.; ///< Lame's first parameter of the idealisation [Pa]
+    };
+
+    /** Symmetric in-plane Cauchy stress {xx, yy, xy} [Pa], tension positive. */
+    struct Stress2
+    {
+      double xx = 0, yy = 0, xy = 0;
+    };
+
+    /**
+     * Lame constants of the in-plane law for @p idealisation, from Young's
+     * modulus @p youngs_modulus [Pa] and Poisson's ratio @p poisson_ratio
+     * [-]: mu = E / (2 (1 + nu)) in both; plane strain takes lambda = E nu /
+     * ((1 + nu)(1 - 2 nu)), plane stress the reduced lambda* = E nu / (1 -
+     * nu^2).
+     */
+    inline LameConstants
+    lame_constants(const double       youngs_modulus,
+                   const double       poisson_ratio,
+                   const Idealisation idealisation)
+    {
+      LameConstants c;
+      c.mu = youngs_modulus / (2. * (1. + poisson_ratio));
+      if (idealisation == Idealisation::plane_strain)
+        c.lambda = youngs_modulus * poisson_ratio /
+                   ((1. + poisson_ratio) * (1. - 2. * poisson_ratio));
+      else
+        c.lambda =
+          youngs_modulus * poisson_ratio / (1. - poisson_ratio * poisson_ratio);
+      return c;
+    }
+
+    /**
+     * In-plane thermal expansion coefficient beta [1/K] of the idealisation
+     * for the (3D, isotropic) coefficient @p expansion_coefficient [1/K]:
+     * alpha in plane stress, (1 + nu) alpha in plane strain (the
+     * out-of-plane constraint eps_zz = 0 adds nu alpha dT in plane; see
+     * doc/theory.md).
+     */
+    inline double
+    in_plane_expansion(const double       expansion_coefficient,
+                       const double       poisson_ratio,
+                       const Idealisation idealisation)
+    {
+      return idealisation == Idealisation::plane_strain ?
+               (1. + poisson_ratio) * expansion_coefficient :
+               expansion_coefficient;
+    }
+
+    /**
+     * In-plane thermal stretch s = 1 + beta dT [-] of F_T = s I for a
+     * temperature change @p delta_T [K], beta from in_plane_expansion().
+     */
+    inline double
+    thermal_stretch(const double       expansion_coefficient,
+                    const double       poisson_ratio,
+                    const double       delta_T,
+                    const Idealisation idealisation)
+    {
+      return 1. + in_plane_expansion(expansion_coefficient,
+                                     poisson_ratio,
+                                     idealisation) *
+                    delta_T;
+    }
+
+    /**
+     * Cauchy stress of paper Eq. 44 [Pa] on the elastic deformation gradient
+     * F_e = [fe00, fe01; fe10, fe11] [-] (F_e = F / s):
+     * sigma = mu / J (B - I) + lambda / 2 (J - 1 / J) I with J = det F_e and
+     * B = F_e F_e^T. Reduces to 2 mu eps + lambda tr(eps) I for small strain.
+     */
+    inline Stress2
+    elastic_stress(const double         fe00,
+                   const double         fe01,
+                   const double         fe10,
+                   const double         fe11,
+                   const LameConstants &lame)
+    {
+      const double J    = fe00 * fe11 - fe01 * fe10;
+      const double b_xx = fe00 * fe00 + fe01 * fe01;
+      const double b_yy = fe10 * fe10 + fe11 * fe11;
+      const double b_xy = fe00 * fe10 + fe01 * fe11;
+      const double mu_J = lame.mu / J;
+      const double vol  = 0.5 * lame.lambda * (J - 1. / J);
+      return {mu_J * (b_xx - 1.) + vol, mu_J * (b_yy - 1.) + vol, mu_J * b_xy};
+    }
+
+    /**
+     * Strain energy per unit area of the stress-free (intermediate)
+     * configuration [J/m^2] whose derivative is Eq. 44, for F_e = [fe00,
+     * fe01; fe10, fe11] [-]:
+     * psi = mu/2 (tr B - 2) - mu ln J + lambda/4 (J^2 - 1 - 2 ln J).
+     */
+    inline double
+    strain_energy_density(const double         fe00,
+                          const double         fe01,
+                          const double         fe10,
+                          const double         fe11,
+                          const LameConstants &lame)
+    {
+      const double J = fe00 * fe11 - fe01 * fe10;
+      const double trace_B =
+        fe00 * fe00 + fe01 * fe01 + fe10 * fe10 + fe11 * fe11;
+      const double log_J = std::log(J);
+      return 0.5 * lame.mu * (trace_B - 2.) - lame.mu * log_J +
+             0.25 * lame.lambda * (J * J - 1. - 2. * log_J);
+    }
+  } // namespace constitutive
+} // namespace tmfdem
+
+#endif
