@@ -339,6 +339,9 @@ namespace tmfdem
     TemperatureSource temperature_source = TemperatureSource::function;
     /** T(x, y, t) for Temperature source = function [C]. */
     std::string              temperature      = "0";
+    /** Temperature source = heat solver: stress also every ... [s] (0: only
+     *  at the output times). */
+    double                   coupling_interval = 0.;
     unsigned int             degree           = 2;     ///< polynomial degree
     double                   newton_tolerance = 1e-10; ///< relative residual
     unsigned int             newton_max_iterations = 25;
