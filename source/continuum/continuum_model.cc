@@ -65,9 +65,12 @@ namespace tmfdem
   ContinuumModel::create_mesh()
   {
     create_output_folder(parameters.output.directory, communicator);
-    mesh_report       = std::make_unique<MeshReport>();
-    own_triangulation = create_continuum_triangulation(
-      parameters.mesh, parameters.output.directory, communicator, *mesh_report);
+    mesh_report = std::make_unique<MeshReport>();
+    own_triangulation =
+      create_continuum_triangulation(parameters.mesh,
+                                     parameters.output.directory,
+                                     communicator,
+                                     *mesh_report);
     triangulation = own_triangulation.get();
     describe_mesh();
   }
@@ -93,8 +96,8 @@ namespace tmfdem
             mesh_boundary_ids.insert(face->boundary_id());
       }
     // Mesh/... never mixes cell shapes (create_continuum_triangulation)
-    quadrilaterals = triangulation->begin()->reference_cell() ==
-                     ReferenceCells::Quadrilateral;
+    quadrilaterals =
+      triangulation->begin()->reference_cell() == ReferenceCells::Quadrilateral;
   }
 
   void
@@ -131,10 +134,9 @@ namespace tmfdem
           std::string mesh_ids;
           for (const auto known : mesh_boundary_ids)
             mesh_ids += " " + std::to_string(known);
-          throw InputError(name + "/Boundary ids: boundary id " +
-                           std::to_string(id) +
-                           " is not on the mesh; the mesh has boundary ids" +
-                           mesh_ids + ".");
+          throw InputError(
+            name + "/Boundary ids: boundary id " + std::to_string(id) +
+            " is not on the mesh; the mesh has boundary ids" + mesh_ids + ".");
         }
   }
 

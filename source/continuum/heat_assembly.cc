@@ -18,13 +18,13 @@ namespace tmfdem
   void
   HeatSolver::compute_cell_matrices()
   {
-    const unsigned int  n = fe->n_dofs_per_cell();
+    const unsigned int  n          = fe->n_dofs_per_cell();
     const Quadrature<2> quadrature = cell_quadrature();
-    FEValues<2>        fe_values(*mapping,
+    FEValues<2>         fe_values(*mapping,
                           *fe,
                           quadrature,
                           update_values | update_gradients | update_JxW_values);
-    const unsigned int n_cells = triangulation->n_active_cells();
+    const unsigned int  n_cells = triangulation->n_active_cells();
     cell_capacity.assign(n_cells, FullMatrix<double>());
     cell_conductivity.assign(n_cells, FullMatrix<double>());
     capacity_matrix   = 0;
@@ -114,15 +114,15 @@ namespace tmfdem
                              const bool   time_dependent,
                              Loads       &level)
   {
-    const unsigned int  n = fe->n_dofs_per_cell();
+    const unsigned int  n          = fe->n_dofs_per_cell();
     const Quadrature<2> quadrature = cell_quadrature();
-    const QGauss<1> face_quadrature(fe->degree + 1);
-    FEValues<2>     fe_values(*mapping,
+    const QGauss<1>     face_quadrature(fe->degree + 1);
+    FEValues<2>         fe_values(*mapping,
                           *fe,
                           quadrature,
                           update_values | update_quadrature_points |
                             update_JxW_values);
-    FEFaceValues<2> fe_face_values(*mapping,
+    FEFaceValues<2>     fe_face_values(*mapping,
                                    *fe,
                                    face_quadrature,
                                    update_values | update_quadrature_points |
@@ -258,9 +258,9 @@ namespace tmfdem
     TrilinosWrappers::SparseMatrix             &matrix,
     std::map<types::boundary_id, RobinWeights> &weights)
   {
-    const unsigned int n = fe->n_dofs_per_cell();
-    const QGauss<1>    face_quadrature(fe->degree + 1);
-    FEFaceValues<2>    fe_face_values(*mapping,
+    const unsigned int                   n = fe->n_dofs_per_cell();
+    const QGauss<1>                      face_quadrature(fe->degree + 1);
+    FEFaceValues<2>                      fe_face_values(*mapping,
                                    *fe,
                                    face_quadrature,
                                    update_values | update_JxW_values |

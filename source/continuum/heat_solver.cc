@@ -399,7 +399,7 @@ namespace tmfdem
   {
     const unsigned long steps   = stepping.step;
     const HeatBalance  &balance = stepping.balance;
-    const bool steady =
+    const bool          steady =
       parameters.time.mode == TimeSteppingParameters::Mode::steady;
     JsonObject heat;
     JsonObject per_boundary;

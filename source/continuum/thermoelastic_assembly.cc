@@ -145,7 +145,7 @@ namespace tmfdem
     const AffineConstraints<double>     &constraints_used,
     const bool                           with_matrix)
   {
-    const Quadrature<2> quadrature = cell_quadrature();
+    const Quadrature<2>                  quadrature = cell_quadrature();
     const QGauss<1>                      face_quadrature(fe->degree + 1);
     FEValues<2>                          fe_values(*mapping,
                           *fe,

@@ -36,89 +36,90 @@ namespace tmfdem
       return mapping.transform_real_to_unit_cell(cell, p);
     }
 
-  /**
-   * Stress (Cauchy, tension positive), strain and temperature for the vtu
-   * files, computed from the displacement gradient at each output point.
-   */
-  class ThermoelasticPostprocessor : public DataPostprocessor<2>
-  {
-  public:
-    ThermoelasticPostprocessor(
-      const std::vector<ThermoelasticMaterial> &materials,
-      const Mapping<2>                         &mapping,
+    /**
+     * Stress (Cauchy, tension positive), strain and temperature for the vtu
+     * files, computed from the displacement gradient at each output point.
+     */
+    class ThermoelasticPostprocessor : public DataPostprocessor<2>
+    {
+    public:
+      ThermoelasticPostprocessor(
+        const std::vector<ThermoelasticMaterial> &materials,
+        const Mapping<2>                         &mapping,
+        const std::function<
+          std::vector<double>(const Triangulation<2>::active_cell_iterator &,
+                              const std::vector<Point<2>> &,
+                              const std::vector<Point<2>> &)> &temperatures,
+        const bool                                             with_szz)
+        : materials(materials)
+        , mapping(mapping)
+        , temperatures(temperatures)
+        , with_szz(with_szz)
+      {}
+
+      std::vector<std::string>
+      get_names() const override
+      {
+        std::vector<std::string> names = {"sxx", "syy", "sxy"};
+        if (with_szz)
+          names.push_back("szz");
+        for (const char *name : {"exx", "eyy", "exy", "T"})
+          names.push_back(name);
+        return names;
+      }
+
+      UpdateFlags
+      get_needed_update_flags() const override
+      {
+        return update_gradients | update_quadrature_points;
+      }
+
+      void
+      evaluate_vector_field(
+        const DataPostprocessorInputs::Vector<2> &inputs,
+        std::vector<Vector<double>>              &computed) const override
+      {
+        const auto dof_cell = inputs.template get_cell<2>();
+        const Triangulation<2>::active_cell_iterator cell(
+          &dof_cell->get_triangulation(),
+          dof_cell->level(),
+          dof_cell->index());
+        const auto           &points = inputs.evaluation_points;
+        std::vector<Point<2>> unit_points;
+        for (const auto &p : points)
+          unit_points.push_back(unit_point_of(mapping, cell, p));
+        const std::vector<double> T = temperatures(cell, unit_points, points);
+        const auto               &material = materials[cell->material_id()];
+        for (unsigned int q = 0; q < points.size(); ++q)
+          {
+            Tensor<2, 2> grad_u;
+            for (unsigned int c = 0; c < 2; ++c)
+              grad_u[c] = inputs.solution_gradients[q][c];
+            const Tensor<2, 2> sigma  = material.cauchy(grad_u, T[q]);
+            const Tensor<2, 2> strain = material.strain(grad_u);
+            unsigned int       k      = 0;
+            computed[q](k++)          = sigma[0][0];
+            computed[q](k++)          = sigma[1][1];
+            computed[q](k++)          = sigma[0][1];
+            if (with_szz)
+              computed[q](k++) = material.out_of_plane_stress(sigma, T[q]);
+            computed[q](k++) = strain[0][0];
+            computed[q](k++) = strain[1][1];
+            computed[q](k++) = strain[0][1];
+            computed[q](k++) = T[q];
+          }
+      }
+
+    private:
+      const std::vector<ThermoelasticMaterial> &materials;
+      const Mapping<2>                         &mapping;
       const std::function<
         std::vector<double>(const Triangulation<2>::active_cell_iterator &,
                             const std::vector<Point<2>> &,
-                            const std::vector<Point<2>> &)> &temperatures,
-      const bool                                             with_szz)
-      : materials(materials)
-      , mapping(mapping)
-      , temperatures(temperatures)
-      , with_szz(with_szz)
-    {}
-
-    std::vector<std::string>
-    get_names() const override
-    {
-      std::vector<std::string> names = {"sxx", "syy", "sxy"};
-      if (with_szz)
-        names.push_back("szz");
-      for (const char *name : {"exx", "eyy", "exy", "T"})
-        names.push_back(name);
-      return names;
-    }
-
-    UpdateFlags
-    get_needed_update_flags() const override
-    {
-      return update_gradients | update_quadrature_points;
-    }
-
-    void
-    evaluate_vector_field(const DataPostprocessorInputs::Vector<2> &inputs,
-                          std::vector<Vector<double>> &computed) const override
-    {
-      const auto dof_cell = inputs.template get_cell<2>();
-      const Triangulation<2>::active_cell_iterator cell(
-        &dof_cell->get_triangulation(),
-        dof_cell->level(),
-        dof_cell->index());
-      const auto           &points = inputs.evaluation_points;
-      std::vector<Point<2>> unit_points;
-      for (const auto &p : points)
-        unit_points.push_back(unit_point_of(mapping, cell, p));
-      const std::vector<double> T = temperatures(cell, unit_points, points);
-      const auto               &material = materials[cell->material_id()];
-      for (unsigned int q = 0; q < points.size(); ++q)
-        {
-          Tensor<2, 2> grad_u;
-          for (unsigned int c = 0; c < 2; ++c)
-            grad_u[c] = inputs.solution_gradients[q][c];
-          const Tensor<2, 2> sigma  = material.cauchy(grad_u, T[q]);
-          const Tensor<2, 2> strain = material.strain(grad_u);
-          unsigned int       k      = 0;
-          computed[q](k++)          = sigma[0][0];
-          computed[q](k++)          = sigma[1][1];
-          computed[q](k++)          = sigma[0][1];
-          if (with_szz)
-            computed[q](k++) = material.out_of_plane_stress(sigma, T[q]);
-          computed[q](k++) = strain[0][0];
-          computed[q](k++) = strain[1][1];
-          computed[q](k++) = strain[0][1];
-          computed[q](k++) = T[q];
-        }
-    }
-
-  private:
-    const std::vector<ThermoelasticMaterial> &materials;
-    const Mapping<2>                         &mapping;
-    const std::function<
-      std::vector<double>(const Triangulation<2>::active_cell_iterator &,
-                          const std::vector<Point<2>> &,
-                          const std::vector<Point<2>> &)>
-               temperatures;
-    const bool with_szz;
-  };
+                            const std::vector<Point<2>> &)>
+                 temperatures;
+      const bool with_szz;
+    };
 
   } // namespace
 
@@ -179,7 +180,7 @@ namespace tmfdem
 
     // stress extremes over the quadrature points of the last solve
     const Quadrature<2> quadrature = cell_quadrature();
-    FEValues<2> fe_values(*mapping, *fe, quadrature, update_gradients);
+    FEValues<2>         fe_values(*mapping, *fe, quadrature, update_gradients);
     const FEValuesExtractors::Vector u(0);
     std::vector<Tensor<2, 2>>        grad_u(quadrature.size());
     std::array<double, 5>            extremes = {{0.,

@@ -282,7 +282,9 @@ namespace tmfdem
   {
     TrilinosWrappers::MPI::Vector distributed;
     refine_mesh_by_kelly(
-      solution, [this]() { setup_dofs(); }, &distributed);
+      solution,
+      [this]() { setup_dofs(); },
+      &distributed);
     hanging_node_constraints.distribute(distributed);
     solution = distributed;
   }
@@ -392,8 +394,8 @@ namespace tmfdem
 
     // quasi-static load steps at every time step; outputs at the output
     // times (the step is shortened to land on them) and at the end
-    const double         start = time_parameters.start_time,
-                 end           = time_parameters.end_time;
+    const double start            = time_parameters.start_time,
+                 end              = time_parameters.end_time;
     const OutputSchedule schedule = output_schedule();
     ProgressReporter     progress(parameters.output.progress_interval,
                               start,
@@ -407,10 +409,12 @@ namespace tmfdem
     for (const double output_time : schedule.times())
       while (time < output_time - schedule.tolerance())
         {
-          const double dt = OutputSchedule::step_towards(
-            time, output_time, time_parameters.time_step);
-          time = schedule.reached(time + dt, output_time) ? output_time :
-                                                            time + dt;
+          const double dt =
+            OutputSchedule::step_towards(time,
+                                         output_time,
+                                         time_parameters.time_step);
+          time =
+            schedule.reached(time + dt, output_time) ? output_time : time + dt;
           solve_at(time);
           ++step;
           const bool at_output = schedule.reached(time, output_time);

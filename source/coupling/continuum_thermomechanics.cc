@@ -1,10 +1,9 @@
+#include <algorithm>
 #include <tmfdem/continuum/heat_solver.h>
 #include <tmfdem/continuum/thermoelastic_solver.h>
 #include <tmfdem/coupling/continuum_thermomechanics.h>
 #include <tmfdem/io/output_files.h>
 #include <tmfdem/io/output_schedule.h>
-
-#include <algorithm>
 
 namespace tmfdem
 {
@@ -124,8 +123,8 @@ namespace tmfdem
     void
     ContinuumThermomechanics::run_transient()
     {
-      const double         start = parameters.time.start_time,
-                   end           = parameters.time.end_time;
+      const double start = parameters.time.start_time,
+                   end   = parameters.time.end_time;
       const OutputSchedule outputs(parameters.output, start, end);
       const OutputSchedule coupling(outputs.times(),
                                     parameters.mechanics.coupling_interval,

@@ -15,7 +15,7 @@ using tmfdem::OutputSchedule;
 TEST(OutputSchedule, ListedIntervalAndEnd)
 {
   // 0.5 and 1.5 listed, every 1 s, from 0 to 3: 0.5 1 1.5 2 3
-  const OutputSchedule schedule({1.5, 0.5}, 1., 0., 3., 1e-10);
+  const OutputSchedule      schedule({1.5, 0.5}, 1., 0., 3., 1e-10);
   const std::vector<double> expected = {0.5, 1., 1.5, 2., 3.};
   EXPECT_EQ(schedule.times(), expected);
 }

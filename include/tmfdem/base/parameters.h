@@ -339,9 +339,6 @@ namespace tmfdem
     TemperatureSource temperature_source = TemperatureSource::function;
     /** T(x, y, t) for Temperature source = function [C]. */
     std::string              temperature      = "0";
-    /** Temperature source = heat solver: stress also every ... [s] (0: only
-     *  at the output times). */
-    double                   coupling_interval = 0.;
     unsigned int             degree           = 2;     ///< polynomial degree
     double                   newton_tolerance = 1e-10; ///< relative residual
     unsigned int             newton_max_iterations = 25;
@@ -351,6 +348,10 @@ namespace tmfdem
     bool                     polar_frame           = false;
     Point<2>                 polar_centre; ///< [m]
     std::vector<PinnedPoint> pinned_points;
+
+    /** Temperature source = heat solver, transient: the stress is also
+     *  solved every ... [s] (0: only at the output times). */
+    double coupling_interval = 0.;
 
     static void
     declare_parameters(ParameterHandler &prm);

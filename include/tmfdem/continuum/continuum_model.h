@@ -130,8 +130,8 @@ namespace tmfdem
      */
     void
     refine_mesh_by_kelly(const TrilinosWrappers::MPI::Vector &solution,
-                         const std::function<void()>   &after_refinement,
-                         TrilinosWrappers::MPI::Vector *transferred);
+                         const std::function<void()>         &after_refinement,
+                         TrilinosWrappers::MPI::Vector       *transferred);
     const Parameters parameters;
     MPI_Comm         communicator;
 

@@ -291,7 +291,7 @@ namespace tmfdem
                     std::map<types::boundary_id, RobinWeights> &weights);
     /** Theta of the current step: that of Time stepping/Method, 1 during
      *  the Rannacher start of a Crank-Nicolson run. */
-    double theta;
+    double                         theta;
     AffineConstraints<double>      constraints;
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;

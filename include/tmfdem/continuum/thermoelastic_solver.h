@@ -21,8 +21,8 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <array>
-#include <chrono>
 #include <boost/signals2/connection.hpp>
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <set>
@@ -175,12 +175,12 @@ namespace tmfdem
     bool                        mesh_changed = false;
     double                      domain_area  = 0.; ///< [m^2]
 
-    AffineConstraints<double>      hanging_node_constraints;
-    AffineConstraints<double>      newton_constraints;   ///< increments
-    AffineConstraints<double>      residual_constraints; ///< homogeneous
-    TrilinosWrappers::SparseMatrix system_matrix;
-    TrilinosWrappers::MPI::Vector  system_rhs;
-    TrilinosWrappers::MPI::Vector  solution; ///< ghosted displacement
+    AffineConstraints<double>            hanging_node_constraints;
+    AffineConstraints<double>            newton_constraints;   ///< increments
+    AffineConstraints<double>            residual_constraints; ///< homogeneous
+    TrilinosWrappers::SparseMatrix       system_matrix;
+    TrilinosWrappers::MPI::Vector        system_rhs;
+    TrilinosWrappers::MPI::Vector        solution; ///< ghosted displacement
     std::vector<types::global_dof_index> pinned_dofs;
 
     std::vector<ThermoelasticMaterial> materials;
@@ -191,10 +191,10 @@ namespace tmfdem
     std::vector<std::array<std::unique_ptr<FunctionParser<2>>, 2>>
       displacement_functions, traction_functions;
 
-    std::vector<NewtonRecord>       newton_history;
-    unsigned long                   solves                  = 0;
-    unsigned long                   total_newton_iterations = 0;
-    unsigned long                   total_linear_iterations = 0;
+    std::vector<NewtonRecord>             newton_history;
+    unsigned long                         solves                  = 0;
+    unsigned long                         total_newton_iterations = 0;
+    unsigned long                         total_linear_iterations = 0;
     std::chrono::steady_clock::time_point wall_start;
     /** Extremes of the Cauchy stress at the last output [Pa]. */
     std::array<double, 5> stress_extremes = {{0., 0., 0., 0., 0.}};
