@@ -8,6 +8,7 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_fe.h>
 #include <deal.II/fe/mapping_q.h>
+#include <deal.II/lac/sparsity_tools.h>
 
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/continuum/adaptivity.h>
@@ -168,6 +169,25 @@ namespace tmfdem
                                             locally_relevant_dofs);
   }
 
+  DynamicSparsityPattern
+  ContinuumModel::distributed_sparsity(
+    const AffineConstraints<double> *constraints) const
+  {
+    DynamicSparsityPattern sparsity(locally_relevant_dofs);
+    if (constraints)
+      DoFTools::make_sparsity_pattern(*dof_handler,
+                                      sparsity,
+                                      *constraints,
+                                      false);
+    else
+      DoFTools::make_sparsity_pattern(*dof_handler, sparsity);
+    SparsityTools::distribute_sparsity_pattern(sparsity,
+                                               locally_owned_dofs,
+                                               communicator,
+                                               locally_relevant_dofs);
+    return sparsity;
+  }
+
   Quadrature<2>
   ContinuumModel::cell_quadrature() const
   {
@@ -183,6 +203,36 @@ namespace tmfdem
     return OutputSchedule(parameters.output,
                           parameters.time.start_time,
                           parameters.time.end_time);
+  }
+
+  JsonObject
+  ContinuumModel::summary_head() const
+  {
+    JsonObject summary;
+    summary.add("model", parameters.model)
+      .add("prm_file", parameters.prm_file)
+      .add("mpi_processes", Utilities::MPI::n_mpi_processes(communicator));
+    return summary;
+  }
+
+  void
+  ContinuumModel::add_run_entries(JsonObject         &summary,
+                                  const unsigned long steps,
+                                  const double        end_time,
+                                  const double        wall_time) const
+  {
+    summary
+      .add("cells",
+           static_cast<long long>(triangulation->n_global_active_cells()))
+      .add("dofs", static_cast<long long>(dof_handler->n_dofs()))
+      .add("steps", static_cast<long long>(steps))
+      .add("end_time", end_time)
+      .add("wall_time", wall_time)
+      .add("element_steps_per_second",
+           wall_time > 0 ?
+             triangulation->n_global_active_cells() *
+               static_cast<double>(std::max(steps, 1ul)) / wall_time :
+             0.);
   }
 
   void

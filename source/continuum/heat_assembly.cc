@@ -84,6 +84,20 @@ namespace tmfdem
       level.valid = false;
   }
 
+  const HeatSolver::BoundaryFunctions *
+  HeatSolver::robin_functions(const DoFHandler<2>::active_cell_iterator &cell,
+                              const unsigned int face) const
+  {
+    if (!cell->at_boundary(face))
+      return nullptr;
+    const auto condition = condition_of.find(cell->face(face)->boundary_id());
+    if (condition == condition_of.end() ||
+        parameters.thermal_boundary.conditions[condition->second].type !=
+          ThermalBoundaryCondition::Type::robin)
+      return nullptr;
+    return &boundary_functions[condition->second];
+  }
+
   void
   HeatSolver::robin_face_matrix(const DoFHandler<2>::active_cell_iterator &cell,
                                 const unsigned int                         face,
@@ -281,17 +295,12 @@ namespace tmfdem
       if (cell->is_locally_owned())
         for (const unsigned int f : cell->face_indices())
           {
-            if (!cell->at_boundary(f))
-              continue;
-            const auto condition =
-              condition_of.find(cell->face(f)->boundary_id());
-            if (condition == condition_of.end() ||
-                parameters.thermal_boundary.conditions[condition->second]
-                    .type != ThermalBoundaryCondition::Type::robin)
+            const BoundaryFunctions *functions = robin_functions(cell, f);
+            if (!functions)
               continue;
             robin_face_matrix(cell,
                               f,
-                              boundary_functions[condition->second],
+                              *functions,
                               time,
                               1.,
                               fe_face_values,
@@ -354,17 +363,12 @@ namespace tmfdem
         local_matrix.add(stiffness_weight, cell_conductivity[index]);
         for (const unsigned int f : cell->face_indices())
           {
-            if (!cell->at_boundary(f))
-              continue;
-            const auto condition =
-              condition_of.find(cell->face(f)->boundary_id());
-            if (condition == condition_of.end() ||
-                parameters.thermal_boundary.conditions[condition->second]
-                    .type != ThermalBoundaryCondition::Type::robin)
+            const BoundaryFunctions *functions = robin_functions(cell, f);
+            if (!functions)
               continue;
             robin_face_matrix(cell,
                               f,
-                              boundary_functions[condition->second],
+                              *functions,
                               new_time,
                               stiffness_weight,
                               fe_face_values,

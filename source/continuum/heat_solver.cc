@@ -168,12 +168,7 @@ namespace tmfdem
 
     make_constraints(parameters.time.start_time);
 
-    DynamicSparsityPattern sparsity(locally_relevant_dofs);
-    DoFTools::make_sparsity_pattern(*dof_handler, sparsity, constraints, false);
-    SparsityTools::distribute_sparsity_pattern(sparsity,
-                                               locally_owned_dofs,
-                                               communicator,
-                                               locally_relevant_dofs);
+    const DynamicSparsityPattern sparsity = distributed_sparsity(&constraints);
     system_matrix.reinit(locally_owned_dofs,
                          locally_owned_dofs,
                          sparsity,
@@ -199,12 +194,7 @@ namespace tmfdem
                                                    homogeneous_constraints);
     homogeneous_constraints.close();
 
-    DynamicSparsityPattern full_sparsity(locally_relevant_dofs);
-    DoFTools::make_sparsity_pattern(*dof_handler, full_sparsity);
-    SparsityTools::distribute_sparsity_pattern(full_sparsity,
-                                               locally_owned_dofs,
-                                               communicator,
-                                               locally_relevant_dofs);
+    const DynamicSparsityPattern full_sparsity = distributed_sparsity(nullptr);
     capacity_matrix.reinit(locally_owned_dofs,
                            locally_owned_dofs,
                            full_sparsity,
@@ -354,9 +344,15 @@ namespace tmfdem
     make_constraints(parameters.time.start_time);
     if (hold_dirichlet)
       constraints.distribute(distributed);
-    solution           = distributed;
-    owned_solution     = distributed;
-    owned_old_solution = distributed;
+    set_state(distributed);
+  }
+
+  void
+  HeatSolver::set_state(const TrilinosWrappers::MPI::Vector &temperature)
+  {
+    solution           = temperature;
+    owned_solution     = temperature;
+    owned_old_solution = temperature;
   }
 
   void
@@ -373,9 +369,7 @@ namespace tmfdem
     if (transfer_solution)
       {
         constraints.distribute(distributed);
-        solution           = distributed;
-        owned_solution     = distributed;
-        owned_old_solution = distributed;
+        set_state(distributed);
       }
   }
 
@@ -438,23 +432,12 @@ namespace tmfdem
         cycle_objects.push_back(object);
       }
 
-    JsonObject summary;
-    summary.add("model", parameters.model)
-      .add("prm_file", parameters.prm_file)
-      .add("mpi_processes", Utilities::MPI::n_mpi_processes(communicator))
-      .add("mode", std::string(steady ? "steady" : "transient"))
-      .add("time_method", steady ? std::string("none") : parameters.time.method)
-      .add("cells",
-           static_cast<long long>(triangulation->n_global_active_cells()))
-      .add("dofs", static_cast<long long>(dof_handler->n_dofs()))
-      .add("steps", static_cast<long long>(steps))
-      .add("end_time", end_time)
-      .add("wall_time", wall_time)
-      .add("element_steps_per_second",
-           wall_time > 0 ?
-             triangulation->n_global_active_cells() *
-               static_cast<double>(std::max(steps, 1ul)) / wall_time :
-             0.)
+    JsonObject summary = summary_head();
+    summary.add("mode", std::string(steady ? "steady" : "transient"))
+      .add("time_method",
+           steady ? std::string("none") : parameters.time.method);
+    add_run_entries(summary, steps, end_time, wall_time);
+    summary
       .add("linear_iterations", static_cast<long long>(total_linear_iterations))
       .add("broken_joints", 0u)
       .add("cracks", 0u)

@@ -267,13 +267,9 @@ namespace tmfdem
       .add("max_abs_sxy", stress_extremes[2])
       .add("max_principal", stress_extremes[3])
       .add("min_principal", stress_extremes[4]);
-    const double    wall_time = this->wall_time();
-    const long long cells =
-      static_cast<long long>(triangulation->n_global_active_cells());
-    JsonObject summary;
-    summary.add("model", parameters.model)
-      .add("prm_file", parameters.prm_file)
-      .add("mpi_processes", Utilities::MPI::n_mpi_processes(communicator))
+    const double wall_time = this->wall_time();
+    JsonObject   summary   = summary_head();
+    summary
       .add("idealisation",
            std::string(mechanics.idealisation ==
                            MechanicsParameters::Idealisation::plane_stress ?
@@ -291,16 +287,9 @@ namespace tmfdem
                        mechanics.temperature_source ==
                            MechanicsParameters::TemperatureSource::heat_solver ?
                          "heat solver" :
-                         "discrete heat"))
-      .add("cells", cells)
-      .add("dofs", static_cast<long long>(dof_handler->n_dofs()))
-      .add("steps", static_cast<long long>(solves))
-      .add("end_time", time)
-      .add("wall_time", wall_time)
-      .add("element_steps_per_second",
-           wall_time > 0 ?
-             cells * static_cast<double>(std::max(solves, 1ul)) / wall_time :
-             0.)
+                         "discrete heat"));
+    add_run_entries(summary, solves, time, wall_time);
+    summary
       .add("newton_iterations", static_cast<long long>(total_newton_iterations))
       .add("linear_iterations", static_cast<long long>(total_linear_iterations))
       .add("broken_joints", 0u)

@@ -220,15 +220,8 @@ namespace tmfdem
     find_pinned_dofs();
 
     // the sparsity pattern with every DoF that may be constrained kept free
-    DynamicSparsityPattern pattern(locally_relevant_dofs);
-    DoFTools::make_sparsity_pattern(*dof_handler,
-                                    pattern,
-                                    hanging_node_constraints,
-                                    false);
-    SparsityTools::distribute_sparsity_pattern(pattern,
-                                               locally_owned_dofs,
-                                               communicator,
-                                               locally_relevant_dofs);
+    const DynamicSparsityPattern pattern =
+      distributed_sparsity(&hanging_node_constraints);
     system_matrix.reinit(locally_owned_dofs,
                          locally_owned_dofs,
                          pattern,

@@ -15,6 +15,8 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe.h>
 #include <deal.II/fe/mapping.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/numerics/data_out.h>
 
@@ -24,6 +26,7 @@
 #include <string>
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/base/simulation.h>
+#include <tmfdem/io/output_files.h>
 #include <tmfdem/io/output_schedule.h>
 #include <vector>
 
@@ -99,6 +102,13 @@ namespace tmfdem
     /** Distributes the DoFs; sets the owned and relevant index sets. */
     void
     distribute_dofs();
+    /**
+     * The sparsity pattern of the DoFs on the relevant rows, distributed
+     * over the processes; with @p constraints, the constrained entries
+     * eliminated (not kept).
+     */
+    DynamicSparsityPattern
+    distributed_sparsity(const AffineConstraints<double> *constraints) const;
     /** Gauss quadrature of degree + 1 points per direction for the cells
      *  (QGauss on quadrilaterals, QGaussSimplex on triangles). */
     Quadrature<2>
@@ -111,6 +121,16 @@ namespace tmfdem
     /** Output/Output times and interval from Start to End time. */
     OutputSchedule
     output_schedule() const;
+    /** The first entries of summary.json: model, prm_file, mpi_processes. */
+    JsonObject
+    summary_head() const;
+    /** The run's entries of summary.json: cells, dofs, @p steps,
+     *  @p end_time [s], @p wall_time [s], element_steps_per_second. */
+    void
+    add_run_entries(JsonObject         &summary,
+                    const unsigned long steps,
+                    const double        end_time,
+                    const double        wall_time) const;
     /** Opens the solution.pvd series in the output folder. */
     void
     open_solution_series();

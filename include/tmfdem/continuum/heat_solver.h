@@ -271,6 +271,14 @@ namespace tmfdem
      */
     void
     set_initial_condition(const bool hold_dirichlet);
+    /** T^{n+1} (ghosted and owned) and T^n set to @p temperature [C]. */
+    void
+    set_state(const TrilinosWrappers::MPI::Vector &temperature);
+    /** The functions of the Robin condition on face @p face of @p cell, or
+     *  nullptr where that face is not on a Robin boundary. */
+    const BoundaryFunctions *
+    robin_functions(const DoFHandler<2>::active_cell_iterator &cell,
+                    const unsigned int                         face) const;
     /** Kelly estimate, mark, refine and coarsen, transfer the solution. */
     void
     adapt_mesh(const bool transfer_solution);
