@@ -1,22 +1,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
-#include <deal.II/distributed/grid_refinement.h>
-#include <deal.II/distributed/shared_tria.h>
-#include <deal.II/distributed/solution_transfer.h>
-#include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_tools.h>
-#include <deal.II/fe/fe_q.h>
-#include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/fe/mapping_fe.h>
-#include <deal.II/fe/mapping_q.h>
-#include <deal.II/grid/grid_tools.h>
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/solver_cg.h>
-#include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/numerics/data_out.h>
-#include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <algorithm>
@@ -27,13 +13,11 @@
 #include <sstream>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/function_expression.h>
-#include <tmfdem/continuum/adaptivity.h>
 #include <tmfdem/continuum/heat_solver.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/monitors.h>
 #include <tmfdem/io/output_files.h>
 #include <tmfdem/mesh/mesh_checks.h>
-#include <tmfdem/mesh/mesh_generator.h>
 
 namespace tmfdem
 {

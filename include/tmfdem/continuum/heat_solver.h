@@ -47,6 +47,13 @@ namespace tmfdem
    * and Robin loads. The heat balance (stored = in through each boundary id +
    * sources) is kept every step, the Dirichlet heat from the reaction of the
    * discrete equations.
+   *
+   * Mesh, element, DoFs, id checks, output schedule and stop handling come
+   * from ContinuumModel; the assembly, linear solve and heat balance are in
+   * source/continuum/heat_assembly.cc. run() drives the time loop through
+   * the same public steps (prepare_transient, step_towards, write_output)
+   * that the continuum thermo-mechanical loop uses
+   * (source/coupling/continuum_thermomechanics.cc).
    */
   class HeatSolver : public ContinuumModel
   {
