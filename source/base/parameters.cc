@@ -756,7 +756,7 @@ namespace tmfdem
       "solved at every time step (steady: once). heat solver: the continuum "
       "heat solver runs on the same mesh (all heat entries apply, its own "
       "outputs go to <Output/Directory>/heat) and the stress is solved at "
-      "each of its output times. discrete heat: the discrete layer's heat "
+      "each output time (and every Mechanics/Coupling interval). discrete heat: the discrete layer's heat "
       "(Discrete heat subsection: exploded P1 triangles, conducting joints) "
       "runs on the same triangle mesh, one MPI process, transient; the "
       "stress is solved at every Time step with the discrete layer's own "
@@ -770,6 +770,15 @@ namespace tmfdem
                       "y [m] (reference coordinates) and t [s] [C]. The "
                       "stress-free temperature is the material's Reference "
                       "temperature.");
+    prm.declare_entry(
+      "Coupling interval",
+      "0",
+      Patterns::Double(0.),
+      "Temperature source = heat solver, transient: the stress is solved at "
+      "every output time and, with an interval > 0, also at Start time + k "
+      "interval (k = 1, 2, ...; the heat steps are shortened to land on "
+      "these times, which changes the heat solution slightly); 0: only at "
+      "the output times [s].");
     prm.declare_entry("Polynomial degree",
                       "2",
                       Patterns::Integer(1, 3),
@@ -838,6 +847,7 @@ namespace tmfdem
       source == "heat solver" ? TemperatureSource::heat_solver :
                                 TemperatureSource::discrete_heat;
     temperature           = prm.get("Temperature");
+    coupling_interval     = prm.get_double("Coupling interval");
     degree                = prm.get_integer("Polynomial degree");
     newton_tolerance      = prm.get_double("Newton tolerance");
     newton_max_iterations = prm.get_integer("Newton maximum iterations");

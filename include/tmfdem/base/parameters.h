@@ -358,6 +358,10 @@ namespace tmfdem
     Point<2>                 polar_centre; ///< [m]
     std::vector<PinnedPoint> pinned_points;
 
+    /** Temperature source = heat solver, transient: the stress is also
+     *  solved every ... [s] (0: only at the output times). */
+    double coupling_interval = 0.;
+
     static void
     declare_parameters(ParameterHandler &prm);
     void

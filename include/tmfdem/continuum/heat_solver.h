@@ -29,15 +29,11 @@
 #include <map>
 #include <memory>
 #include <tmfdem/base/parameters.h>
-#include <tmfdem/base/simulation.h>
+#include <tmfdem/continuum/continuum_model.h>
 #include <vector>
 
 namespace tmfdem
 {
-  class Monitors;
-  class SolutionSeries;
-  struct MeshReport;
-
   /**
    * Heat conduction in the continuum (units: T in C, k in W/(m K), rho c in
    * J/(m^3 K), fluxes in W/m^2, heats per unit thickness in J/m).
@@ -51,8 +47,15 @@ namespace tmfdem
    * and Robin loads. The heat balance (stored = in through each boundary id +
    * sources) is kept every step, the Dirichlet heat from the reaction of the
    * discrete equations.
+   *
+   * Mesh, element, DoFs, id checks, output schedule and stop handling come
+   * from ContinuumModel; the assembly, linear solve and heat balance are in
+   * source/continuum/heat_assembly.cc. run() drives the time loop through
+   * the same public steps (prepare_transient, step_towards, write_output)
+   * that the continuum thermo-mechanical loop uses
+   * (source/coupling/continuum_thermomechanics.cc).
    */
-  class HeatSolver : public Simulation
+  class HeatSolver : public ContinuumModel
   {
   public:
     HeatSolver(const Parameters &parameters, MPI_Comm communicator);
@@ -63,26 +66,9 @@ namespace tmfdem
     void
     run() override;
 
-    /** The temperature DoFHandler (after run or check_input). */
-    const DoFHandler<2> &
-    get_dof_handler() const;
-    /** The mapping used for geometry. */
-    const Mapping<2> &
-    get_mapping() const;
     /** Current temperature, with ghost entries [C]. */
     const TrilinosWrappers::MPI::Vector &
     get_temperature() const;
-    /** The triangulation (after run or check_input); other solvers may
-     *  attach DoFHandlers to it. */
-    parallel::TriangulationBase<2> &
-    get_triangulation();
-    /**
-     * Calls @p hook(time [s]) at every output time, before this solver
-     * writes its own outputs, with the temperature of that time current.
-     * The thermoelastic solver solves for stress there.
-     */
-    void
-    set_output_hook(const std::function<void(const double time)> &hook);
     /**
      * Memory of this process's matrices (system, capacity, conduction, an
      * AMG hierarchy estimated as large as the system matrix), cached element
@@ -148,6 +134,44 @@ namespace tmfdem
                   const std::vector<double> &values);
     /** @} */
 
+    /**
+     * @name Driving a run step by step
+     * run() and the continuum thermo-mechanical loop
+     * (coupling::run_continuum_thermomechanics) call these after
+     * check_input(): transient, prepare_transient(), then step_towards() up
+     * to each output time, write_output() there, and write_summary() at
+     * the end; steady, solve_steady(), write_output(), write_summary().
+     * @{
+     */
+    /** Opens solution.pvd, refines the initial mesh (adaptivity), sets the
+     *  initial temperature and the matrices at Start time. */
+    void
+    prepare_transient();
+    /**
+     * One time step towards @p target [s]: Time stepping/Time step (half
+     * of it during the Rannacher start), shortened to land on @p target
+     * (OutputSchedule::step_towards), the time set to @p target when it is
+     * reached within @p tolerance [s]; then adaptive refinement every
+     * Adaptive refinement/Interval steps.
+     */
+    void
+    step_towards(const double target, const double tolerance);
+    /** Opens solution.pvd and solves the steady problem at Start time (all
+     *  adaptive cycles). */
+    void
+    solve_steady();
+    /** Probes, lines and the vtu of the temperature at @p time [s]. */
+    void
+    write_output(const double time);
+    /** summary.json at @p end_time [s] after @p wall_time [s], with the
+     *  steps, heat balance and adaptive cycles so far; in transient runs
+     *  with @p report_done also the "done" line on stdout. */
+    void
+    write_summary(const double end_time,
+                  const double wall_time,
+                  const bool   report_done) const;
+    /** @} */
+
   private:
     /** Per boundary condition: functions for its value entries. */
     struct BoundaryFunctions
@@ -173,11 +197,10 @@ namespace tmfdem
      *  w . T is the heat rate that h T draws. */
     using RobinWeights = TrilinosWrappers::MPI::Vector;
 
-    /** Builds the mesh, checks it, and everything that depends on it. */
+    /** The mesh, element and DoFHandler; checks boundary ids, material
+     *  ids and adaptivity against the mesh. */
     void
     make_mesh();
-    void
-    check_boundary_ids_and_materials() const;
     void
     setup_dofs();
     /** Hanging nodes and Dirichlet values at @p time. */
@@ -255,41 +278,35 @@ namespace tmfdem
      */
     void
     set_initial_condition(const bool hold_dirichlet);
+    /** T^{n+1} (ghosted and owned) and T^n set to @p temperature [C]. */
+    void
+    set_state(const TrilinosWrappers::MPI::Vector &temperature);
+    /** The functions of the Robin condition on face @p face of @p cell, or
+     *  nullptr where that face is not on a Robin boundary. */
+    const BoundaryFunctions *
+    robin_functions(const DoFHandler<2>::active_cell_iterator &cell,
+                    const unsigned int                         face) const;
     /** Kelly estimate, mark, refine and coarsen, transfer the solution. */
     void
     adapt_mesh(const bool transfer_solution);
-    void
-    write_output(const double time);
-    void
-    run_transient();
+
     /** Stepping state at Start time (time, step count, balance). */
     void
     start_stepping();
     void
     run_steady();
     void
-    write_summary(const unsigned long             steps,
-                  const double                    end_time,
-                  const double                    wall_time,
-                  const HeatBalance              &balance,
-                  const std::vector<std::string> &cycles) const;
-    bool
-    uses_quadrilaterals() const;
-
-    const Parameters parameters;
-    MPI_Comm         communicator;
+    run_transient();
+    /** Adds the cell matrices of the Robin faces at @p time to @p matrix
+     *  (not compressed) and sets the Robin weights at @p time in
+     *  @p weights (one vector per Robin boundary id, on every process). */
+    void
+    add_robin_terms(const double                                time,
+                    TrilinosWrappers::SparseMatrix             &matrix,
+                    std::map<types::boundary_id, RobinWeights> &weights);
     /** Theta of the current step: that of Time stepping/Method, 1 during
      *  the Rannacher start of a Crank-Nicolson run. */
-    double theta;
-
-    std::unique_ptr<parallel::TriangulationBase<2>> triangulation;
-    std::unique_ptr<FiniteElement<2>>               fe;
-    std::unique_ptr<Mapping<2>>                     mapping;
-    std::unique_ptr<DoFHandler<2>>                  dof_handler;
-    std::unique_ptr<MeshReport>                     mesh_report;
-    unsigned int                                    coarse_level = 0;
-
-    IndexSet                       locally_owned_dofs, locally_relevant_dofs;
+    double                         theta;
     AffineConstraints<double>      constraints;
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;
@@ -353,10 +370,9 @@ namespace tmfdem
     /** Per material id: its heat source depends on t. */
     std::vector<bool> time_dependent_source;
 
-    std::unique_ptr<Monitors>         monitors;
-    std::unique_ptr<SolutionSeries>   solution_series;
-    unsigned long                     total_linear_iterations = 0;
-    std::function<void(const double)> output_hook;
+    unsigned long total_linear_iterations = 0;
+    /** Cells, DoFs and CG iterations of each steady adaptive cycle. */
+    std::vector<std::string> adaptive_cycles;
 
     /** Where the time stepping stands. */
     struct SteppingState

@@ -22,20 +22,17 @@
 
 #include <array>
 #include <boost/signals2/connection.hpp>
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <set>
 #include <tmfdem/base/parameters.h>
-#include <tmfdem/base/simulation.h>
+#include <tmfdem/continuum/continuum_model.h>
 #include <tmfdem/continuum/thermoelastic_material.h>
 #include <vector>
 
 namespace tmfdem
 {
-  class HeatSolver;
-  class Monitors;
-  class SolutionSeries;
-
   /**
    * Quasi-static thermoelasticity: find u with div P(grad u, T) = 0 in the
    * reference configuration, P from ThermoelasticMaterial (first
@@ -44,11 +41,11 @@ namespace tmfdem
    * u in m, stresses in Pa, T in C, t in s.
    *
    * The temperature comes from `Mechanics/Temperature` (a function of x, y,
-   * t), from a HeatSolver run on the same triangulation (stress solved at
-   * each of its output times), or from another layer through
-   * set_temperature().
+   * t), from a HeatSolver on the same triangulation (the continuum
+   * thermo-mechanical loop, coupling::ContinuumThermomechanics, sets it
+   * before each solve), or from another layer through set_temperature().
    */
-  class ThermoelasticSolver : public Simulation
+  class ThermoelasticSolver : public ContinuumModel
   {
   public:
     /**
@@ -97,16 +94,21 @@ namespace tmfdem
     /** Writes vtu, probes and lines for @p time [s]. */
     void
     write_output(const double time);
+    /** If the owner of the triangulation adapted it since the last set-up:
+     *  new DoFs, and the displacement starts from rest. */
+    void
+    follow_mesh_change();
+    /** InputError for Initial conditions/Stress free = true (the thermal
+     *  strain is measured from each material's Reference temperature). */
+    void
+    check_initial_conditions() const;
+    /** Prints the "done" line (solves, iterations, cells, DoFs, wall). */
+    void
+    report_done() const;
 
-    /** The displacement DoFHandler (two components, after setup()). */
-    const DoFHandler<2> &
-    get_dof_handler() const;
     /** Current displacement, ghosted [m]. */
     const TrilinosWrappers::MPI::Vector &
     get_displacement() const;
-    /** The triangulation computed on (after setup()). */
-    parallel::TriangulationBase<2> &
-    get_triangulation();
 
   private:
     /** One Newton iteration, for summary.json and stderr. */
@@ -163,37 +165,22 @@ namespace tmfdem
     std::vector<double>
     monitor_values(const DoFHandler<2>::active_cell_iterator &cell,
                    const Point<2>                            &unit_point) const;
-    bool
-    uses_quadrilaterals() const;
     void
     run_with_temperature_function();
-    void
-    run_with_heat_solver();
+    /** Wall time since construction [s]. */
+    double
+    wall_time() const;
 
-    const Parameters parameters;
-    MPI_Comm         communicator;
+    boost::signals2::connection mesh_change_connection;
+    bool                        mesh_changed = false;
+    double                      domain_area  = 0.; ///< [m^2]
 
-    /** Owns the triangulation in heat-solver mode. */
-    std::unique_ptr<HeatSolver>                     heat_solver;
-    std::unique_ptr<parallel::TriangulationBase<2>> own_triangulation;
-    parallel::TriangulationBase<2>                 *triangulation = nullptr;
-    boost::signals2::connection                     mesh_change_connection;
-    bool                                            mesh_changed = false;
-    unsigned int                                    coarse_level = 0;
-    std::set<types::boundary_id>                    mesh_boundary_ids;
-    double                                          domain_area = 0.;
-
-    std::unique_ptr<FiniteElement<2>> fe;
-    std::unique_ptr<Mapping<2>>       mapping;
-    std::unique_ptr<DoFHandler<2>>    dof_handler;
-
-    IndexSet                       locally_owned_dofs, locally_relevant_dofs;
-    AffineConstraints<double>      hanging_node_constraints;
-    AffineConstraints<double>      newton_constraints;   ///< increments
-    AffineConstraints<double>      residual_constraints; ///< homogeneous
-    TrilinosWrappers::SparseMatrix system_matrix;
-    TrilinosWrappers::MPI::Vector  system_rhs;
-    TrilinosWrappers::MPI::Vector  solution; ///< ghosted displacement
+    AffineConstraints<double>            hanging_node_constraints;
+    AffineConstraints<double>            newton_constraints;   ///< increments
+    AffineConstraints<double>            residual_constraints; ///< homogeneous
+    TrilinosWrappers::SparseMatrix       system_matrix;
+    TrilinosWrappers::MPI::Vector        system_rhs;
+    TrilinosWrappers::MPI::Vector        solution; ///< ghosted displacement
     std::vector<types::global_dof_index> pinned_dofs;
 
     std::vector<ThermoelasticMaterial> materials;
@@ -204,13 +191,11 @@ namespace tmfdem
     std::vector<std::array<std::unique_ptr<FunctionParser<2>>, 2>>
       displacement_functions, traction_functions;
 
-    std::unique_ptr<Monitors>       monitors;
-    std::unique_ptr<SolutionSeries> solution_series;
-    std::vector<NewtonRecord>       newton_history;
-    unsigned long                   solves                  = 0;
-    unsigned long                   total_newton_iterations = 0;
-    unsigned long                   total_linear_iterations = 0;
-    double                          wall_start              = 0.;
+    std::vector<NewtonRecord>             newton_history;
+    unsigned long                         solves                  = 0;
+    unsigned long                         total_newton_iterations = 0;
+    unsigned long                         total_linear_iterations = 0;
+    std::chrono::steady_clock::time_point wall_start;
     /** Extremes of the Cauchy stress at the last output [Pa]. */
     std::array<double, 5> stress_extremes = {{0., 0., 0., 0., 0.}};
   };
