@@ -218,21 +218,10 @@ namespace tmfdem
           const double s_old = model.thermal_stretch[e];
           if (s_new == s_old)
             continue;
-          const unsigned int n0 = 3 * e;
-          const double      *ib = &model.inverse_basis[4 * e];
-          const Matrix2      F  = element_basis(model.x[n0],
-                                          model.y[n0],
-                                          model.x[n0 + 1],
-                                          model.y[n0 + 1],
-                                          model.x[n0 + 2],
-                                          model.y[n0 + 2]) *
-                            matrix2(ib[0], ib[1], ib[2], ib[3]);
-          const auto energy = [&](const double s) {
-            return model.reference_area[e] * s * s *
-                   strain_energy_density(Matrix2(F / s), element_lame[e]);
-          };
-          before += energy(s_old);
-          after += energy(s_new);
+          // the strain energy this changes at fixed geometry (energy.h)
+          const Matrix2 F = deformation_gradient(model, e);
+          before += element_strain_energy(model, e, F, s_old, element_lame[e]);
+          after += element_strain_energy(model, e, F, s_new, element_lame[e]);
           model.thermal_stretch[e] = s_new;
         }
       balance.thermal_work += after - before;

@@ -31,19 +31,11 @@ namespace tmfdem
                    (model.vx[n] * model.vx[n] + model.vy[n] * model.vy[n]);
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
-          const unsigned int n0 = 3 * e;
-          const double      *ib = &model.inverse_basis[4 * e];
-          const Matrix2      F  = element_basis(model.x[n0],
-                                          model.y[n0],
-                                          model.x[n0 + 1],
-                                          model.y[n0 + 1],
-                                          model.x[n0 + 2],
-                                          model.y[n0 + 2]) *
-                            matrix2(ib[0], ib[1], ib[2], ib[3]);
-          const double  s  = model.thermal_stretch[e];
-          const Matrix2 Fe = F / s;
-          strain += model.reference_area[e] * s * s *
-                    strain_energy_density(Fe, element_lame[e]);
+          strain += element_strain_energy(model,
+                                          e,
+                                          deformation_gradient(model, e),
+                                          model.thermal_stretch[e],
+                                          element_lame[e]);
         }
       for (unsigned int j = 0; j < model.n_joints; ++j)
         if (model.joint_status[j] == JointStatus::intact &&

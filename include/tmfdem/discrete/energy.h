@@ -57,6 +57,36 @@ namespace tmfdem
       scale() const;
     };
 
+    /** Deformation gradient F of element @p e at the current node
+     *  positions of @p model [-]. */
+    inline Matrix2
+    deformation_gradient(const DiscreteModel &model, const unsigned int e)
+    {
+      const unsigned int n0 = 3 * e;
+      const double      *ib = &model.inverse_basis[4 * e];
+      return element_basis(model.x[n0],
+                           model.y[n0],
+                           model.x[n0 + 1],
+                           model.y[n0 + 1],
+                           model.x[n0 + 2],
+                           model.y[n0 + 2]) *
+             matrix2(ib[0], ib[1], ib[2], ib[3]);
+    }
+
+    /** Strain energy of element @p e of @p model [J/m] at deformation
+     *  gradient @p F and thermal stretch @p s (Eq. 44 on F_e = F / s, per
+     *  reference area s^2 A) with Lame constants @p lame. */
+    inline double
+    element_strain_energy(const DiscreteModel &model,
+                          const unsigned int   e,
+                          const Matrix2       &F,
+                          const double         s,
+                          const LameConstants &lame)
+    {
+      const Matrix2 Fe = F / s;
+      return model.reference_area[e] * s * s * strain_energy_density(Fe, lame);
+    }
+
     /**
      * Sets the stored terms of @p balance at the current state of
      * @p model: kinetic energy 1/2 m |v|^2, strain energy of the elements
