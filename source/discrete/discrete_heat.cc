@@ -34,42 +34,6 @@ namespace tmfdem
         });
     } // namespace
 
-    template <typename Function>
-    void
-    DiscreteHeat::for_each_contact_transfer(const Function &f) const
-    {
-      // transfers in parallel, handed to f in pair order
-      std::vector<ContactHeatTransfer> transfers(contact_pairs.size());
-      std::vector<char>                overlapping(contact_pairs.size(), 0);
-      const ContactHeatModel           contact_model =
-        parameters.get<DiscreteHeatParameters>().contact_heat_model;
-      for_each_chunk(arena_for(n_threads),
-                     contact_pairs.size(),
-                     64,
-                     [&](const std::size_t begin,
-                         const std::size_t end,
-                         const std::size_t) {
-                       for (std::size_t p = begin; p < end; ++p)
-                         {
-                           const auto [c, t] = contact_pairs[p];
-                           OverlapPolygon overlap;
-                           overlapping[p] = contact_heat(contact_model,
-                                                         &model.x[3 * c],
-                                                         &model.y[3 * c],
-                                                         T.begin() + 3 * c,
-                                                         &model.x[3 * t],
-                                                         &model.y[3 * t],
-                                                         T.begin() + 3 * t,
-                                                         contact_conductance,
-                                                         overlap,
-                                                         transfers[p]);
-                         }
-                     });
-      for (std::size_t p = 0; p < contact_pairs.size(); ++p)
-        if (overlapping[p])
-          f(contact_pairs[p].first, contact_pairs[p].second, transfers[p]);
-    }
-
     namespace
     {
       /** Gradients of the P1 shape functions times 2A (current geometry)
@@ -334,96 +298,6 @@ namespace tmfdem
       set_function_time(time);
       initial_T = T;
       update_contact_pairs();
-    }
-
-    void
-    DiscreteHeat::update_contact_pairs()
-    {
-      contact_pairs.clear();
-      sparsity.reinit(0, 0, 0); // couplings change: rebuild the pattern
-      if (contact_conductance <= 0.)
-        return;
-      // candidates: the mechanics' (one search for both), or our own
-      std::vector<ContactPair>        own_candidates;
-      const std::vector<ContactPair> &candidates =
-        shared_candidates ? *shared_candidates : own_candidates;
-      if (!shared_candidates)
-        search_contact_candidates(own_candidates);
-      std::vector<char> touching(candidates.size(), 0);
-      for_each_chunk(
-        arena_for(n_threads),
-        candidates.size(),
-        256,
-        [&](const std::size_t begin, const std::size_t end, const std::size_t) {
-          for (std::size_t p = begin; p < end; ++p)
-            {
-              const ContactPair &c = candidates[p];
-              OverlapPolygon     overlap;
-              touching[p] = triangle_overlap(&model.x[3 * c.first],
-                                             &model.y[3 * c.first],
-                                             &model.x[3 * c.second],
-                                             &model.y[3 * c.second],
-                                             overlap) &&
-                            overlap.contact_length > 0.;
-            }
-        });
-      for (std::size_t p = 0; p < candidates.size(); ++p)
-        if (touching[p])
-          contact_pairs.emplace_back(candidates[p].first, candidates[p].second);
-    }
-
-    void
-    DiscreteHeat::search_contact_candidates(
-      std::vector<ContactPair> &candidates) const
-    {
-      // triangles with a free edge and their intact neighbours; boxes
-      // that overlap (no buffer); pairs joined by an intact joint excluded
-      std::vector<unsigned char> active(model.n_elements, 0);
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        for (unsigned int k = 0; k < 3; ++k)
-          if (model.intact_neighbour(e, k) < 0)
-            active[e] = 1;
-      std::vector<unsigned char> with_neighbours = active;
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        if (active[e])
-          for (unsigned int k = 0; k < 3; ++k)
-            if (model.intact_neighbour(e, k) >= 0)
-              with_neighbours[model.intact_neighbour(e, k)] = 1;
-      std::vector<unsigned int> elements;
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        if (with_neighbours[e])
-          elements.push_back(e);
-      LinkedCellSearch search;
-      search.rebuild(
-        model.x,
-        model.y,
-        elements,
-        0.,
-        [&](const unsigned int a, const unsigned int b) {
-          return model.joined(a, b);
-        },
-        candidates,
-        arena_for(n_threads));
-    }
-
-    double
-    DiscreteHeat::add_contact_heat(Vector<double> &rate) const
-    {
-      double total          = 0.;
-      last_contact_exchange = 0.;
-      for_each_contact_transfer([&](const unsigned int         c,
-                                    const unsigned int         t,
-                                    const ContactHeatTransfer &transfer) {
-        last_contact_exchange += std::abs(transfer.heat_flow);
-        for (unsigned int k = 0; k < 3; ++k)
-          {
-            rate[3 * c + k] += transfer.contactor_nodal_heat[k];
-            rate[3 * t + k] += transfer.target_nodal_heat[k];
-            total +=
-              transfer.contactor_nodal_heat[k] + transfer.target_nodal_heat[k];
-          }
-      });
-      return total;
     }
 
     void

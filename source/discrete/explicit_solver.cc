@@ -25,6 +25,7 @@
 #include <tmfdem/discrete/temperature_source.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
+#include <tmfdem/io/output_schedule.h>
 
 namespace tmfdem
 {
@@ -135,16 +136,15 @@ namespace tmfdem
         lines_csv = open_csv(folder + "/lines.csv", monitor_header);
 
       const double start = time, end = parameters.time.end_time;
-      output_times.clear();
-      for (const double t : parameters.output.times)
-        if (t > start && t < end)
-          output_times.push_back(t);
-      if (parameters.output.interval > 0.)
-        for (double t = start + parameters.output.interval; t < end;
-             t += parameters.output.interval)
-          output_times.push_back(t);
-      output_times.push_back(end);
-      std::sort(output_times.begin(), output_times.end());
+      // the output schedule every model uses (io/output_schedule.h); an
+      // output time is reached within half an explicit (or thermal) step,
+      // below, so the schedule itself merges nothing (tolerance 0)
+      output_times = OutputSchedule(parameters.output.times,
+                                    parameters.output.interval,
+                                    start,
+                                    end,
+                                    0.)
+                       .times();
       history_interval = (end - start) / 1000.;
       next_history     = start + history_interval;
 

@@ -7,9 +7,10 @@
  * integrals of phi_t along the contactor's edges inside the target (and vice
  * versa), integrated exactly: phi is piecewise linear along an edge, the
  * shape functions are linear, so Simpson's rule on each linear piece is
- * exact. Coulomb friction with an elastic slip history per contactor edge
- * (Eq. 6). The broad phase is a linked-cell grid (NBS type) rebuilt only
- * when the accumulated displacement passes the buffer.
+ * exact. The broad phase is a linked-cell grid (NBS type). The forces
+ * these integrals give, with Coulomb friction (Eq. 6), are the contact law
+ * of contact_law.h; when the search runs again (the accumulated travel
+ * passes half the buffer) is decided by ContactSystem (contact_system.h).
  */
 #ifndef tmfdem_discrete_contact_h
 #define tmfdem_discrete_contact_h

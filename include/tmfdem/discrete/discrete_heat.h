@@ -28,6 +28,7 @@
 #include <map>
 #include <memory>
 #include <tmfdem/base/parameters.h>
+#include <tmfdem/discrete/contact_heat.h>
 #include <tmfdem/discrete/discrete_model.h>
 #include <tmfdem/discrete/temperature_source.h>
 #include <vector>
@@ -258,7 +259,20 @@ namespace tmfdem
        *  pair at the current temperatures. */
       template <typename Function>
       void
-      for_each_contact_transfer(const Function &f) const;
+      for_each_contact_transfer(const Function &f) const
+      {
+        compute_contact_transfers();
+        for (std::size_t p = 0; p < contact_pairs.size(); ++p)
+          if (overlapping[p])
+            f(contact_pairs[p].first, contact_pairs[p].second, transfers[p]);
+      }
+      /** The transfers of all contact pairs at the current temperatures, in
+       *  parallel, into `transfers` (`overlapping`: the pair overlaps). */
+      void
+      compute_contact_transfers() const;
+      /** Scratch of compute_contact_transfers(), one entry per pair. */
+      mutable std::vector<ContactHeatTransfer> transfers;
+      mutable std::vector<char>                overlapping;
       /** Adds the contact heats of T to @p rate; returns their sum. */
       double
       add_contact_heat(Vector<double> &rate) const;
