@@ -121,9 +121,10 @@ namespace tmfdem
     }
 
     double
-    ContactSystem::compute_forces(const DiscreteModel &model,
-                                  const double         dt,
-                                  tbb::task_arena     &arena)
+    ContactSystem::compute_forces(const DiscreteModel    &model,
+                                  const double            dt,
+                                  tbb::task_arena        &arena,
+                                  const ElementPartition &partition)
     {
       if (pair_list.empty())
         return 0.;
@@ -133,17 +134,19 @@ namespace tmfdem
             return compute_forces_with(contact.penalty_coulomb,
                                        model,
                                        dt,
-                                       arena);
+                                       arena,
+                                       partition);
         }
       return 0.;
     }
 
     template <typename Law>
     double
-    ContactSystem::compute_forces_with(const Law           &law,
-                                       const DiscreteModel &m,
-                                       const double         dt,
-                                       tbb::task_arena     &arena)
+    ContactSystem::compute_forces_with(const Law              &law,
+                                       const DiscreteModel    &m,
+                                       const double            dt,
+                                       tbb::task_arena        &arena,
+                                       const ElementPartition &partition)
     {
       for_each_chunk(
         arena,
@@ -152,8 +155,15 @@ namespace tmfdem
         [&](const std::size_t begin, const std::size_t end, const std::size_t) {
           for (std::size_t p = begin; p < end; ++p)
             {
-              ContactPair &pair  = pair_list[p];
-              double      *force = &pair_force[12 * p];
+              ContactPair &pair = pair_list[p];
+              // pairs of other ranks' triangles only (partition.h)
+              const bool counts = partition.owns(pair.first);
+              if (!counts && !partition.owns(pair.second))
+                {
+                  pair_friction[p] = 0.;
+                  continue;
+                }
+              double *force = &pair_force[12 * p];
               for (unsigned int i = 0; i < 12; ++i)
                 force[i] = 0.;
               double dissipated = 0.;
@@ -205,14 +215,41 @@ namespace tmfdem
                                                     ft);
                     }
                 }
-              pair_friction[p] = dissipated;
+              pair_friction[p] = counts ? dissipated : 0.;
             }
         });
-      // friction dissipation, summed in pair order
+      // friction dissipation, summed in pair order (exact over ranks: one
+      // rank counts each pair)
+      partition.sum(pair_friction);
       double sum = 0.;
       for (const double d : pair_friction)
         sum += d;
       return sum;
+    }
+
+    void
+    ContactSystem::synchronise_pairs(const ElementPartition &partition)
+    {
+      if (!partition.distributed())
+        return;
+      constexpr unsigned int width = 18; // 6 slips, 12 forces
+      std::vector<double>    data(width * pair_list.size(), 0.);
+      for (std::size_t p = 0; p < pair_list.size(); ++p)
+        if (partition.owns(pair_list[p].first))
+          {
+            for (unsigned int i = 0; i < 6; ++i)
+              data[width * p + i] = pair_list[p].slip[i];
+            for (unsigned int i = 0; i < 12; ++i)
+              data[width * p + 6 + i] = pair_force[12 * p + i];
+          }
+      partition.sum(data); // exact: one rank holds each pair's values
+      for (std::size_t p = 0; p < pair_list.size(); ++p)
+        {
+          for (unsigned int i = 0; i < 6; ++i)
+            pair_list[p].slip[i] = data[width * p + i];
+          for (unsigned int i = 0; i < 12; ++i)
+            pair_force[12 * p + i] = data[width * p + 6 + i];
+        }
     }
 
     void

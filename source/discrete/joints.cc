@@ -55,7 +55,9 @@ namespace tmfdem
       compute_joint_forces_with(DiscreteModel     &m,
                                 const double       t,
                                 tbb::task_arena   &arena,
-                                std::vector<char> &broke_in_chunk)
+                                std::vector<char> &broke_in_chunk,
+                                const unsigned int first_element,
+                                const unsigned int end_element)
       {
         broke_in_chunk.assign((m.n_joints + joint_chunk_size - 1) /
                                 joint_chunk_size,
@@ -71,6 +73,12 @@ namespace tmfdem
               {
                 double *f = &m.joint_force[8 * j];
                 if (m.joint_status[j] != JointStatus::intact)
+                  continue;
+                // joints of another rank's triangles only (partition.h)
+                const unsigned int ea = m.joint_elements[2 * j],
+                                   eb = m.joint_elements[2 * j + 1];
+                if ((ea < first_element || ea >= end_element) &&
+                    (eb < first_element || eb >= end_element))
                   continue;
                 const JointFrame      g    = joint_frame(m, j);
                 const JointConstants &k    = m.joint_constants[j];
@@ -218,7 +226,9 @@ namespace tmfdem
                          DiscreteModel     &model,
                          const double       time,
                          tbb::task_arena   &arena,
-                         std::vector<char> &broke_in_chunk)
+                         std::vector<char> &broke_in_chunk,
+                         const unsigned int first_element,
+                         const unsigned int end_element)
     {
       switch (law)
         {
@@ -227,13 +237,17 @@ namespace tmfdem
               model,
               time,
               arena,
-              broke_in_chunk);
+              broke_in_chunk,
+              first_element,
+              end_element);
           case SofteningLaw::munjiza:
             return compute_joint_forces_with<SofteningLaw::munjiza>(
               model,
               time,
               arena,
-              broke_in_chunk);
+              broke_in_chunk,
+              first_element,
+              end_element);
         }
       return false;
     }

@@ -36,14 +36,18 @@ namespace tmfdem
      * model.joint_force (8 per joint: nodes a0, a1, b0, b1) [N/m]; joints
      * whose damage reaches 1 at both Gauss points break (status by mode,
      * break time @p time) and carry no force. Runs in @p arena over fixed
-     * chunks; @p broke_in_chunk is scratch. Returns whether a joint broke.
+     * chunks; @p broke_in_chunk is scratch. Only joints with a triangle in
+     * [@p first_element, @p end_element) (this rank's, partition.h) are
+     * computed. Returns whether one of them broke.
      */
     bool
     compute_joint_forces(const SofteningLaw law,
                          DiscreteModel     &model,
                          const double       time,
                          tbb::task_arena   &arena,
-                         std::vector<char> &broke_in_chunk);
+                         std::vector<char> &broke_in_chunk,
+                         const unsigned int first_element,
+                         const unsigned int end_element);
 
     /**
      * The largest strength utilisation over the undamaged intact joints
