@@ -13,7 +13,7 @@ triangles and bytes were exchanged.
 
     rank_independence.py TMFDEM [--ranks 1 2 3] [--cases joint_pull ...]
                          [--mechanical-steps N] [--thermal-steps N]
-                         [--set ENTRY=VALUE ...] [--out FOLDER]
+                         [--set ENTRY=VALUE ...] [--end-time T] [--out FOLDER]
 
 Exit status 0 when every case is identical on every rank count.
 """
@@ -66,6 +66,8 @@ def main():
     parser.add_argument("--mechanical-steps", type=int, default=2000)
     parser.add_argument("--thermal-steps", type=int, default=3)
     parser.add_argument("--set", action="append", default=[], dest="sets")
+    parser.add_argument("--end-time", type=float,
+                        help="End time [s] instead of the span of --mechanical/--thermal-steps")
     parser.add_argument("--out", default=os.path.join("output", "rank_independence"))
     args = parser.parse_args()
     rn.VOLATILE.update(MPI_ENTRIES)
@@ -75,8 +77,9 @@ def main():
         work = os.path.join(args.out, case)
         os.makedirs(work, exist_ok=True)
         try:
-            end = rn.span(args.binary, prm, args.mechanical_steps, args.thermal_steps,
-                          os.path.join(work, "validate"))
+            end = args.end_time if args.end_time is not None else rn.span(
+                args.binary, prm, args.mechanical_steps, args.thermal_steps,
+                os.path.join(work, "validate"))
             folders = {}
             for n in args.ranks:
                 folders[n] = os.path.join(work, f"np{n}")
