@@ -28,7 +28,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import results_neutral as rn  # noqa: E402
 
 MPI_ENTRIES = {"mpi_processes", "ghost_elements", "ghost_exchange_bytes",
-               "synchronisations", "synchronisation_bytes"}
+               "synchronisations", "synchronisation_bytes", "communication_time_s"}
 DEFAULT_CASES = ["joint_pull", "block_on_incline", "two_blocks_collision",
                  "plate_traction", "sheet_free_expansion", "thermal_shock_disc",
                  "contact_conduction", "cut_plate"]

@@ -218,6 +218,8 @@ namespace tmfdem
         Utilities::MPI::sum(static_cast<double>(
                               partition.synchronisation_bytes_sent()),
                             communicator);
+      const double communication_max =
+        Utilities::MPI::max(partition.communication_time(), communicator);
       const double ghosts =
         Utilities::MPI::sum(static_cast<double>(partition.n_ghosts()),
                             communicator);
@@ -313,6 +315,7 @@ namespace tmfdem
         .add("synchronisations",
              static_cast<long long>(partition.n_synchronisations()))
         .add("synchronisation_bytes", sync_bytes)
+        .add("communication_time_s", communication_max)
         .add("momentum_x", px)
         .add("momentum_y", py)
         .add("energy", energies)

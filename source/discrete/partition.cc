@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
+#include <chrono>
 #include <tmfdem/discrete/partition.h>
 
 namespace tmfdem
@@ -9,6 +10,26 @@ namespace tmfdem
   {
     namespace
     {
+      /** Adds the wall time of its life to a counter [s]. */
+      class CommunicationTimer
+      {
+      public:
+        explicit CommunicationTimer(double &total)
+          : total(total)
+          , start(std::chrono::steady_clock::now())
+        {}
+        ~CommunicationTimer()
+        {
+          total += std::chrono::duration<double>(
+                     std::chrono::steady_clock::now() - start)
+                     .count();
+        }
+
+      private:
+        double                               &total;
+        std::chrono::steady_clock::time_point start;
+      };
+
       /** Doubles per triangle in the ghost exchange: x, y, vx, vy of its
        *  three nodes. */
       constexpr unsigned int ghost_width = 12;
@@ -124,7 +145,8 @@ namespace tmfdem
     {
       if (!distributed())
         return;
-      const int tag = 4711;
+      CommunicationTimer timer(communication_seconds);
+      const int          tag = 4711;
       for (std::size_t i = 0; i < neighbours.size(); ++i)
         {
           Neighbour &n = neighbours[i];
@@ -177,6 +199,7 @@ namespace tmfdem
     {
       if (!distributed())
         return;
+      CommunicationTimer timer(communication_seconds);
       counts.assign(n_ranks, 0);
       displacements.assign(n_ranks + 1, 0);
       for (unsigned int r = 0; r < n_ranks; ++r)
@@ -261,6 +284,7 @@ namespace tmfdem
     {
       if (!distributed() || values.empty())
         return;
+      CommunicationTimer timer(communication_seconds);
       AssertThrowMPI(MPI_Allreduce(MPI_IN_PLACE,
                                    values.data(),
                                    static_cast<int>(values.size()),

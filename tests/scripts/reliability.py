@@ -79,7 +79,8 @@ VOLATILE = {"wall_time", "element_steps_per_second",
             "threads_used", "threads_available", "cpu_time_busiest_thread_s",
             "cpu_time_other_threads_s",
             # traffic of a run that was cut off and resumed differs
-            "ghost_exchange_bytes", "synchronisations", "synchronisation_bytes"}
+            "ghost_exchange_bytes", "synchronisations", "synchronisation_bytes",
+            "communication_time_s"}
 
 
 def command(folder, *settings, resume=False):

@@ -151,6 +151,13 @@ namespace tmfdem
       {
         return synchronisations;
       }
+      /** Wall time this rank spent in exchanges, reductions and
+       *  synchronisations so far (waits for other ranks included) [s]. */
+      double
+      communication_time() const
+      {
+        return communication_seconds;
+      }
       /** Ghost triangles of this rank in the current plan. */
       unsigned int
       n_ghosts() const;
@@ -174,9 +181,10 @@ namespace tmfdem
       std::vector<Neighbour>   neighbours;
       std::vector<MPI_Request> requests;
 
-      std::uint64_t ghost_bytes      = 0;
-      std::uint64_t sync_bytes       = 0;
-      unsigned long synchronisations = 0;
+      std::uint64_t  ghost_bytes           = 0;
+      std::uint64_t  sync_bytes            = 0;
+      unsigned long  synchronisations      = 0;
+      mutable double communication_seconds = 0.;
       /** Scratch of synchronise(). */
       std::vector<double> scratch;
       std::vector<int>    counts, displacements;
