@@ -74,6 +74,7 @@ namespace tmfdem
       travel_since_search = 0.;
       search_is_needed    = false;
       ++searches;
+      local_pairs_of_search = 0;
     }
 
     void
@@ -148,22 +149,31 @@ namespace tmfdem
                                        tbb::task_arena        &arena,
                                        const ElementPartition &partition)
     {
+      // on several ranks: the pairs with a triangle of this rank (the
+      // others' friction entries stay 0)
+      const bool distributed = partition.distributed();
+      if (distributed && local_pairs_of_search != searches + 1)
+        {
+          local_pairs.clear();
+          for (unsigned int p = 0; p < pair_list.size(); ++p)
+            if (partition.owns(pair_list[p].first) ||
+                partition.owns(pair_list[p].second))
+              local_pairs.push_back(p);
+          local_pairs_of_search = searches + 1;
+        }
+      if (distributed)
+        std::fill(pair_friction.begin(), pair_friction.end(), 0.);
       for_each_chunk(
         arena,
-        pair_list.size(),
+        distributed ? local_pairs.size() : pair_list.size(),
         256,
         [&](const std::size_t begin, const std::size_t end, const std::size_t) {
-          for (std::size_t p = begin; p < end; ++p)
+          for (std::size_t i = begin; i < end; ++i)
             {
-              ContactPair &pair = pair_list[p];
-              // pairs of other ranks' triangles only (partition.h)
-              const bool counts = partition.owns(pair.first);
-              if (!counts && !partition.owns(pair.second))
-                {
-                  pair_friction[p] = 0.;
-                  continue;
-                }
-              double *force = &pair_force[12 * p];
+              const std::size_t p      = distributed ? local_pairs[i] : i;
+              ContactPair      &pair   = pair_list[p];
+              const bool        counts = partition.owns(pair.first);
+              double           *force  = &pair_force[12 * p];
               for (unsigned int i = 0; i < 12; ++i)
                 force[i] = 0.;
               double dissipated = 0.;
@@ -270,7 +280,8 @@ namespace tmfdem
       search_is_needed    = flag != 0;
       std::uint64_t count = 0;
       in.get(count);
-      searches = count;
+      searches              = count;
+      local_pairs_of_search = 0;
       in.get(pair_list);
       for (const auto &p : pair_list)
         if (p.first >= n_elements || p.second >= n_elements)

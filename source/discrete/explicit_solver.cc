@@ -108,8 +108,7 @@ namespace tmfdem
                                           time,
                                           arena_for(n_threads),
                                           joint_chunk_broke,
-                                          partition.begin(),
-                                          partition.end());
+                                          partition.joints());
       if (joints_broke && !partition.distributed())
         contact.request_search();
       update_nodes();

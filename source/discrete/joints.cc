@@ -56,29 +56,25 @@ namespace tmfdem
                                 const double       t,
                                 tbb::task_arena   &arena,
                                 std::vector<char> &broke_in_chunk,
-                                const unsigned int first_element,
-                                const unsigned int end_element)
+                                const JointSubset &subset)
       {
-        broke_in_chunk.assign((m.n_joints + joint_chunk_size - 1) /
-                                joint_chunk_size,
-                              0);
+        // the joints of the subset: a range, then a list (partition.h)
+        const std::size_t n_range = subset.end - subset.begin;
+        const std::size_t n       = n_range + subset.others.size();
+        broke_in_chunk.assign((n + joint_chunk_size - 1) / joint_chunk_size, 0);
         for_each_chunk(
           arena,
-          m.n_joints,
+          n,
           joint_chunk_size,
           [&](const std::size_t begin,
               const std::size_t end,
               const std::size_t c) {
-            for (std::size_t j = begin; j < end; ++j)
+            for (std::size_t i = begin; i < end; ++i)
               {
+                const std::size_t j =
+                  i < n_range ? subset.begin + i : subset.others[i - n_range];
                 double *f = &m.joint_force[8 * j];
                 if (m.joint_status[j] != JointStatus::intact)
-                  continue;
-                // joints of another rank's triangles only (partition.h)
-                const unsigned int ea = m.joint_elements[2 * j],
-                                   eb = m.joint_elements[2 * j + 1];
-                if ((ea < first_element || ea >= end_element) &&
-                    (eb < first_element || eb >= end_element))
                   continue;
                 const JointFrame      g    = joint_frame(m, j);
                 const JointConstants &k    = m.joint_constants[j];
@@ -227,8 +223,7 @@ namespace tmfdem
                          const double       time,
                          tbb::task_arena   &arena,
                          std::vector<char> &broke_in_chunk,
-                         const unsigned int first_element,
-                         const unsigned int end_element)
+                         const JointSubset &subset)
     {
       switch (law)
         {
@@ -238,16 +233,14 @@ namespace tmfdem
               time,
               arena,
               broke_in_chunk,
-              first_element,
-              end_element);
+              subset);
           case SofteningLaw::munjiza:
             return compute_joint_forces_with<SofteningLaw::munjiza>(
               model,
               time,
               arena,
               broke_in_chunk,
-              first_element,
-              end_element);
+              subset);
         }
       return false;
     }

@@ -70,6 +70,13 @@ namespace tmfdem
       for (unsigned int k = 0; k + 1 < model.n_joints; ++k)
         Assert(model.joint_elements[2 * k] <= model.joint_elements[2 * k + 2],
                ExcInternalError());
+      // this rank's joints, and the earlier ranks' joints to its triangles
+      joint_subset.begin = joint_begin[this_rank];
+      joint_subset.end   = joint_begin[this_rank + 1];
+      joint_subset.others.clear();
+      for (unsigned int k = 0; k < joint_subset.begin; ++k)
+        if (owns(model.joint_elements[2 * k + 1]))
+          joint_subset.others.push_back(k);
       neighbours.clear();
       requests.clear();
     }

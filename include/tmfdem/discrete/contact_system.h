@@ -190,9 +190,13 @@ namespace tmfdem
        *  each 2 pair + side. */
       std::vector<unsigned int> element_pair_start, element_pair_entries;
       std::vector<unsigned int> active_elements;
-      double                    travel_since_search = 0.; ///< [m]
-      bool                      search_is_needed    = true;
-      unsigned long             searches            = 0;
+      /** Several ranks: the pairs with a triangle of this rank, made for
+       *  the search numbered local_pairs_of_search - 1. */
+      std::vector<unsigned int> local_pairs;
+      unsigned long             local_pairs_of_search = 0;
+      double                    travel_since_search   = 0.; ///< [m]
+      bool                      search_is_needed      = true;
+      unsigned long             searches              = 0;
     };
   } // namespace discrete
 } // namespace tmfdem

@@ -28,6 +28,7 @@
 #include <mpi.h>
 #include <tmfdem/discrete/contact.h>
 #include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/joints.h>
 #include <vector>
 
 namespace tmfdem
@@ -93,6 +94,13 @@ namespace tmfdem
       end_joint() const
       {
         return joint_begin[this_rank + 1];
+      }
+      /** The joints this rank computes: its own (first triangle here)
+       *  and those whose second triangle is here. */
+      const JointSubset &
+      joints() const
+      {
+        return joint_subset;
       }
       /** The rank that owns triangle @p e. */
       unsigned int
@@ -170,6 +178,7 @@ namespace tmfdem
       /** First joint of every rank (joints are numbered by their first
        *  triangle), and n_joints at the end. */
       std::vector<unsigned int> joint_begin;
+      JointSubset               joint_subset;
 
       /** One neighbouring rank of the ghost plan. */
       struct Neighbour
