@@ -111,6 +111,12 @@ namespace tmfdem
         }
       for (unsigned int e = 0; e < n_elements; ++e)
         element_pair_start[e + 1] += element_pair_start[e];
+      // pairs are sorted by their first triangle: where each one's begin
+      first_pair_start.assign(n_elements + 1, 0);
+      for (const auto &p : pair_list)
+        ++first_pair_start[p.first + 1];
+      for (unsigned int e = 0; e < n_elements; ++e)
+        first_pair_start[e + 1] += first_pair_start[e];
       element_pair_entries.resize(2 * pair_list.size());
       std::vector<unsigned int> fill(element_pair_start.begin(),
                                      element_pair_start.end() - 1);
@@ -121,28 +127,28 @@ namespace tmfdem
         }
     }
 
-    double
+    void
     ContactSystem::compute_forces(const DiscreteModel    &model,
                                   const double            dt,
                                   tbb::task_arena        &arena,
                                   const ElementPartition &partition)
     {
       if (pair_list.empty())
-        return 0.;
+        return;
       switch (contact.law)
         {
           case ContactLaw::penalty_coulomb:
-            return compute_forces_with(contact.penalty_coulomb,
-                                       model,
-                                       dt,
-                                       arena,
-                                       partition);
+            compute_forces_with(contact.penalty_coulomb,
+                                model,
+                                dt,
+                                arena,
+                                partition);
+            return;
         }
-      return 0.;
     }
 
     template <typename Law>
-    double
+    void
     ContactSystem::compute_forces_with(const Law              &law,
                                        const DiscreteModel    &m,
                                        const double            dt,
@@ -161,8 +167,6 @@ namespace tmfdem
               local_pairs.push_back(p);
           local_pairs_of_search = searches + 1;
         }
-      if (distributed)
-        std::fill(pair_friction.begin(), pair_friction.end(), 0.);
       for_each_chunk(
         arena,
         distributed ? local_pairs.size() : pair_list.size(),
@@ -170,10 +174,9 @@ namespace tmfdem
         [&](const std::size_t begin, const std::size_t end, const std::size_t) {
           for (std::size_t i = begin; i < end; ++i)
             {
-              const std::size_t p      = distributed ? local_pairs[i] : i;
-              ContactPair      &pair   = pair_list[p];
-              const bool        counts = partition.owns(pair.first);
-              double           *force  = &pair_force[12 * p];
+              const std::size_t p     = distributed ? local_pairs[i] : i;
+              ContactPair      &pair  = pair_list[p];
+              double           *force = &pair_force[12 * p];
               for (unsigned int i = 0; i < 12; ++i)
                 force[i] = 0.;
               double dissipated = 0.;
@@ -225,16 +228,9 @@ namespace tmfdem
                                                     ft);
                     }
                 }
-              pair_friction[p] = counts ? dissipated : 0.;
+              pair_friction[p] = dissipated;
             }
         });
-      // friction dissipation, summed in pair order (exact over ranks: one
-      // rank counts each pair)
-      partition.sum(pair_friction);
-      double sum = 0.;
-      for (const double d : pair_friction)
-        sum += d;
-      return sum;
     }
 
     void

@@ -95,11 +95,11 @@ namespace tmfdem
         {
           if (contact.search_needed())
             search_contacts();
-          balance.friction_dissipation +=
-            contact.compute_forces(model,
-                                   time_step,
-                                   arena_for(n_threads),
-                                   partition);
+          // (friction dissipation: summed per chunk in update_nodes())
+          contact.compute_forces(model,
+                                 time_step,
+                                 arena_for(n_threads),
+                                 partition);
         }
       // this rank's joints; on several ranks a break anywhere asks every
       // rank for a search, through the sums of update_nodes()

@@ -20,13 +20,13 @@ namespace tmfdem
     void
     ExplicitSolver::update_nodes()
     {
-      DiscreteModel     &m          = model;
-      const double       dt         = time_step;
-      const Drivers     &d          = drivers;
-      const unsigned int n_bodies   = d.body_motion.size();
-      const unsigned int max_bodies = Drivers::max_bodies;
-      const unsigned int stride =
-        n_sums + 2 * max_bodies + 2 * Drivers::max_conditions;
+      DiscreteModel     &m            = model;
+      const double       dt           = time_step;
+      const Drivers     &d            = drivers;
+      const unsigned int n_bodies     = d.body_motion.size();
+      const unsigned int n_conditions = d.conditions.size();
+      // per chunk: the sums, then the reactions of the bodies and conditions
+      const unsigned int stride  = n_sums + 2 * n_bodies + 2 * n_conditions;
       const std::size_t n_chunks = (m.n_elements + chunk_size - 1) / chunk_size;
       // one slot after the chunks: joints broke on some rank (partition.h)
       chunk_sums.assign(n_chunks * stride + 1, 0.);
@@ -163,7 +163,7 @@ namespace tmfdem
                                     ((tx + rx) * (vx_old + vx_new) +
                                      (ty + ry) * (vy_old + vy_new));
                       double *r =
-                        sums + n_sums + 2 * max_bodies + 2 * nc.condition;
+                        sums + n_sums + 2 * n_bodies + 2 * nc.condition;
                       r[0] += rx;
                       r[1] += ry;
                     }
@@ -225,6 +225,10 @@ namespace tmfdem
                     bad_node = node;
                 }
             }
+          // friction dissipated by the pairs whose first triangle is in
+          // this chunk, in pair order
+          sums[11] =
+            have_contact ? contact.friction_of_elements(begin, end) : 0.;
           sums[8]  = unbalanced;
           sums[9]  = internal;
           sums[10] = kinetic;
@@ -256,6 +260,7 @@ namespace tmfdem
           balance.viscous_dissipation -= sums[1];
           balance.joint_work -= sums[2];
           balance.contact_work -= sums[3];
+          balance.friction_dissipation += sums[11];
           balance.external_work += sums[4];
           max_speed = std::max(max_speed, sums[5]);
           unbalanced_sq += sums[8];
@@ -274,9 +279,9 @@ namespace tmfdem
           for (unsigned int k = 0; k < drivers.conditions.size(); ++k)
             {
               drivers.condition_reaction[k][0] +=
-                sums[n_sums + 2 * max_bodies + 2 * k];
+                sums[n_sums + 2 * n_bodies + 2 * k];
               drivers.condition_reaction[k][1] +=
-                sums[n_sums + 2 * max_bodies + 2 * k + 1];
+                sums[n_sums + 2 * n_bodies + 2 * k + 1];
             }
         }
       relative_unbalanced_force =

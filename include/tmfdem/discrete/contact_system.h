@@ -81,10 +81,9 @@ namespace tmfdem
 
       /** Forces of the pairs with a triangle of this rank (@p partition)
        *  at the current state, with the law of the settings, over the step
-       *  @p dt [s] (friction history). Returns the energy dissipated by
-       *  friction in this step on all ranks [J/m], summed in pair order
-       *  (each pair counted by the owner of its first triangle). */
-      double
+       *  @p dt [s] (friction history and the friction dissipated by each
+       *  pair: friction_of_elements()). */
+      void
       compute_forces(const DiscreteModel    &model,
                      const double            dt,
                      tbb::task_arena        &arena,
@@ -104,6 +103,22 @@ namespace tmfdem
             for (unsigned int i = 0; i < 6; ++i)
               f[i] += pf[i];
           }
+      }
+
+      /** Energy dissipated by friction in the last step by the pairs
+       *  whose first triangle is in [@p begin, @p end), summed in pair
+       *  order [J/m]. */
+      double
+      friction_of_elements(const std::size_t begin, const std::size_t end) const
+      {
+        double sum = 0.;
+        if (first_pair_start.empty())
+          return sum;
+        for (unsigned int p = first_pair_start[begin];
+             p < first_pair_start[end];
+             ++p)
+          sum += pair_friction[p];
+        return sum;
       }
 
       /** After a step whose fastest node moved @p distance [m]: a search is
@@ -168,7 +183,7 @@ namespace tmfdem
       void
       index_pairs(const unsigned int n_elements);
       template <typename Law>
-      double
+      void
       compute_forces_with(const Law              &law,
                           const DiscreteModel    &model,
                           const double            dt,
@@ -189,6 +204,9 @@ namespace tmfdem
       /** Pairs of element e: element_pair_entries[start[e] .. start[e+1]),
        *  each 2 pair + side. */
       std::vector<unsigned int> element_pair_start, element_pair_entries;
+      /** Pairs whose first triangle is e: [first_pair_start[e],
+       *  first_pair_start[e + 1]) of the (sorted) pair list. */
+      std::vector<unsigned int> first_pair_start;
       std::vector<unsigned int> active_elements;
       /** Several ranks: the pairs with a triangle of this rank, made for
        *  the search numbered local_pairs_of_search - 1. */

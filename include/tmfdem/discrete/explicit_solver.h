@@ -329,8 +329,8 @@ namespace tmfdem
       // bookkeeping: per chunk sums, summed in chunk order (thread-count
       // independent)
       static constexpr unsigned int chunk_size = 512;
-      static constexpr unsigned int n_sums     = 11;
-      /** n_sums + 2 max_bodies + 2 max_conditions per chunk */
+      static constexpr unsigned int n_sums     = 12;
+      /** n_sums + 2 bodies + 2 conditions per chunk */
       std::vector<double> chunk_sums;
       EnergyBalance       balance;
       std::vector<char>   joint_chunk_broke; ///< scratch of the joint forces
