@@ -7,6 +7,9 @@ rank.
   strong: the plate of ~250k triangles (n = 354) on np 1, 2 and 4 (4 on
           this 2-core machine is oversubscribed: correctness only);
   weak:   ~125k triangles per rank: n = 250 on np 1, n = 354 on np 2;
+  frag:   the fragmenting plate of the throughput benchmark (60 x 60 cells,
+          7200 triangles and a floor, dropped at 20 m/s) on np 1 and 2,
+          6000 steps;
   large:  ~1M triangles (n = 707) on np 2, a few steps: does it run, and
           in how much memory per rank.
 
@@ -100,6 +103,20 @@ row("weak", 2, results[2], rate1, True)
 print(f"weak: loop time per step np 2 (2 x {results[2]['elements'] // 2} triangles) / "
       f"np 1 ({weak1['elements']}): "
       f"{results[2]['wall_time_s'] / results[2]['steps'] / (weak1['wall_time_s'] / weak1['steps']):.2f}")
+
+# fragmented: the shattering plate of the throughput benchmark (contact
+# searches every few steps; the search runs on every rank)
+frag = throughput.prm(throughput.plate_msh(60, True), False, True)
+fr = {}
+for ranks in (1, 2):
+    fr[ranks] = run(frag, ranks, 6000, os.path.join(work, f"frag_{ranks}"))
+fbase = None
+for ranks in (1, 2):
+    same = history(os.path.join(work, f"frag_{ranks}")) == history(os.path.join(work, "frag_1"))
+    rate = row("frag", ranks, fr[ranks], fbase, same)
+    fbase = fbase or rate
+print(f"frag: {fr[1]['contact_searches']} contact searches, {fr[1]['broken_joints']} broken "
+      f"joints, {fr[1]['contact_pairs']} pairs at the end")
 
 if not skip_large:
     large = run(plate[707], 2, max(20, steps // 10), os.path.join(work, "large_2"))

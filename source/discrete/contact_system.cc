@@ -34,7 +34,9 @@ namespace tmfdem
     }
 
     void
-    ContactSystem::search(const DiscreteModel &model, tbb::task_arena &arena)
+    ContactSystem::search(const DiscreteModel &model,
+                          tbb::task_arena     &arena,
+                          ElementPartition    &partition)
     {
       // active: elements with a free edge, and their intact neighbours
       std::vector<unsigned char> active(model.n_elements, 0);
@@ -68,7 +70,10 @@ namespace tmfdem
                            contact.buffer,
                            skip,
                            pair_list,
-                           arena);
+                           arena,
+                           partition.begin(),
+                           partition.end());
+      partition.gather_pairs(pair_list);
       index_pairs(model.n_elements);
       flag_rigid_pairs();
       travel_since_search = 0.;

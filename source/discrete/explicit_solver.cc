@@ -141,7 +141,7 @@ namespace tmfdem
     ExplicitSolver::search_contacts()
     {
       synchronise();
-      contact.search(model, arena_for(n_threads));
+      contact.search(model, arena_for(n_threads), partition);
       partition.build_ghost_plan(model, contact.pairs());
     }
 

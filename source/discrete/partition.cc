@@ -287,6 +287,53 @@ namespace tmfdem
     }
 
     void
+    ElementPartition::gather_pairs(std::vector<ContactPair> &pairs)
+    {
+      if (!distributed())
+        return;
+      CommunicationTimer  timer(communication_seconds);
+      constexpr int       width = 8; // first, second, six slips
+      std::vector<double> mine(width * pairs.size());
+      for (std::size_t p = 0; p < pairs.size(); ++p)
+        {
+          mine[width * p]     = pairs[p].first;
+          mine[width * p + 1] = pairs[p].second;
+          for (unsigned int i = 0; i < 6; ++i)
+            mine[width * p + 2 + i] = pairs[p].slip[i];
+        }
+      const int count = static_cast<int>(mine.size());
+      counts.assign(n_ranks, 0);
+      AssertThrowMPI(MPI_Allgather(&count,
+                                   1,
+                                   MPI_INT,
+                                   counts.data(),
+                                   1,
+                                   MPI_INT,
+                                   communicator));
+      displacements.assign(n_ranks + 1, 0);
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        displacements[r + 1] = displacements[r] + counts[r];
+      scratch.resize(displacements[n_ranks]);
+      AssertThrowMPI(MPI_Allgatherv(mine.data(),
+                                    count,
+                                    MPI_DOUBLE,
+                                    scratch.data(),
+                                    counts.data(),
+                                    displacements.data(),
+                                    MPI_DOUBLE,
+                                    communicator));
+      sync_bytes += sizeof(double) * mine.size();
+      pairs.resize(scratch.size() / width);
+      for (std::size_t p = 0; p < pairs.size(); ++p)
+        {
+          pairs[p].first  = static_cast<unsigned int>(scratch[width * p]);
+          pairs[p].second = static_cast<unsigned int>(scratch[width * p + 1]);
+          for (unsigned int i = 0; i < 6; ++i)
+            pairs[p].slip[i] = scratch[width * p + 2 + i];
+        }
+    }
+
+    void
     ElementPartition::sum(std::vector<double> &values) const
     {
       if (!distributed() || values.empty())

@@ -161,7 +161,9 @@ namespace tmfdem
        * i and j). Friction history of pairs present in the old list is kept.
        * The pair search runs in @p arena over fixed chunks of the active
        * elements; the list does not depend on the thread count.
-       * @p excluded must be safe to call from several threads.
+       * @p excluded must be safe to call from several threads. Only pairs
+       * whose first element lies in [@p first_begin, @p first_end) are
+       * made (one MPI rank's share, partition.h); the default is all.
        */
       template <typename Excluded>
       void
@@ -171,7 +173,9 @@ namespace tmfdem
               const double                     buffer,
               const Excluded                  &excluded,
               std::vector<ContactPair>        &pairs,
-              tbb::task_arena                 &arena);
+              tbb::task_arena                 &arena,
+              const unsigned int               first_begin = 0,
+              const unsigned int first_end = static_cast<unsigned int>(-1));
 
       /** The same on one thread. */
       template <typename Excluded>
@@ -204,7 +208,9 @@ namespace tmfdem
                               const double                     buffer,
                               const Excluded                  &excluded,
                               std::vector<ContactPair>        &pairs,
-                              tbb::task_arena                 &arena)
+                              tbb::task_arena                 &arena,
+                              const unsigned int               first_begin,
+                              const unsigned int               first_end)
     {
       const std::size_t n = active.size();
       new_pairs.clear();
@@ -267,21 +273,34 @@ namespace tmfdem
       // second element: with ascending active elements the pairs of
       // consecutive items joined in order are sorted by (first, second).
       const bool ascending = std::is_sorted(active.begin(), active.end());
-      constexpr std::size_t chunk    = 256;
-      const std::size_t     n_chunks = (n + chunk - 1) / chunk;
+      // the items whose pairs are made: all, or (ascending) those with the
+      // first element in [first_begin, first_end)
+      std::size_t item_begin = 0, item_end = n;
+      if (ascending)
+        {
+          item_begin =
+            std::lower_bound(active.begin(), active.end(), first_begin) -
+            active.begin();
+          item_end = std::lower_bound(active.begin(), active.end(), first_end) -
+                     active.begin();
+        }
+      constexpr std::size_t chunk = 256;
+      const std::size_t n_chunks  = (item_end - item_begin + chunk - 1) / chunk;
       if (chunk_pairs.size() < n_chunks)
         chunk_pairs.resize(n_chunks);
       for_each_chunk(
         arena,
-        n,
+        item_end - item_begin,
         chunk,
         [&](const std::size_t begin,
             const std::size_t end,
             const std::size_t c) {
           std::vector<ContactPair> &found = chunk_pairs[c];
           found.clear();
-          for (std::size_t i = begin; i < end; ++i)
+          for (std::size_t i = item_begin + begin; i < item_begin + end; ++i)
             {
+              if (active[i] < first_begin || active[i] >= first_end)
+                continue; // (not ascending) another rank's pairs
               const std::size_t first = found.size();
               const std::size_t cx    = item_cell[i] % nc[0],
                                 cy    = item_cell[i] / nc[0];

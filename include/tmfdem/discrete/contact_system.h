@@ -74,10 +74,14 @@ namespace tmfdem
        * pairs of those whose boxes come within the buffer and that are not
        * joined by an intact joint. Pairs within one rigid group stay in the
        * list (contact heat flows between them) but carry no force. Friction
-       * history of pairs that persist is kept.
+       * history of pairs that persist is kept. On several ranks each rank
+       * makes the pairs of its own first triangles and the lists are joined
+       * (@p partition): every rank ends with the whole list.
        */
       void
-      search(const DiscreteModel &model, tbb::task_arena &arena);
+      search(const DiscreteModel &model,
+             tbb::task_arena     &arena,
+             ElementPartition    &partition);
 
       /** Forces of the pairs with a triangle of this rank (@p partition)
        *  at the current state, with the law of the settings, over the step

@@ -136,6 +136,15 @@ namespace tmfdem
       void
       synchronise(DiscreteModel &model);
 
+      /**
+       * Joins the pair lists of all ranks: on entry @p pairs holds this
+       * rank's pairs (first triangle its own, sorted), on return the pairs of
+       * all ranks in rank order, which is the sorted list one rank makes,
+       * with the friction history each owner kept.
+       */
+      void
+      gather_pairs(std::vector<ContactPair> &pairs);
+
       /** Sums @p values over the ranks, in place. Exact where at most one
        *  rank holds a non-zero entry (the per-chunk sums). */
       void
