@@ -139,7 +139,7 @@ namespace tmfdem
       const std::vector<BoundaryEdgeKnowledge> &boundary)
       : model(&model)
     {
-      const double root2 = std::sqrt(2.);
+      const double root2      = std::sqrt(2.);
       unsigned int n_vertices = 0;
       for (const auto v : model.node_vertex)
         n_vertices = std::max(n_vertices, v + 1);
@@ -208,7 +208,7 @@ namespace tmfdem
           double area = 0.;
           for (const unsigned int e : elements)
             area += model.reference_area[e];
-          const double h = std::sqrt(area / elements.size());
+          const double h   = std::sqrt(area / elements.size());
           inverse_scale[v] = h > 0. ? 1. / h : 0.;
 
           // 2. normal equations of the fit in local coordinates, data in
@@ -290,7 +290,7 @@ namespace tmfdem
                       {
                         // (sigma n)_i = t_i: g on (xx, yy, xy), unit length
                         // in the Frobenius metric
-                        const bool   x = edge.component == 0;
+                        const bool   x    = edge.component == 0;
                         const double g[3] = {x ? nx : 0.,
                                              x ? 0. : ny,
                                              (x ? ny : nx) / root2};
@@ -352,10 +352,9 @@ namespace tmfdem
                   // n n, sym(n s) sqrt 2 and s s: orthonormal
                   prescribed.push_back(
                     {{nx * nx, ny * ny, root2 * nx * ny}, nn / count});
-                  prescribed.push_back({{root2 * nx * sx,
-                                         root2 * ny * sy,
-                                         nx * sy + ny * sx},
-                                        root2 * ns / count});
+                  prescribed.push_back(
+                    {{root2 * nx * sx, root2 * ny * sy, nx * sy + ny * sx},
+                     root2 * ns / count});
                   prescribed.push_back(
                     {{sx * sx, sy * sy, root2 * sx * sy}, ss / count});
                 }
@@ -415,7 +414,7 @@ namespace tmfdem
           double       c[3][6];
           for (;; --degree)
             {
-              const unsigned int n     = terms_of_degree[degree];
+              const unsigned int n      = terms_of_degree[degree];
               bool               solved = true;
               for (unsigned int j = 0; j < 3 && solved; ++j)
                 {
@@ -480,7 +479,7 @@ namespace tmfdem
           terms((x - vertex_x[v]) * inverse_scale[v],
                 (y - vertex_y[v]) * inverse_scale[v],
                 p);
-          const double *c = &coefficients[3 * n_terms * v];
+          const double *c    = &coefficients[3 * n_terms * v];
           double        s[3] = {0., 0., 0.};
           for (unsigned int i = 0; i < n_terms; ++i)
             for (unsigned int d = 0; d < 3; ++d)

@@ -104,10 +104,10 @@ namespace
         if (cell->face(f)->at_boundary())
           {
             const dealii::Point<2> c = cell->face(f)->center();
-            cell->face(f)->set_boundary_id(c[0] < 1e-9       ? 0 :
+            cell->face(f)->set_boundary_id(c[0] < 1e-9      ? 0 :
                                            c[0] > 2. - 1e-9 ? 1 :
-                                           c[1] < 1e-9       ? 2 :
-                                                               3);
+                                           c[1] < 1e-9      ? 2 :
+                                                              3);
             for (const unsigned int k : cell->face(f)->vertex_indices())
               on_boundary[cell->face(f)->vertex_index(k)] = true;
           }
@@ -143,10 +143,10 @@ TEST(StressRecovery, PatchFitReproducesQuadraticField)
   DiscreteModel model;
   model.build(dof_handler);
   const auto field = [](const double x, const double y) {
-    return std::array<double, 3>{{1. + 2. * x - 3. * y + 5. * x * x -
-                                    4. * x * y + 7. * y * y,
-                                  -2. + x + y - x * x + 6. * x * y,
-                                  0.5 - 3. * x + 2. * y * y}};
+    return std::array<double, 3>{
+      {1. + 2. * x - 3. * y + 5. * x * x - 4. * x * y + 7. * y * y,
+       -2. + x + y - x * x + 6. * x * y,
+       0.5 - 3. * x + 2. * y * y}};
   };
   for (unsigned int e = 0; e < model.n_elements; ++e)
     {
@@ -212,8 +212,7 @@ TEST(StressRecovery, KnownTractionsPrescribeBoundaryValues)
     {
       const double mid = 0.5 * (low + high);
       (elastic_stress(matrix2(a, 0., 0., mid) / s_T, lame).yy > 0. ? high :
-                                                                      low) =
-        mid;
+                                                                     low) = mid;
     }
   const double  b     = 0.5 * (low + high);
   const Stress2 sigma = elastic_stress(matrix2(a, 0., 0., b) / s_T, lame);
