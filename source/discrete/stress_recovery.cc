@@ -60,9 +60,12 @@ namespace tmfdem
     {
       /**
        * Solves the symmetric positive definite n x n system @p A x = @p b
-       * (row stride 6) by Cholesky; false where a pivot falls below 1e-10
-       * of the largest diagonal entry (a patch that does not determine the
-       * polynomial).
+       * (row stride 6) by Cholesky; false where a pivot falls below 1e-3
+       * of the largest diagonal entry: a patch that does not determine the
+       * polynomial well (in the local coordinates scaled by h, regular
+       * patches have pivots above 1e-2 of it; the centroids of a fan of a
+       * few triangles around one vertex, as in a small Voronoi block, lie
+       * near a circle, which leaves x^2 + y^2 at about 2e-4).
        */
       bool
       solve_spd(const unsigned int n,
@@ -81,7 +84,7 @@ namespace tmfdem
             double d = A[j][j];
             for (unsigned int k = 0; k < j; ++k)
               d -= L[j][k] * L[j][k];
-            if (!(d > 1e-10 * largest))
+            if (!(d > 1e-3 * largest))
               return false;
             L[j][j] = std::sqrt(d);
             for (unsigned int i = j + 1; i < n; ++i)

@@ -283,3 +283,37 @@ TEST(StressRecovery, KnownTractionsPrescribeBoundaryValues)
           }
     }
 }
+
+// Patches that cannot determine a polynomial fall back, without NaNs: a
+// square of two triangles (two centroids for every vertex) gives the mean
+// of the two stresses everywhere (degree 0).
+TEST(StressRecovery, UndeterminedPatchFallsBackToTheMean)
+{
+  dealii::Triangulation<2> triangulation;
+  dealii::GridGenerator::subdivided_hyper_rectangle_with_simplices(
+    triangulation,
+    {1, 1},
+    dealii::Point<2>(0., 0.),
+    dealii::Point<2>(1., 1.));
+  dealii::FE_SimplexDGP<2> fe(1);
+  dealii::DoFHandler<2>    dof_handler(triangulation);
+  dof_handler.distribute_dofs(fe);
+  DiscreteModel model;
+  model.build(dof_handler);
+  ASSERT_EQ(model.n_elements, 2u);
+  const double s[2][3] = {{1e6, -2e6, 3e5}, {3e6, 4e6, -1e5}};
+  for (unsigned int e = 0; e < 2; ++e)
+    for (unsigned int c = 0; c < 3; ++c)
+      model.stress[3 * e + c] = s[e][c];
+  const RecoveredStress recovered(model, {});
+  for (unsigned int v = 0; v < recovered.n_vertices(); ++v)
+    EXPECT_EQ(recovered.degree(v), 0u);
+  const double lambda[3] = {0.6, 0.3, 0.1};
+  for (unsigned int e = 0; e < 2; ++e)
+    {
+      const Stress2 r = recovered.value(e, lambda);
+      EXPECT_NEAR(r.xx, 2e6, 1e-6);
+      EXPECT_NEAR(r.yy, 1e6, 1e-6);
+      EXPECT_NEAR(r.xy, 1e5, 1e-6);
+    }
+}

@@ -65,8 +65,9 @@ namespace tmfdem
      * three more); the polynomial minimises
      * sum_{e in P} |p(x_e) - sigma_e|^2 (x_e the reference centroid,
      * |.| the Frobenius norm). Where the patch cannot determine a
-     * quadratic (fewer or degenerate centroids) a linear one, else the
-     * mean.
+     * quadratic well (fewer or nearly degenerate centroids: a Cholesky
+     * pivot below 1e-3 of the largest diagonal entry) a linear one, else
+     * the mean.
      *
      * Boundary vertex with edges of known traction: the value at the
      * vertex is prescribed, and the fit gives the other coefficients. Each
