@@ -211,55 +211,60 @@ def compare_builds():
               f"{'identical' if same else 'DIFFER'}", flush=True)
 
 
-if reference is not None:
-    compare_builds()
-    sys.exit(0)
+def main():
+    if reference is not None:
+        compare_builds()
+        sys.exit(0)
 
-print(f"cores: {os.cpu_count()}, load average before: "
-      f"{' '.join(f'{x:.2f}' for x in os.getloadavg())}; {repeats} paired "
-      "runs (1 thread, then 2) per case")
-print(f"{'case':>11} {'pair':>4} {'threads':>7} {'used':>4} {'triangles':>9} "
-      f"{'steps':>6} {'wall [s]':>8} {'cpu [s]':>7} {'busiest':>7} {'cpu/wall':>8} "
-      f"{'triangle-steps/s':>16} {'pairs':>6} {'broken':>7} {'load':>5}")
-intact = prm(plate_msh(60, False), True, False)
-fragmented = prm(plate_msh(60, True), False, True)
-speedups, bounds = {}, {}
-for name, p, steps in (("intact", intact, 3000), ("fragmented", fragmented, 6000)):
-    for pair in range(repeats):
-        rates, cpu, busiest = {}, {}, {}
-        for threads in (1, 2):
-            folder = os.path.join(work, f"{name}_{pair}_{threads}")
-            s = run(p, threads, steps, folder)
-            rate = s["element_steps_per_second"]
-            rates[threads] = rate
-            cpu[threads] = s["cpu_time_s"]
-            busiest[threads] = s["cpu_time_busiest_thread_s"]
-            print(f"{name:>11} {pair + 1:>4} {threads:>7} {s['threads_used']:>4} "
-                  f"{s['elements']:>9} {s['steps']:>6} {s['wall_time']:>8.2f} "
-                  f"{s['cpu_time_s']:>7.2f} {s['cpu_time_busiest_thread_s']:>7.2f} "
-                  f"{s['cpu_time_s'] / s['wall_time_s']:>8.2f} {rate:>16.3e} "
-                  f"{s['contact_pairs']:>6} {s['broken_joints']:>7} "
-                  f"{os.getloadavg()[0]:>5.2f}", flush=True)
-        same = identical(os.path.join(work, f"{name}_{pair}_1"),
-                         os.path.join(work, f"{name}_{pair}_2"))
-        speedups.setdefault(name, []).append(rates[2] / rates[1])
-        bounds.setdefault(name, []).append(cpu[1] / busiest[2])
-        print(f"{'':>11} {'':>4} 2 threads / 1 thread: {rates[2] / rates[1]:.2f}x wall; "
-              f"CPU 2 / 1 thread {cpu[2] / cpu[1]:.2f}; 1-thread CPU / busiest thread "
-              f"of 2: {cpu[1] / busiest[2]:.2f}; history.csv "
-              f"{'identical' if same else 'DIFFERS'}", flush=True)
-for name, values in speedups.items():
-    values = sorted(values)
-    b = sorted(bounds[name])
-    print(f"{name}: speed-up 2 vs 1 thread: median {values[len(values) // 2]:.2f}x, "
-          f"best {values[-1]:.2f}x, worst {values[0]:.2f}x over {len(values)} pairs; "
-          f"1-thread CPU / busiest thread of 2: median {b[len(b) // 2]:.2f}")
+    print(f"cores: {os.cpu_count()}, load average before: "
+          f"{' '.join(f'{x:.2f}' for x in os.getloadavg())}; {repeats} paired "
+          "runs (1 thread, then 2) per case")
+    print(f"{'case':>11} {'pair':>4} {'threads':>7} {'used':>4} {'triangles':>9} "
+          f"{'steps':>6} {'wall [s]':>8} {'cpu [s]':>7} {'busiest':>7} {'cpu/wall':>8} "
+          f"{'triangle-steps/s':>16} {'pairs':>6} {'broken':>7} {'load':>5}")
+    intact = prm(plate_msh(60, False), True, False)
+    fragmented = prm(plate_msh(60, True), False, True)
+    speedups, bounds = {}, {}
+    for name, p, steps in (("intact", intact, 3000), ("fragmented", fragmented, 6000)):
+        for pair in range(repeats):
+            rates, cpu, busiest = {}, {}, {}
+            for threads in (1, 2):
+                folder = os.path.join(work, f"{name}_{pair}_{threads}")
+                s = run(p, threads, steps, folder)
+                rate = s["element_steps_per_second"]
+                rates[threads] = rate
+                cpu[threads] = s["cpu_time_s"]
+                busiest[threads] = s["cpu_time_busiest_thread_s"]
+                print(f"{name:>11} {pair + 1:>4} {threads:>7} {s['threads_used']:>4} "
+                      f"{s['elements']:>9} {s['steps']:>6} {s['wall_time']:>8.2f} "
+                      f"{s['cpu_time_s']:>7.2f} {s['cpu_time_busiest_thread_s']:>7.2f} "
+                      f"{s['cpu_time_s'] / s['wall_time_s']:>8.2f} {rate:>16.3e} "
+                      f"{s['contact_pairs']:>6} {s['broken_joints']:>7} "
+                      f"{os.getloadavg()[0]:>5.2f}", flush=True)
+            same = identical(os.path.join(work, f"{name}_{pair}_1"),
+                             os.path.join(work, f"{name}_{pair}_2"))
+            speedups.setdefault(name, []).append(rates[2] / rates[1])
+            bounds.setdefault(name, []).append(cpu[1] / busiest[2])
+            print(f"{'':>11} {'':>4} 2 threads / 1 thread: {rates[2] / rates[1]:.2f}x wall; "
+                  f"CPU 2 / 1 thread {cpu[2] / cpu[1]:.2f}; 1-thread CPU / busiest thread "
+                  f"of 2: {cpu[1] / busiest[2]:.2f}; history.csv "
+                  f"{'identical' if same else 'DIFFERS'}", flush=True)
+    for name, values in speedups.items():
+        values = sorted(values)
+        b = sorted(bounds[name])
+        print(f"{name}: speed-up 2 vs 1 thread: median {values[len(values) // 2]:.2f}x, "
+              f"best {values[-1]:.2f}x, worst {values[0]:.2f}x over {len(values)} pairs; "
+              f"1-thread CPU / busiest thread of 2: median {b[len(b) // 2]:.2f}")
 
-big = run(prm(plate_msh(200, False), True, False), 1, 20, os.path.join(work, "mem_200"))
-small = run(prm(plate_msh(100, False), True, False), 1, 20, os.path.join(work, "mem_100"))
-per_triangle = (big["peak_resident_memory_bytes"] - small["peak_resident_memory_bytes"]) / \
-               (big["elements"] - small["elements"])
-print(f"\nmemory: peak RSS {small['peak_resident_memory_bytes'] / 2**20:.1f} MiB at "
-      f"{small['elements']} triangles, {big['peak_resident_memory_bytes'] / 2**20:.1f} MiB at "
-      f"{big['elements']}: {per_triangle:.0f} bytes per triangle (all of the run: mesh, "
-      f"deal.II triangulation and DoFs, discrete state, joints, contact lists)")
+    big = run(prm(plate_msh(200, False), True, False), 1, 20, os.path.join(work, "mem_200"))
+    small = run(prm(plate_msh(100, False), True, False), 1, 20, os.path.join(work, "mem_100"))
+    per_triangle = (big["peak_resident_memory_bytes"] - small["peak_resident_memory_bytes"]) / \
+                   (big["elements"] - small["elements"])
+    print(f"\nmemory: peak RSS {small['peak_resident_memory_bytes'] / 2**20:.1f} MiB at "
+          f"{small['elements']} triangles, {big['peak_resident_memory_bytes'] / 2**20:.1f} MiB at "
+          f"{big['elements']}: {per_triangle:.0f} bytes per triangle (all of the run: mesh, "
+          f"deal.II triangulation and DoFs, discrete state, joints, contact lists)")
+
+
+if __name__ == "__main__":
+    main()

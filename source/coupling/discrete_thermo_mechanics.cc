@@ -39,14 +39,16 @@ namespace tmfdem
       // mechanics' candidates up to date (the next mechanical step would
       // search at these same positions) before the source filters them
       if (contact.enabled() && contact.search_needed())
-        contact.search(model, arena_for(n_threads));
+        search_contacts();
       heat->update_contact_pairs();
     }
 
     void
     ExplicitSolver::multi_rate_thermal_step()
     {
-      // M -> T: current geometry, broken joints, contacts
+      // M -> T: current geometry, broken joints, contacts (on several
+      // ranks the heat runs on each with the whole state: partition.h)
+      synchronise();
       check_cracks_seen_by_heat();
       update_heat_contact_pairs();
       heat->step(thermal_time, time - thermal_time);
@@ -62,6 +64,7 @@ namespace tmfdem
       // one thermal step of physical time (M -> T: current geometry,
       // joints, contacts) and the new thermal stretch (T -> M) ...
       const double dt = quasi_static_thermal_step();
+      synchronise();
       check_cracks_seen_by_heat();
       update_heat_contact_pairs();
       heat->step(time, dt);
@@ -133,6 +136,7 @@ namespace tmfdem
         }
       relaxation_step       = quasi_static_ramp_steps + 1;
       last_relaxation_steps = i;
+      synchronise(); // joint counts and utilisation of the whole state
       if (parameters.get<DiscreteHeatParameters>().relaxation_predictor ==
           DiscreteHeatParameters::RelaxationPredictor::extrapolate)
         damaged_after_relaxation = n_damaged_or_broken_joints(model);
@@ -258,6 +262,9 @@ namespace tmfdem
     void
     ExplicitSolver::reset_velocities()
     {
+      // the energy removed is summed over all nodes in node order: on
+      // several ranks from the whole state
+      synchronise();
       double removed = 0.;
       for (unsigned int n = 0; n < model.n_nodes; ++n)
         {

@@ -74,6 +74,7 @@ namespace tmfdem
       travel_since_search = 0.;
       search_is_needed    = false;
       ++searches;
+      local_pairs_of_search = 0;
     }
 
     void
@@ -121,9 +122,10 @@ namespace tmfdem
     }
 
     double
-    ContactSystem::compute_forces(const DiscreteModel &model,
-                                  const double         dt,
-                                  tbb::task_arena     &arena)
+    ContactSystem::compute_forces(const DiscreteModel    &model,
+                                  const double            dt,
+                                  tbb::task_arena        &arena,
+                                  const ElementPartition &partition)
     {
       if (pair_list.empty())
         return 0.;
@@ -133,27 +135,45 @@ namespace tmfdem
             return compute_forces_with(contact.penalty_coulomb,
                                        model,
                                        dt,
-                                       arena);
+                                       arena,
+                                       partition);
         }
       return 0.;
     }
 
     template <typename Law>
     double
-    ContactSystem::compute_forces_with(const Law           &law,
-                                       const DiscreteModel &m,
-                                       const double         dt,
-                                       tbb::task_arena     &arena)
+    ContactSystem::compute_forces_with(const Law              &law,
+                                       const DiscreteModel    &m,
+                                       const double            dt,
+                                       tbb::task_arena        &arena,
+                                       const ElementPartition &partition)
     {
+      // on several ranks: the pairs with a triangle of this rank (the
+      // others' friction entries stay 0)
+      const bool distributed = partition.distributed();
+      if (distributed && local_pairs_of_search != searches + 1)
+        {
+          local_pairs.clear();
+          for (unsigned int p = 0; p < pair_list.size(); ++p)
+            if (partition.owns(pair_list[p].first) ||
+                partition.owns(pair_list[p].second))
+              local_pairs.push_back(p);
+          local_pairs_of_search = searches + 1;
+        }
+      if (distributed)
+        std::fill(pair_friction.begin(), pair_friction.end(), 0.);
       for_each_chunk(
         arena,
-        pair_list.size(),
+        distributed ? local_pairs.size() : pair_list.size(),
         256,
         [&](const std::size_t begin, const std::size_t end, const std::size_t) {
-          for (std::size_t p = begin; p < end; ++p)
+          for (std::size_t i = begin; i < end; ++i)
             {
-              ContactPair &pair  = pair_list[p];
-              double      *force = &pair_force[12 * p];
+              const std::size_t p      = distributed ? local_pairs[i] : i;
+              ContactPair      &pair   = pair_list[p];
+              const bool        counts = partition.owns(pair.first);
+              double           *force  = &pair_force[12 * p];
               for (unsigned int i = 0; i < 12; ++i)
                 force[i] = 0.;
               double dissipated = 0.;
@@ -205,14 +225,41 @@ namespace tmfdem
                                                     ft);
                     }
                 }
-              pair_friction[p] = dissipated;
+              pair_friction[p] = counts ? dissipated : 0.;
             }
         });
-      // friction dissipation, summed in pair order
+      // friction dissipation, summed in pair order (exact over ranks: one
+      // rank counts each pair)
+      partition.sum(pair_friction);
       double sum = 0.;
       for (const double d : pair_friction)
         sum += d;
       return sum;
+    }
+
+    void
+    ContactSystem::synchronise_pairs(const ElementPartition &partition)
+    {
+      if (!partition.distributed())
+        return;
+      constexpr unsigned int width = 18; // 6 slips, 12 forces
+      std::vector<double>    data(width * pair_list.size(), 0.);
+      for (std::size_t p = 0; p < pair_list.size(); ++p)
+        if (partition.owns(pair_list[p].first))
+          {
+            for (unsigned int i = 0; i < 6; ++i)
+              data[width * p + i] = pair_list[p].slip[i];
+            for (unsigned int i = 0; i < 12; ++i)
+              data[width * p + 6 + i] = pair_force[12 * p + i];
+          }
+      partition.sum(data); // exact: one rank holds each pair's values
+      for (std::size_t p = 0; p < pair_list.size(); ++p)
+        {
+          for (unsigned int i = 0; i < 6; ++i)
+            pair_list[p].slip[i] = data[width * p + i];
+          for (unsigned int i = 0; i < 12; ++i)
+            pair_force[12 * p + i] = data[width * p + 6 + i];
+        }
     }
 
     void
@@ -233,7 +280,8 @@ namespace tmfdem
       search_is_needed    = flag != 0;
       std::uint64_t count = 0;
       in.get(count);
-      searches = count;
+      searches              = count;
+      local_pairs_of_search = 0;
       in.get(pair_list);
       for (const auto &p : pair_list)
         if (p.first >= n_elements || p.second >= n_elements)

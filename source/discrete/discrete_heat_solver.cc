@@ -47,6 +47,11 @@ namespace tmfdem
           " applies to Model = discrete thermo-mechanics; Model = discrete "
           "heat is the discrete heat itself (for the continuum heat alone use "
           "Model = continuum heat); allowed here is discrete heat.");
+      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+        throw InputError(
+          "Model = discrete heat runs on one MPI process with threads "
+          "(Discrete mechanics/Threads); run it without mpirun -np > 1, or "
+          "as Model = discrete thermo-mechanics, which runs on several.");
       build_discrete_mesh(parameters,
                           communicator,
                           triangulation,

@@ -22,10 +22,6 @@ namespace tmfdem
                         const FiniteElement<2> &fe,
                         DiscreteModel          &model)
     {
-      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
-        throw InputError("the discrete layer runs on one MPI process with "
-                         "threads (Discrete mechanics/Threads); run it "
-                         "without mpirun -np > 1.");
       create_output_folder(parameters.output.directory, communicator);
       create_coarse_mesh(parameters.mesh,
                          parameters.output.directory,

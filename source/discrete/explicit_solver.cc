@@ -94,18 +94,55 @@ namespace tmfdem
       if (contact.enabled())
         {
           if (contact.search_needed())
-            contact.search(model, arena_for(n_threads));
+            search_contacts();
           balance.friction_dissipation +=
-            contact.compute_forces(model, time_step, arena_for(n_threads));
+            contact.compute_forces(model,
+                                   time_step,
+                                   arena_for(n_threads),
+                                   partition);
         }
-      if (compute_joint_forces(softening_law,
-                               model,
-                               time,
-                               arena_for(n_threads),
-                               joint_chunk_broke))
+      // this rank's joints; on several ranks a break anywhere asks every
+      // rank for a search, through the sums of update_nodes()
+      joints_broke = compute_joint_forces(softening_law,
+                                          model,
+                                          time,
+                                          arena_for(n_threads),
+                                          joint_chunk_broke,
+                                          partition.joints());
+      if (joints_broke && !partition.distributed())
         contact.request_search();
       update_nodes();
       ++step_number;
+    }
+
+    void
+    ExplicitSolver::synchronise()
+    {
+      if (!partition.distributed() || synchronised_step == step_number)
+        return;
+      partition.synchronise(model);
+      synchronised_step = step_number;
+    }
+
+    unsigned int
+    ExplicitSolver::n_broken_joints() const
+    {
+      if (!partition.distributed())
+        return model.n_broken_joints();
+      // each rank counts the joints of its first triangles
+      unsigned int broken = 0;
+      for (unsigned int j = partition.first_joint(); j < partition.end_joint();
+           ++j)
+        broken += model.joint_status[j] != JointStatus::intact ? 1 : 0;
+      return Utilities::MPI::sum(broken, communicator);
+    }
+
+    void
+    ExplicitSolver::search_contacts()
+    {
+      synchronise();
+      contact.search(model, arena_for(n_threads));
+      partition.build_ghost_plan(model, contact.pairs());
     }
 
     void
@@ -161,7 +198,7 @@ namespace tmfdem
       ProgressReporter    progress(parameters.output.progress_interval,
                                 start,
                                 end,
-                                true);
+                                writes_files());
       const unsigned long max_steps =
         parameters.get<DiscreteMechanicsParameters>().max_steps;
       const double advance =
@@ -185,7 +222,7 @@ namespace tmfdem
         {
           step();
           check_step_guards();
-          if (quasi_static)
+          if (quasi_static && writes_files())
             std::cerr << "[tmfdem] t = " << time << " s: relaxed in "
                       << last_relaxation_steps
                       << " mechanical steps, kinetic / strain energy "
@@ -205,8 +242,9 @@ namespace tmfdem
           if (next_output < output_times.size() &&
               time >= output_times[next_output] - 0.5 * advance)
             {
-              if (!snap_reported && std::abs(time - output_times[next_output]) >
-                                      1e-9 * std::max(1., std::abs(time)))
+              if (!snap_reported && writes_files() &&
+                  std::abs(time - output_times[next_output]) >
+                    1e-9 * std::max(1., std::abs(time)))
                 {
                   snap_reported = true; // once per run
                   std::cerr
@@ -228,7 +266,7 @@ namespace tmfdem
               progress.update(step_number,
                               time,
                               " broken joints " +
-                                std::to_string(model.n_broken_joints()));
+                                std::to_string(n_broken_joints()));
             }
           after_step(checkpoints);
         }
@@ -244,18 +282,19 @@ namespace tmfdem
       if (next_output < output_times.size())
         write_output();
       write_summary(true);
-      if (parameters.output.write_final_mesh)
+      if (parameters.output.write_final_mesh && writes_files())
         write_file_atomically(parameters.output.directory + "/final_mesh.msh",
                               deformed_mesh_msh(model));
-      std::cerr << "[tmfdem] "
-                << (with_heat ? "discrete thermo-mechanics: " :
-                                "discrete mechanics: ")
-                << step_number << " steps of " << time_step
-                << " s to t = " << time << " s, " << model.n_broken_joints()
-                << " broken joints, " << model.n_cracks()
-                << " cracks, energy balance error "
-                << std::abs(balance.balance_error()) / balance.scale() * 100.
-                << " %\n";
+      if (writes_files())
+        std::cerr << "[tmfdem] "
+                  << (with_heat ? "discrete thermo-mechanics: " :
+                                  "discrete mechanics: ")
+                  << step_number << " steps of " << time_step
+                  << " s to t = " << time << " s, " << model.n_broken_joints()
+                  << " broken joints, " << model.n_cracks()
+                  << " cracks, energy balance error "
+                  << std::abs(balance.balance_error()) / balance.scale() * 100.
+                  << " %\n";
     }
   } // namespace discrete
 } // namespace tmfdem

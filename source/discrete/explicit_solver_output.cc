@@ -24,6 +24,7 @@ namespace tmfdem
     EnergyBalance
     ExplicitSolver::energy()
     {
+      synchronise(); // the whole state on every rank: same sums as one rank
       measure_stored_energy(model, element_lame, balance);
       return balance;
     }
@@ -51,6 +52,11 @@ namespace tmfdem
     void
     ExplicitSolver::write_output()
     {
+      // the whole state and every pair's forces on every rank; rank 0 writes
+      synchronise();
+      contact.synchronise_pairs(partition);
+      if (!writes_files())
+        return;
       if (parameters.output.write_vtu)
         {
           if (with_heat)
@@ -191,6 +197,28 @@ namespace tmfdem
     void
     ExplicitSolver::write_summary(const bool finished) const
     {
+      // collective part first (every rank calls this): memory and traffic
+      // of all ranks
+      rusage usage;
+      getrusage(RUSAGE_SELF, &usage);
+      const long long peak_memory =
+        static_cast<long long>(usage.ru_maxrss) * 1024;
+      const long long peak_memory_max = static_cast<long long>(
+        Utilities::MPI::max(static_cast<double>(peak_memory), communicator));
+      const double ghost_bytes =
+        Utilities::MPI::sum(static_cast<double>(partition.ghost_bytes_sent()),
+                            communicator);
+      const double sync_bytes =
+        Utilities::MPI::sum(static_cast<double>(
+                              partition.synchronisation_bytes_sent()),
+                            communicator);
+      const double communication_max =
+        Utilities::MPI::max(partition.communication_time(), communicator);
+      const double ghosts =
+        Utilities::MPI::sum(static_cast<double>(partition.n_ghosts()),
+                            communicator);
+      if (!writes_files())
+        return;
       JsonObject energies;
       energies.add("kinetic", balance.kinetic)
         .add("strain", balance.strain)
@@ -274,12 +302,14 @@ namespace tmfdem
         .add("cracks", model.n_cracks())
         .add("contact_searches", static_cast<long long>(contact.n_searches()))
         .add("contact_pairs", contact.n_mechanical_pairs())
-        .add("peak_resident_memory_bytes",
-             [] {
-               rusage usage;
-               getrusage(RUSAGE_SELF, &usage);
-               return static_cast<long long>(usage.ru_maxrss) * 1024;
-             }())
+        .add("peak_resident_memory_bytes", peak_memory_max)
+        .add("mpi_processes", partition.n_processes())
+        .add("ghost_elements", ghosts)
+        .add("ghost_exchange_bytes", ghost_bytes)
+        .add("synchronisations",
+             static_cast<long long>(partition.n_synchronisations()))
+        .add("synchronisation_bytes", sync_bytes)
+        .add("communication_time_s", communication_max)
         .add("momentum_x", px)
         .add("momentum_y", py)
         .add("energy", energies)

@@ -87,7 +87,43 @@ namespace tmfdem
 
     // --------------------------------------------------------- checkpoints
     void
+    ExplicitSolver::on_rank_zero(const std::function<void()> &write) const
+    {
+      if (!partition.distributed())
+        {
+          write();
+          return;
+        }
+      // rank 0 writes; a failure there stops every rank with its message
+      std::string failure;
+      if (writes_files())
+        try
+          {
+            write();
+          }
+        catch (const std::exception &e)
+          {
+            failure = e.what();
+            if (failure.empty())
+              failure = "writing an output failed on rank 0";
+          }
+      failure = Utilities::MPI::broadcast(communicator, failure, 0);
+      if (!failure.empty())
+        throw RunError(failure);
+    }
+
+    void
     ExplicitSolver::save_checkpoint()
+    {
+      // the whole state, friction history included, on every rank; rank 0
+      // writes it (every rank can resume from it, on any number of ranks)
+      synchronise();
+      contact.synchronise_pairs(partition);
+      on_rank_zero([this]() { write_checkpoint_file(); });
+    }
+
+    void
+    ExplicitSolver::write_checkpoint_file()
     {
       const auto       start = std::chrono::steady_clock::now();
       CheckpointWriter out(checkpoint_kind(), parameters.input_digest);
@@ -247,7 +283,13 @@ namespace tmfdem
         heat->load(in);
       in.finish();
 
+      // every rank has the whole state; the ghost plan of its pairs
+      synchronised_step = step_number;
+      partition.build_ghost_plan(model, contact.pairs());
       // the outputs continue exactly where the checkpoint left them
+      // (rank 0 writes them)
+      if (!writes_files())
+        return;
       if (parameters.output.write_vtu)
         {
           solution_series->restore(solution_records);
@@ -266,17 +308,30 @@ namespace tmfdem
     void
     ExplicitSolver::after_step(CheckpointSchedule &schedule)
     {
-      if (schedule.active() && schedule.due(step_number))
+      bool checkpoint_due = schedule.active() && schedule.due(step_number);
+      bool stop           = stop_requested();
+      if (partition.distributed())
+        {
+          // wall-clock checkpoints and signals: decided together, every
+          // 16th step (every thermal step in quasi-static coupling)
+          if (!quasi_static && (++after_step_calls & 15) != 0)
+            return;
+          checkpoint_due =
+            Utilities::MPI::max(checkpoint_due ? 1 : 0, communicator) != 0;
+          stop = stop_requested_on_any_rank(communicator);
+        }
+      if (checkpoint_due)
         {
           save_checkpoint();
           schedule.written(step_number);
         }
-      if (!stop_requested())
+      if (!stop)
         return;
       const std::string signal = stop_signal_name();
-      std::cerr << "[tmfdem] " << signal
-                << ": finishing the step, writing a checkpoint and the "
-                   "outputs\n";
+      if (writes_files())
+        std::cerr << "[tmfdem] " << signal
+                  << ": finishing the step, writing a checkpoint and the "
+                     "outputs\n";
       save_checkpoint();
       energy();
       stop_reason = "stopped by " + signal;
@@ -315,6 +370,7 @@ namespace tmfdem
     void
     ExplicitSolver::step_guard_failure()
     {
+      synchronise(); // the flagged element may be another rank's
       std::ostringstream message;
       message << std::setprecision(6);
       const std::string when = " at t = " + seconds(time) + " (step " +
@@ -368,6 +424,7 @@ namespace tmfdem
     void
     ExplicitSolver::check_slow_guards()
     {
+      synchronise(); // same state, same verdict on every rank
       const std::string when = " at t = " + seconds(time) + " (step " +
                                std::to_string(step_number) + ")";
       if (with_heat)
@@ -476,50 +533,60 @@ namespace tmfdem
       const std::string &folder = parameters.output.directory;
       stop_reason               = message;
       std::string written;
+      // every rank gets here with the same state (guards decide on the
+      // synchronised state or on reduced flags); rank 0 writes
+      synchronise();
+      if (writes_files())
+        try
+          {
+            const auto solution_vtu = [&]() {
+              if (!with_heat)
+                return discrete_solution_vtu(model);
+              std::vector<double> T(heat->temperature().begin(),
+                                    heat->temperature().end());
+              return discrete_solution_vtu(model, {{"T", &T}});
+            };
+            write_file_atomically(folder + "/failure_state.vtu",
+                                  solution_vtu());
+            written = " Wrote " + folder +
+                      "/failure_state.vtu (t = " + seconds(time) + ")";
+            if (good_state.valid)
+              {
+                // swap the last good state in, write it, swap back
+                const auto swap_state = [&]() {
+                  model.x.swap(good_state.x);
+                  model.y.swap(good_state.y);
+                  model.vx.swap(good_state.vx);
+                  model.vy.swap(good_state.vy);
+                  model.stress.swap(good_state.stress);
+                  model.joint_damage.swap(good_state.damage);
+                  model.joint_break_time.swap(good_state.break_time);
+                  model.joint_status.swap(good_state.status);
+                  if (with_heat)
+                    for (unsigned int n = 0; n < model.n_nodes; ++n)
+                      std::swap(heat->temperature()[n], good_state.T[n]);
+                };
+                swap_state();
+                const std::string text = solution_vtu();
+                swap_state();
+                write_file_atomically(folder + "/last_good_state.vtu", text);
+                written +=
+                  " and the last good state " + folder +
+                  "/last_good_state.vtu (t = " + seconds(good_state.time) +
+                  ", step " + std::to_string(good_state.step) + ")";
+              }
+            written += ".";
+          }
+        catch (const std::exception &)
+          {
+            // the message matters more than the files
+          }
       try
         {
-          const auto solution_vtu = [&]() {
-            if (!with_heat)
-              return discrete_solution_vtu(model);
-            std::vector<double> T(heat->temperature().begin(),
-                                  heat->temperature().end());
-            return discrete_solution_vtu(model, {{"T", &T}});
-          };
-          write_file_atomically(folder + "/failure_state.vtu", solution_vtu());
-          written = " Wrote " + folder +
-                    "/failure_state.vtu (t = " + seconds(time) + ")";
-          if (good_state.valid)
-            {
-              // swap the last good state in, write it, swap back
-              const auto swap_state = [&]() {
-                model.x.swap(good_state.x);
-                model.y.swap(good_state.y);
-                model.vx.swap(good_state.vx);
-                model.vy.swap(good_state.vy);
-                model.stress.swap(good_state.stress);
-                model.joint_damage.swap(good_state.damage);
-                model.joint_break_time.swap(good_state.break_time);
-                model.joint_status.swap(good_state.status);
-                if (with_heat)
-                  for (unsigned int n = 0; n < model.n_nodes; ++n)
-                    std::swap(heat->temperature()[n], good_state.T[n]);
-              };
-              swap_state();
-              const std::string text = solution_vtu();
-              swap_state();
-              write_file_atomically(folder + "/last_good_state.vtu", text);
-              written +=
-                " and the last good state " + folder +
-                "/last_good_state.vtu (t = " + seconds(good_state.time) +
-                ", step " + std::to_string(good_state.step) + ")";
-            }
-          written += ".";
-          write_summary(false);
+          write_summary(false); // collective: every rank
         }
       catch (const std::exception &)
-        {
-          // the message matters more than the files
-        }
+        {}
       throw RunError(message + written);
     }
   } // namespace discrete

@@ -47,6 +47,9 @@ namespace tmfdem
       setup_joint_constants(parameters, softening_law, model);
       setup_element_stiffness();
       setup_contact();
+      // this rank's triangles; ghosts of the joints until the first search
+      partition.setup(communicator, model, chunk_size);
+      partition.build_ghost_plan(model, contact.pairs());
       compute_stable_time_step();
 
       const double requested = dm.time_step;
@@ -62,6 +65,16 @@ namespace tmfdem
       time = parameters.time.start_time;
       if (with_heat)
         {
+          if (partition.distributed() &&
+              parameters.get<DiscreteHeatParameters>().temperature_source !=
+                "discrete heat")
+            throw InputError(
+              "Discrete heat/Temperature source = " +
+              parameters.get<DiscreteHeatParameters>().temperature_source +
+              " runs on one MPI process; on " +
+              std::to_string(partition.n_processes()) +
+              " processes allowed is Temperature source = discrete heat "
+              "(or run without mpirun -np > 1).");
           heat = create_temperature_source(
             parameters.get<DiscreteHeatParameters>().temperature_source,
             parameters,

@@ -55,20 +55,24 @@ namespace tmfdem
       compute_joint_forces_with(DiscreteModel     &m,
                                 const double       t,
                                 tbb::task_arena   &arena,
-                                std::vector<char> &broke_in_chunk)
+                                std::vector<char> &broke_in_chunk,
+                                const JointSubset &subset)
       {
-        broke_in_chunk.assign((m.n_joints + joint_chunk_size - 1) /
-                                joint_chunk_size,
-                              0);
+        // the joints of the subset: a range, then a list (partition.h)
+        const std::size_t n_range = subset.end - subset.begin;
+        const std::size_t n       = n_range + subset.others.size();
+        broke_in_chunk.assign((n + joint_chunk_size - 1) / joint_chunk_size, 0);
         for_each_chunk(
           arena,
-          m.n_joints,
+          n,
           joint_chunk_size,
           [&](const std::size_t begin,
               const std::size_t end,
               const std::size_t c) {
-            for (std::size_t j = begin; j < end; ++j)
+            for (std::size_t i = begin; i < end; ++i)
               {
+                const std::size_t j =
+                  i < n_range ? subset.begin + i : subset.others[i - n_range];
                 double *f = &m.joint_force[8 * j];
                 if (m.joint_status[j] != JointStatus::intact)
                   continue;
@@ -218,7 +222,8 @@ namespace tmfdem
                          DiscreteModel     &model,
                          const double       time,
                          tbb::task_arena   &arena,
-                         std::vector<char> &broke_in_chunk)
+                         std::vector<char> &broke_in_chunk,
+                         const JointSubset &subset)
     {
       switch (law)
         {
@@ -227,13 +232,15 @@ namespace tmfdem
               model,
               time,
               arena,
-              broke_in_chunk);
+              broke_in_chunk,
+              subset);
           case SofteningLaw::munjiza:
             return compute_joint_forces_with<SofteningLaw::munjiza>(
               model,
               time,
               arena,
-              broke_in_chunk);
+              broke_in_chunk,
+              subset);
         }
       return false;
     }

@@ -28,8 +28,12 @@ namespace tmfdem
       const unsigned int stride =
         n_sums + 2 * max_bodies + 2 * Drivers::max_conditions;
       const std::size_t n_chunks = (m.n_elements + chunk_size - 1) / chunk_size;
-      chunk_sums.assign(n_chunks * stride, 0.);
-      const bool have_contact = contact.has_pairs();
+      // one slot after the chunks: joints broke on some rank (partition.h)
+      chunk_sums.assign(n_chunks * stride + 1, 0.);
+      // this rank's triangles: whole chunks from first_element on
+      const std::size_t first_element = partition.begin();
+      const std::size_t first_chunk   = first_element / chunk_size;
+      const bool        have_contact  = contact.has_pairs();
       // mass-proportional damping f_d = -c m v_avg, integrated exactly:
       // v_new = (a v_old + dt f / m) with a = (1 - c dt/2) / (1 + c dt/2)
       const double c_damp =
@@ -38,12 +42,14 @@ namespace tmfdem
       const double damp_b = dt / (1. + 0.5 * c_damp * dt);
       for_each_chunk(
         arena_for(n_threads),
-        m.n_elements,
+        partition.end() - first_element,
         chunk_size,
-        [&](const std::size_t begin,
-            const std::size_t end,
-            const std::size_t c) {
-          double *sums      = &chunk_sums[c * stride];
+        [&](const std::size_t local_begin,
+            const std::size_t local_end,
+            const std::size_t local_chunk) {
+          const std::size_t begin = first_element + local_begin;
+          const std::size_t end   = first_element + local_end;
+          double *sums      = &chunk_sums[(first_chunk + local_chunk) * stride];
           double  w_elastic = 0., w_viscous = 0., w_joint = 0., w_contact = 0.,
                  w_external = 0., max_speed = 0.;
           // out-of-balance force (free components, no viscous part) and the
@@ -231,6 +237,16 @@ namespace tmfdem
           sums[6]  = bad_node;
           sums[7]  = inverted;
         });
+      // on several ranks: every chunk's sums from its one owner (exact), and
+      // the joint-break flag; then each rank's ghosts
+      if (partition.distributed())
+        {
+          chunk_sums.back() = joints_broke ? 1. : 0.;
+          partition.sum(chunk_sums);
+          if (chunk_sums.back() > 0.)
+            contact.request_search();
+          partition.exchange_ghosts(m);
+        }
       double max_speed = 0., unbalanced_sq = 0., internal_sq = 0., kinetic = 0.;
       drivers.clear_reactions();
       for (std::size_t c = 0; c < n_chunks; ++c)

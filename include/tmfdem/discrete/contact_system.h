@@ -14,6 +14,7 @@
 #include <tmfdem/discrete/contact.h>
 #include <tmfdem/discrete/contact_law.h>
 #include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/partition.h>
 #include <vector>
 
 namespace tmfdem
@@ -78,13 +79,16 @@ namespace tmfdem
       void
       search(const DiscreteModel &model, tbb::task_arena &arena);
 
-      /** Forces of every pair at the current state, with the law of the
-       *  settings, over the step @p dt [s] (friction history). Returns the
-       *  energy dissipated by friction in this step [J/m]. */
+      /** Forces of the pairs with a triangle of this rank (@p partition)
+       *  at the current state, with the law of the settings, over the step
+       *  @p dt [s] (friction history). Returns the energy dissipated by
+       *  friction in this step on all ranks [J/m], summed in pair order
+       *  (each pair counted by the owner of its first triangle). */
       double
-      compute_forces(const DiscreteModel &model,
-                     const double         dt,
-                     tbb::task_arena     &arena);
+      compute_forces(const DiscreteModel    &model,
+                     const double            dt,
+                     tbb::task_arena        &arena,
+                     const ElementPartition &partition);
 
       /** Adds the contact forces of all pairs of element @p e to its six
        *  nodal components @p f [N/m] (pair order: deterministic). */
@@ -145,6 +149,12 @@ namespace tmfdem
         return searches;
       }
 
+      /** On several ranks: every pair's friction history and forces taken
+       *  from the owner of its first triangle (before outputs and
+       *  checkpoints); a no-op on one rank. */
+      void
+      synchronise_pairs(const ElementPartition &partition);
+
       /** Writes the search state and the pairs with their friction
        *  history to a checkpoint. */
       void
@@ -159,10 +169,11 @@ namespace tmfdem
       index_pairs(const unsigned int n_elements);
       template <typename Law>
       double
-      compute_forces_with(const Law           &law,
-                          const DiscreteModel &model,
-                          const double         dt,
-                          tbb::task_arena     &arena);
+      compute_forces_with(const Law              &law,
+                          const DiscreteModel    &model,
+                          const double            dt,
+                          tbb::task_arena        &arena,
+                          const ElementPartition &partition);
 
       /** Flags the pairs within one rigid group (no force). */
       void
@@ -179,9 +190,13 @@ namespace tmfdem
        *  each 2 pair + side. */
       std::vector<unsigned int> element_pair_start, element_pair_entries;
       std::vector<unsigned int> active_elements;
-      double                    travel_since_search = 0.; ///< [m]
-      bool                      search_is_needed    = true;
-      unsigned long             searches            = 0;
+      /** Several ranks: the pairs with a triangle of this rank, made for
+       *  the search numbered local_pairs_of_search - 1. */
+      std::vector<unsigned int> local_pairs;
+      unsigned long             local_pairs_of_search = 0;
+      double                    travel_since_search   = 0.; ///< [m]
+      bool                      search_is_needed      = true;
+      unsigned long             searches              = 0;
     };
   } // namespace discrete
 } // namespace tmfdem

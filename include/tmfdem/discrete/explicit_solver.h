@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/base/simulation.h>
@@ -27,6 +28,7 @@
 #include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/discrete/drivers.h>
 #include <tmfdem/discrete/energy.h>
+#include <tmfdem/discrete/partition.h>
 #include <tmfdem/discrete/solid.h>
 #include <tmfdem/discrete/stable_step.h>
 #include <tmfdem/discrete/temperature_source.h>
@@ -281,6 +283,34 @@ namespace tmfdem
       Drivers drivers;
       /** Contact: pair search, law, pair forces. */
       ContactSystem contact;
+      /** The triangles this rank owns and the exchanges with the others
+       *  (one rank: owns all, exchanges nothing). */
+      ElementPartition partition;
+      /** Step at which the whole state was last gathered on every rank. */
+      unsigned long synchronised_step = static_cast<unsigned long>(-1);
+      /** Joints broke in this rank's part during the step under way. */
+      bool joints_broke = false;
+      /**
+       * Gives every rank the whole state (partition.h) unless it already
+       * has it at this step; a no-op on one rank. Called before whatever
+       * reads the whole state: contact search, heat, energy, outputs,
+       * checkpoints, guards.
+       */
+      void
+      synchronise();
+      /** The contact search on the whole state, then the ghost plan from
+       *  its pairs. */
+      void
+      search_contacts();
+      /** Broken joints on all ranks (collective; no synchronisation). */
+      unsigned int
+      n_broken_joints() const;
+      /** This rank writes the files (rank 0). */
+      bool
+      writes_files() const
+      {
+        return partition.rank() == 0;
+      }
 
       // time
       double        time              = 0.;
@@ -321,9 +351,19 @@ namespace tmfdem
       std::string
       checkpoint_kind() const;
       /** Writes a checkpoint of the complete state after the current step
-       *  (atomically; the newest Checkpoint/Keep are kept). */
+       *  (atomically; the newest Checkpoint/Keep are kept); collective, rank
+       *  0 writes. */
       void
       save_checkpoint();
+      /** The file of save_checkpoint() (this rank writes it). */
+      void
+      write_checkpoint_file();
+      /** Runs @p write on rank 0; if it throws there, every rank throws
+       *  RunError with its message (no rank is left waiting). */
+      void
+      on_rank_zero(const std::function<void()> &write) const;
+      /** after_step() calls, for the collective checks every 16th. */
+      unsigned long after_step_calls = 0;
       /** Restores the newest checkpoint (--resume): state, clocks, energy
        *  and heat balance, contact history, output counters; CSV files are
        *  cut to their length at the checkpoint, pvd series to its records. */

@@ -18,6 +18,14 @@ namespace tmfdem
 {
   namespace discrete
   {
+    /** Which joints a rank computes: the range [begin, end) and the joints
+     *  in @p others (sorted). One rank: all joints, others empty. */
+    struct JointSubset
+    {
+      unsigned int              begin = 0, end = 0;
+      std::vector<unsigned int> others;
+    };
+
     /**
      * Joint constants of every joint of @p model from the materials on its
      * two sides (interfaces take the weaker strength and fracture energy,
@@ -36,14 +44,17 @@ namespace tmfdem
      * model.joint_force (8 per joint: nodes a0, a1, b0, b1) [N/m]; joints
      * whose damage reaches 1 at both Gauss points break (status by mode,
      * break time @p time) and carry no force. Runs in @p arena over fixed
-     * chunks; @p broke_in_chunk is scratch. Returns whether a joint broke.
+     * chunks; @p broke_in_chunk is scratch. Only the joints of @p subset
+     * are computed (on several ranks those with a triangle of this rank,
+     * partition.h). Returns whether one of them broke.
      */
     bool
     compute_joint_forces(const SofteningLaw law,
                          DiscreteModel     &model,
                          const double       time,
                          tbb::task_arena   &arena,
-                         std::vector<char> &broke_in_chunk);
+                         std::vector<char> &broke_in_chunk,
+                         const JointSubset &subset);
 
     /**
      * The largest strength utilisation over the undamaged intact joints

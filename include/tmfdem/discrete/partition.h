@@ -1,0 +1,204 @@
+/**
+ * @file
+ * The discrete layer on several MPI processes: which triangles each rank
+ * owns, the ghost exchange of every explicit step and the full
+ * synchronisation before whatever reads the whole state (contact search,
+ * heat, energy, outputs, checkpoints).
+ *
+ * The data layout is that of deal.II's parallel::shared::Triangulation:
+ * every rank holds the whole exploded mesh (DiscreteModel), owns a part of
+ * it and advances only that part; triangles keep their rank for the whole
+ * run (Lagrangian). A rank owns a contiguous range of whole chunks of the
+ * node update (ExplicitSolver::chunk_size triangles each), so that every
+ * per-chunk sum (works, reactions, guards) is computed by one rank in the
+ * serial order and the reductions are exact: results on any number of
+ * ranks are bitwise those of one rank (doc/theory.md, "MPI").
+ *
+ * Per step a rank needs, besides its own nodes, the nodes of the triangles
+ * joined to its triangles (joints) and of the contact partners of its
+ * triangles (the pair list of the last search): the ghosts. Owners send
+ * them after every node update (point-to-point, pre-sized buffers); the
+ * plan is rebuilt after every contact search from the pair list, which is
+ * the same on every rank (the search runs on the synchronised state).
+ */
+#ifndef tmfdem_discrete_partition_h
+#define tmfdem_discrete_partition_h
+
+#include <cstdint>
+#include <mpi.h>
+#include <tmfdem/discrete/contact.h>
+#include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/joints.h>
+#include <vector>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    /** Ownership of the triangles and the exchanges between ranks. */
+    class ElementPartition
+    {
+    public:
+      /**
+       * Splits the @p model's triangles over the ranks of @p communicator:
+       * rank r owns whole chunks of @p chunk_size triangles, the chunks
+       * [r C / P, (r + 1) C / P) of C chunks on P ranks. One rank owns all.
+       */
+      void
+      setup(MPI_Comm             communicator,
+            const DiscreteModel &model,
+            const unsigned int   chunk_size);
+
+      /** More than one rank. */
+      bool
+      distributed() const
+      {
+        return n_ranks > 1;
+      }
+      unsigned int
+      rank() const
+      {
+        return this_rank;
+      }
+      unsigned int
+      n_processes() const
+      {
+        return n_ranks;
+      }
+      /** First owned triangle. */
+      unsigned int
+      begin() const
+      {
+        return element_begin[this_rank];
+      }
+      /** One past the last owned triangle. */
+      unsigned int
+      end() const
+      {
+        return element_begin[this_rank + 1];
+      }
+      bool
+      owns(const unsigned int e) const
+      {
+        return e >= begin() && e < end();
+      }
+      /** First joint of this rank (joints belong to the owner of their
+       *  first triangle). */
+      unsigned int
+      first_joint() const
+      {
+        return joint_begin[this_rank];
+      }
+      /** One past the last joint of this rank. */
+      unsigned int
+      end_joint() const
+      {
+        return joint_begin[this_rank + 1];
+      }
+      /** The joints this rank computes: its own (first triangle here)
+       *  and those whose second triangle is here. */
+      const JointSubset &
+      joints() const
+      {
+        return joint_subset;
+      }
+      /** The rank that owns triangle @p e. */
+      unsigned int
+      owner(const unsigned int e) const;
+      /** Triangles of rank r: [first_element(r), first_element(r + 1)). */
+      unsigned int
+      first_element(const unsigned int r) const
+      {
+        return element_begin[r];
+      }
+
+      /**
+       * The ghost plan: for every other rank the owned triangles it needs
+       * (joined to or in a contact pair with one of its triangles) and the
+       * triangles this rank needs from it, from the joints of @p model and
+       * the contact pairs @p pairs.
+       */
+      void
+      build_ghost_plan(const DiscreteModel            &model,
+                       const std::vector<ContactPair> &pairs);
+
+      /** Sends the positions and velocities of the owned nodes others need
+       *  and receives those of the ghosts (every explicit step). */
+      void
+      exchange_ghosts(DiscreteModel &model);
+
+      /**
+       * Gives every rank the whole state: positions, velocities and
+       * stresses of all nodes and triangles, and the state of all joints
+       * (a joint belongs to the owner of its first triangle; both owners
+       * computed it the same way).
+       */
+      void
+      synchronise(DiscreteModel &model);
+
+      /** Sums @p values over the ranks, in place. Exact where at most one
+       *  rank holds a non-zero entry (the per-chunk sums). */
+      void
+      sum(std::vector<double> &values) const;
+
+      /** Bytes sent by this rank in ghost exchanges, all steps so far. */
+      std::uint64_t
+      ghost_bytes_sent() const
+      {
+        return ghost_bytes;
+      }
+      /** Bytes this rank contributed to synchronisations so far. */
+      std::uint64_t
+      synchronisation_bytes_sent() const
+      {
+        return sync_bytes;
+      }
+      /** Full synchronisations so far. */
+      unsigned long
+      n_synchronisations() const
+      {
+        return synchronisations;
+      }
+      /** Wall time this rank spent in exchanges, reductions and
+       *  synchronisations so far (waits for other ranks included) [s]. */
+      double
+      communication_time() const
+      {
+        return communication_seconds;
+      }
+      /** Ghost triangles of this rank in the current plan. */
+      unsigned int
+      n_ghosts() const;
+
+    private:
+      MPI_Comm     communicator = MPI_COMM_SELF;
+      unsigned int this_rank = 0, n_ranks = 1;
+      /** First triangle of every rank, and n_elements at the end. */
+      std::vector<unsigned int> element_begin;
+      /** First joint of every rank (joints are numbered by their first
+       *  triangle), and n_joints at the end. */
+      std::vector<unsigned int> joint_begin;
+      JointSubset               joint_subset;
+
+      /** One neighbouring rank of the ghost plan. */
+      struct Neighbour
+      {
+        unsigned int              rank = 0;
+        std::vector<unsigned int> send_elements, receive_elements;
+        std::vector<double>       send_buffer, receive_buffer;
+      };
+      std::vector<Neighbour>   neighbours;
+      std::vector<MPI_Request> requests;
+
+      std::uint64_t  ghost_bytes           = 0;
+      std::uint64_t  sync_bytes            = 0;
+      unsigned long  synchronisations      = 0;
+      mutable double communication_seconds = 0.;
+      /** Scratch of synchronise(). */
+      std::vector<double> scratch;
+      std::vector<int>    counts, displacements;
+    };
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif

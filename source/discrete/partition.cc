@@ -1,0 +1,303 @@
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <tmfdem/discrete/partition.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    namespace
+    {
+      /** Adds the wall time of its life to a counter [s]. */
+      class CommunicationTimer
+      {
+      public:
+        explicit CommunicationTimer(double &total)
+          : total(total)
+          , start(std::chrono::steady_clock::now())
+        {}
+        ~CommunicationTimer()
+        {
+          total += std::chrono::duration<double>(
+                     std::chrono::steady_clock::now() - start)
+                     .count();
+        }
+
+      private:
+        double                               &total;
+        std::chrono::steady_clock::time_point start;
+      };
+
+      /** Doubles per triangle in the ghost exchange: x, y, vx, vy of its
+       *  three nodes. */
+      constexpr unsigned int ghost_width = 12;
+      /** Doubles per triangle in synchronise(): x, y, vx, vy of its three
+       *  nodes and its stress (xx, yy, xy). */
+      constexpr unsigned int element_width = 15;
+      /** Doubles per joint in synchronise(): damage at both Gauss points,
+       *  status, break time and the eight forces. */
+      constexpr unsigned int joint_width = 12;
+    } // namespace
+
+    void
+    ElementPartition::setup(MPI_Comm             comm,
+                            const DiscreteModel &model,
+                            const unsigned int   chunk_size)
+    {
+      communicator = comm;
+      this_rank    = Utilities::MPI::this_mpi_process(comm);
+      n_ranks      = Utilities::MPI::n_mpi_processes(comm);
+      const std::size_t n_chunks =
+        (model.n_elements + chunk_size - 1) / chunk_size;
+      element_begin.assign(n_ranks + 1, model.n_elements);
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        element_begin[r] = static_cast<unsigned int>(
+          std::min<std::size_t>(model.n_elements,
+                                (r * n_chunks / n_ranks) * chunk_size));
+      // joints are made in the order of their first triangle
+      // (DiscreteModel::build), so each rank's joints are a range too
+      joint_begin.assign(n_ranks + 1, model.n_joints);
+      unsigned int j = 0;
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        {
+          while (j < model.n_joints &&
+                 model.joint_elements[2 * j] < element_begin[r])
+            ++j;
+          joint_begin[r] = j;
+        }
+      for (unsigned int k = 0; k + 1 < model.n_joints; ++k)
+        Assert(model.joint_elements[2 * k] <= model.joint_elements[2 * k + 2],
+               ExcInternalError());
+      // this rank's joints, and the earlier ranks' joints to its triangles
+      joint_subset.begin = joint_begin[this_rank];
+      joint_subset.end   = joint_begin[this_rank + 1];
+      joint_subset.others.clear();
+      for (unsigned int k = 0; k < joint_subset.begin; ++k)
+        if (owns(model.joint_elements[2 * k + 1]))
+          joint_subset.others.push_back(k);
+      neighbours.clear();
+      requests.clear();
+    }
+
+    unsigned int
+    ElementPartition::owner(const unsigned int e) const
+    {
+      return static_cast<unsigned int>(
+        std::upper_bound(element_begin.begin(), element_begin.end() - 1, e) -
+        element_begin.begin() - 1);
+    }
+
+    unsigned int
+    ElementPartition::n_ghosts() const
+    {
+      unsigned int n = 0;
+      for (const auto &neighbour : neighbours)
+        n += neighbour.receive_elements.size();
+      return n;
+    }
+
+    void
+    ElementPartition::build_ghost_plan(const DiscreteModel            &model,
+                                       const std::vector<ContactPair> &pairs)
+    {
+      if (!distributed())
+        return;
+      // per other rank: what it needs of mine, what I need of it
+      std::vector<std::vector<unsigned int>> send(n_ranks), receive(n_ranks);
+      const auto couple = [&](const unsigned int a, const unsigned int b) {
+        const unsigned int ra = owner(a), rb = owner(b);
+        if (ra == rb)
+          return;
+        if (ra == this_rank)
+          {
+            send[rb].push_back(a);
+            receive[rb].push_back(b);
+          }
+        else if (rb == this_rank)
+          {
+            send[ra].push_back(b);
+            receive[ra].push_back(a);
+          }
+      };
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        if (model.joint_status[j] == JointStatus::intact)
+          couple(model.joint_elements[2 * j], model.joint_elements[2 * j + 1]);
+      for (const ContactPair &p : pairs)
+        couple(p.first, p.second);
+      neighbours.clear();
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        {
+          if (send[r].empty() && receive[r].empty())
+            continue;
+          Neighbour n;
+          n.rank = r;
+          for (auto *list : {&send[r], &receive[r]})
+            {
+              std::sort(list->begin(), list->end());
+              list->erase(std::unique(list->begin(), list->end()), list->end());
+            }
+          n.send_elements    = std::move(send[r]);
+          n.receive_elements = std::move(receive[r]);
+          n.send_buffer.resize(ghost_width * n.send_elements.size());
+          n.receive_buffer.resize(ghost_width * n.receive_elements.size());
+          neighbours.push_back(std::move(n));
+        }
+      requests.resize(2 * neighbours.size());
+    }
+
+    void
+    ElementPartition::exchange_ghosts(DiscreteModel &m)
+    {
+      if (!distributed())
+        return;
+      CommunicationTimer timer(communication_seconds);
+      const int          tag = 4711;
+      for (std::size_t i = 0; i < neighbours.size(); ++i)
+        {
+          Neighbour &n = neighbours[i];
+          AssertThrowMPI(MPI_Irecv(n.receive_buffer.data(),
+                                   static_cast<int>(n.receive_buffer.size()),
+                                   MPI_DOUBLE,
+                                   n.rank,
+                                   tag,
+                                   communicator,
+                                   &requests[2 * i]));
+          double *b = n.send_buffer.data();
+          for (const unsigned int e : n.send_elements)
+            for (unsigned int k = 0; k < 3; ++k)
+              {
+                const unsigned int node = 3 * e + k;
+                *b++                    = m.x[node];
+                *b++                    = m.y[node];
+                *b++                    = m.vx[node];
+                *b++                    = m.vy[node];
+              }
+          AssertThrowMPI(MPI_Isend(n.send_buffer.data(),
+                                   static_cast<int>(n.send_buffer.size()),
+                                   MPI_DOUBLE,
+                                   n.rank,
+                                   tag,
+                                   communicator,
+                                   &requests[2 * i + 1]));
+          ghost_bytes += sizeof(double) * n.send_buffer.size();
+        }
+      AssertThrowMPI(MPI_Waitall(static_cast<int>(requests.size()),
+                                 requests.data(),
+                                 MPI_STATUSES_IGNORE));
+      for (const Neighbour &n : neighbours)
+        {
+          const double *b = n.receive_buffer.data();
+          for (const unsigned int e : n.receive_elements)
+            for (unsigned int k = 0; k < 3; ++k)
+              {
+                const unsigned int node = 3 * e + k;
+                m.x[node]               = *b++;
+                m.y[node]               = *b++;
+                m.vx[node]              = *b++;
+                m.vy[node]              = *b++;
+              }
+        }
+    }
+
+    void
+    ElementPartition::synchronise(DiscreteModel &m)
+    {
+      if (!distributed())
+        return;
+      CommunicationTimer timer(communication_seconds);
+      counts.assign(n_ranks, 0);
+      displacements.assign(n_ranks + 1, 0);
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        {
+          counts[r] = static_cast<int>(
+            element_width * (element_begin[r + 1] - element_begin[r]) +
+            joint_width * (joint_begin[r + 1] - joint_begin[r]));
+          displacements[r + 1] = displacements[r] + counts[r];
+        }
+      scratch.resize(displacements[n_ranks]);
+      // pack mine in place
+      {
+        double *b = scratch.data() + displacements[this_rank];
+        for (unsigned int e = begin(); e < end(); ++e)
+          {
+            for (unsigned int k = 0; k < 3; ++k)
+              {
+                const unsigned int node = 3 * e + k;
+                *b++                    = m.x[node];
+                *b++                    = m.y[node];
+                *b++                    = m.vx[node];
+                *b++                    = m.vy[node];
+              }
+            for (unsigned int c = 0; c < 3; ++c)
+              *b++ = m.stress[3 * e + c];
+          }
+        for (unsigned int j = joint_begin[this_rank];
+             j < joint_begin[this_rank + 1];
+             ++j)
+          {
+            *b++ = m.joint_damage[2 * j];
+            *b++ = m.joint_damage[2 * j + 1];
+            *b++ = static_cast<double>(m.joint_status[j]);
+            *b++ = m.joint_break_time[j];
+            for (unsigned int c = 0; c < 8; ++c)
+              *b++ = m.joint_force[8 * j + c];
+          }
+      }
+      AssertThrowMPI(MPI_Allgatherv(MPI_IN_PLACE,
+                                    0,
+                                    MPI_DATATYPE_NULL,
+                                    scratch.data(),
+                                    counts.data(),
+                                    displacements.data(),
+                                    MPI_DOUBLE,
+                                    communicator));
+      sync_bytes += sizeof(double) * counts[this_rank];
+      ++synchronisations;
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        {
+          if (r == this_rank)
+            continue;
+          const double *b = scratch.data() + displacements[r];
+          for (unsigned int e = element_begin[r]; e < element_begin[r + 1]; ++e)
+            {
+              for (unsigned int k = 0; k < 3; ++k)
+                {
+                  const unsigned int node = 3 * e + k;
+                  m.x[node]               = *b++;
+                  m.y[node]               = *b++;
+                  m.vx[node]              = *b++;
+                  m.vy[node]              = *b++;
+                }
+              for (unsigned int c = 0; c < 3; ++c)
+                m.stress[3 * e + c] = *b++;
+            }
+          for (unsigned int j = joint_begin[r]; j < joint_begin[r + 1]; ++j)
+            {
+              m.joint_damage[2 * j]     = *b++;
+              m.joint_damage[2 * j + 1] = *b++;
+              m.joint_status[j] =
+                static_cast<JointStatus>(static_cast<int>(*b++));
+              m.joint_break_time[j] = *b++;
+              for (unsigned int c = 0; c < 8; ++c)
+                m.joint_force[8 * j + c] = *b++;
+            }
+        }
+    }
+
+    void
+    ElementPartition::sum(std::vector<double> &values) const
+    {
+      if (!distributed() || values.empty())
+        return;
+      CommunicationTimer timer(communication_seconds);
+      AssertThrowMPI(MPI_Allreduce(MPI_IN_PLACE,
+                                   values.data(),
+                                   static_cast<int>(values.size()),
+                                   MPI_DOUBLE,
+                                   MPI_SUM,
+                                   communicator));
+    }
+  } // namespace discrete
+} // namespace tmfdem
