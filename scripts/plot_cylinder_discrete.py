@@ -34,6 +34,6 @@ a2.set_xlabel("r [m]")
 a2.set_ylabel("stress [MPa], tension positive")
 a2.legend(fontsize=8)
 fig.suptitle("thick_cylinder (paper 5.4), discrete layer, h = 4 mm, plane strain;\n"
-             "stresses recovered at the vertices, walls from their traction and stretch")
+             "stresses recovered by quadratic patch fits, walls from their traction and stretch")
 fig.tight_layout()
 fig.savefig(png, dpi=120)

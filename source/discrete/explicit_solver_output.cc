@@ -161,8 +161,7 @@ namespace tmfdem
               }
           }
       }
-      const std::vector<double> vertex_stress =
-        recover_vertex_stress(model, boundary);
+      const RecoveredStress recovered(model, boundary);
       auto rows = [&](const std::vector<ReferenceSample> &samples) {
         std::ostringstream out;
         out << std::setprecision(10);
@@ -183,14 +182,9 @@ namespace tmfdem
                   T += s.lambda[k] * heat->temperature()[3 * s.element + k];
                 out << T << ',';
               }
-            double stress[3] = {0., 0., 0.};
-            for (unsigned int k = 0; k < 3; ++k)
-              for (unsigned int c = 0; c < 3; ++c)
-                stress[c] +=
-                  s.lambda[k] *
-                  vertex_stress[3 * model.node_vertex[3 * s.element + k] + c];
-            out << ux << ',' << uy << ',' << stress[0] << ',' << stress[1]
-                << ',' << stress[2] << '\n';
+            const Stress2 stress = recovered.value(s.element, s.lambda);
+            out << ux << ',' << uy << ',' << stress.xx << ',' << stress.yy
+                << ',' << stress.xy << '\n';
           }
         return out.str();
       };

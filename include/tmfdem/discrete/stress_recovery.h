@@ -1,14 +1,19 @@
 /**
  * @file
- * Recovery of a continuous (vertex) stress field from the constant stresses
- * of the discrete layer's triangles, for probes and lines (theory manual,
- * "Stress recovery at vertices"). Interior vertices: the value at the vertex
- * of a linear least-squares fit to the triangles' centroid stresses over the
- * vertex's patch. Boundary vertices: what is known there instead of a
- * one-sided extrapolation, namely the traction on the boundary edges
- * (sigma n = t: zero on free edges, the applied traction on loaded ones) and
- * the tangential stretch of the edges, which gives the remaining component
- * sigma_ss through the elastic law (Eq. 44) with the edge's temperature.
+ * Recovery of a continuous stress field from the constant stresses of the
+ * discrete layer's triangles, for probes and lines (theory manual 5.10,
+ * "Stress recovery at vertices"). Every vertex of the original mesh gets a
+ * quadratic polynomial, the least-squares fit to the centroid stresses of
+ * its patch widened by one ring of neighbours (superconvergent patch
+ * recovery, Zienkiewicz-Zhu). At boundary vertices its value at the vertex
+ * is what is known there instead of an extrapolation, namely the traction
+ * on the boundary edges (sigma n = t: zero on free edges, the applied
+ * traction on loaded ones) and the tangential stretch of the edges, which
+ * gives the remaining component sigma_ss through the elastic law (Eq. 44)
+ * with the edge's temperature; the fit then gives the slopes and
+ * curvatures only. A sample in a triangle takes the blend
+ * sum_k lambda_k P_k(x) of its three vertices' polynomials, each evaluated
+ * at the sample point.
  */
 #ifndef tmfdem_discrete_stress_recovery_h
 #define tmfdem_discrete_stress_recovery_h
@@ -48,24 +53,87 @@ namespace tmfdem
     };
 
     /**
-     * Stress (xx, yy, xy) at every vertex of the original mesh [Pa],
-     * 3 per vertex index, from @p model's element stresses (model.stress)
-     * and the current and reference node positions. @p boundary has one
-     * entry per element edge (3 n_elements; only boundary edges are read;
-     * empty: every boundary edge unknown).
+     * The recovered stress field of @p model at the time it is built: one
+     * quadratic polynomial per vertex of the original mesh (reference
+     * configuration), evaluated by value(). @p boundary has one entry per
+     * element edge (3 n_elements; only boundary edges are read; empty:
+     * every boundary edge unknown).
      *
-     * Interior vertex, or boundary vertex with only unknown edges: the
-     * value at the vertex of the least-squares plane through the centroid
-     * stresses of its patch (widened by the neighbours' patches where it
-     * has fewer than six triangles). Boundary vertex with edges of known
-     * traction: each such edge gives the full tensor at its midpoint
-     * (sigma_nn, sigma_ns from the Cauchy traction, sigma_ss from the
-     * edge's stretch and Eq. 44 solved for the normal stretch); on a smooth
-     * boundary the vertex takes the mean of the edges' (nn, ns, ss)
-     * components in the frame of the mean normal, while at a corner (known
-     * edges whose normals differ by more than 30 degrees) the tractions alone
-     * give sigma by least squares. Edges with one known component then project
-     * the value onto sigma n . e_i = t_i.
+     * Fit: per vertex v, the patch P = the triangles with a node on v,
+     * widened by one ring (the triangles with a node on any vertex of P),
+     * and by further rings while it has fewer than 14 triangles (at most
+     * three more); the polynomial minimises
+     * sum_{e in P} |p(x_e) - sigma_e|^2 (x_e the reference centroid,
+     * |.| the Frobenius norm). Where the patch cannot determine a
+     * quadratic well (fewer or nearly degenerate centroids: a Cholesky
+     * pivot below 1e-3 of the largest diagonal entry) a linear one, else
+     * the mean.
+     *
+     * Boundary vertex with edges of known traction: the value at the
+     * vertex is prescribed, and the fit gives the other coefficients. Each
+     * such edge gives the full tensor at its midpoint (sigma_nn, sigma_ns
+     * from the Cauchy traction, sigma_ss from the edge's stretch and Eq. 44
+     * solved for the normal stretch); on a smooth boundary the vertex takes
+     * the mean of the edges' (nn, ns, ss) components in the frame of the
+     * mean normal, while at a corner (known edges whose normals differ by
+     * more than 30 degrees) the tractions alone prescribe the components
+     * they determine (all three at a corner of two free edges). Edges with
+     * one known component (rollers) prescribe that component of
+     * sigma n; conflicting prescriptions are met in the least-squares
+     * sense. Components nothing prescribes come from the fit.
+     */
+    class RecoveredStress
+    {
+    public:
+      /** Polynomial terms per component: 1, x, y, x^2, x y, y^2. */
+      static constexpr unsigned int n_terms = 6;
+
+      RecoveredStress(const DiscreteModel                      &model,
+                      const std::vector<BoundaryEdgeKnowledge> &boundary);
+
+      /**
+       * Stress (xx, yy, xy) [Pa] at the reference point
+       * sum_k lambda[k] X_k of element @p element (X_k its nodes'
+       * reference positions, lambda its barycentric coordinates):
+       * sum_k lambda[k] P_{v_k}(x), v_k the element's vertices.
+       */
+      Stress2
+      value(const unsigned int element, const double *lambda) const;
+
+      /** Stress (xx, yy, xy) [Pa] at vertex @p vertex: P_v(x_v). */
+      Stress2
+      vertex_value(const unsigned int vertex) const;
+
+      /** Number of vertices of the original mesh. */
+      unsigned int
+      n_vertices() const
+      {
+        return static_cast<unsigned int>(vertex_x.size());
+      }
+
+      /** Polynomial degree used at @p vertex (2, or 1 / 0 where the patch
+       *  cannot determine more). */
+      unsigned int
+      degree(const unsigned int vertex) const
+      {
+        return vertex_degree[vertex];
+      }
+
+    private:
+      const DiscreteModel *model;
+      /** Reference position [m] and inverse length scale [1/m] (1 / sqrt
+       *  of the patch's mean area) of each vertex: the polynomials are in
+       *  ((x - x_v) / h_v, (y - y_v) / h_v). */
+      std::vector<double> vertex_x, vertex_y, inverse_scale;
+      /** 3 n_terms per vertex: component c (xx, yy, xy), term i at
+       *  [3 n_terms v + n_terms c + i] [Pa]. */
+      std::vector<double>        coefficients;
+      std::vector<unsigned char> vertex_degree;
+    };
+
+    /**
+     * Stress (xx, yy, xy) at every vertex of the original mesh [Pa],
+     * 3 per vertex index: RecoveredStress::vertex_value() of every vertex.
      */
     std::vector<double>
     recover_vertex_stress(const DiscreteModel                      &model,
