@@ -399,7 +399,10 @@ namespace tmfdem
                     for (unsigned int j = i; j < 3; ++j)
                       M[i][j] += p.g[i] * p.g[j];
                   }
-              const auto eigen = eigenvectors(M);
+              // Jacobi: the QL default of deal.II fails to converge on some
+              // of these small matrices (plates with a floor body)
+              const auto eigen =
+                eigenvectors(M, SymmetricTensorEigenvectorMethod::jacobi);
               for (unsigned int j = 0; j < 3; ++j)
                 {
                   direction[j] = eigen[j].second;
