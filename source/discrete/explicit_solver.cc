@@ -140,7 +140,13 @@ namespace tmfdem
     void
     ExplicitSolver::search_contacts()
     {
-      synchronise();
+      // the search reads positions and joint status only
+      if (partition.distributed() && synchronised_step != step_number &&
+          geometry_synchronised_step != step_number)
+        {
+          partition.synchronise(model, true);
+          geometry_synchronised_step = step_number;
+        }
       contact.search(model, arena_for(n_threads), partition);
       partition.build_ghost_plan(model, contact.pairs());
     }

@@ -34,11 +34,40 @@ namespace tmfdem
        *  three nodes. */
       constexpr unsigned int ghost_width = 12;
       /** Doubles per triangle in synchronise(): x, y, vx, vy of its three
-       *  nodes and its stress (xx, yy, xy). */
+       *  nodes and its stress (xx, yy, xy) (geometry only: not the stress). */
       constexpr unsigned int element_width = 15;
-      /** Doubles per joint in synchronise(): damage at both Gauss points,
-       *  status, break time and the eight forces. */
+      /** Doubles per joint in synchronise(): status, damage at both Gauss
+       *  points, break time and the eight forces (geometry only: status). */
       constexpr unsigned int joint_width = 12;
+
+      /** Writes x, y, vx, vy of the three nodes of triangle @p e to @p b
+       *  and returns the position after them. */
+      inline double *
+      pack_nodes(const DiscreteModel &m, const unsigned int e, double *b)
+      {
+        for (unsigned int node = 3 * e; node < 3 * e + 3; ++node)
+          {
+            *b++ = m.x[node];
+            *b++ = m.y[node];
+            *b++ = m.vx[node];
+            *b++ = m.vy[node];
+          }
+        return b;
+      }
+
+      /** Reads what pack_nodes() wrote into triangle @p e's nodes. */
+      inline const double *
+      unpack_nodes(DiscreteModel &m, const unsigned int e, const double *b)
+      {
+        for (unsigned int node = 3 * e; node < 3 * e + 3; ++node)
+          {
+            m.x[node]  = *b++;
+            m.y[node]  = *b++;
+            m.vx[node] = *b++;
+            m.vy[node] = *b++;
+          }
+        return b;
+      }
     } // namespace
 
     void
@@ -166,14 +195,7 @@ namespace tmfdem
                                    &requests[2 * i]));
           double *b = n.send_buffer.data();
           for (const unsigned int e : n.send_elements)
-            for (unsigned int k = 0; k < 3; ++k)
-              {
-                const unsigned int node = 3 * e + k;
-                *b++                    = m.x[node];
-                *b++                    = m.y[node];
-                *b++                    = m.vx[node];
-                *b++                    = m.vy[node];
-              }
+            b = pack_nodes(m, e, b);
           AssertThrowMPI(MPI_Isend(n.send_buffer.data(),
                                    static_cast<int>(n.send_buffer.size()),
                                    MPI_DOUBLE,
@@ -190,30 +212,28 @@ namespace tmfdem
         {
           const double *b = n.receive_buffer.data();
           for (const unsigned int e : n.receive_elements)
-            for (unsigned int k = 0; k < 3; ++k)
-              {
-                const unsigned int node = 3 * e + k;
-                m.x[node]               = *b++;
-                m.y[node]               = *b++;
-                m.vx[node]              = *b++;
-                m.vy[node]              = *b++;
-              }
+            b = unpack_nodes(m, e, b);
         }
     }
 
     void
-    ElementPartition::synchronise(DiscreteModel &m)
+    ElementPartition::synchronise(DiscreteModel &m, const bool geometry_only)
     {
       if (!distributed())
         return;
       CommunicationTimer timer(communication_seconds);
+      // geometry: x, y, vx, vy of the nodes (new ghosts of the next plan
+      // need their velocities too: friction) and the joints' status; else
+      // all of element_width and joint_width
+      const unsigned int per_element = geometry_only ? 12 : element_width;
+      const unsigned int per_joint   = geometry_only ? 1 : joint_width;
       counts.assign(n_ranks, 0);
       displacements.assign(n_ranks + 1, 0);
       for (unsigned int r = 0; r < n_ranks; ++r)
         {
           counts[r] = static_cast<int>(
-            element_width * (element_begin[r + 1] - element_begin[r]) +
-            joint_width * (joint_begin[r + 1] - joint_begin[r]));
+            per_element * (element_begin[r + 1] - element_begin[r]) +
+            per_joint * (joint_begin[r + 1] - joint_begin[r]));
           displacements[r + 1] = displacements[r] + counts[r];
         }
       scratch.resize(displacements[n_ranks]);
@@ -222,24 +242,20 @@ namespace tmfdem
         double *b = scratch.data() + displacements[this_rank];
         for (unsigned int e = begin(); e < end(); ++e)
           {
-            for (unsigned int k = 0; k < 3; ++k)
-              {
-                const unsigned int node = 3 * e + k;
-                *b++                    = m.x[node];
-                *b++                    = m.y[node];
-                *b++                    = m.vx[node];
-                *b++                    = m.vy[node];
-              }
-            for (unsigned int c = 0; c < 3; ++c)
-              *b++ = m.stress[3 * e + c];
+            b = pack_nodes(m, e, b);
+            if (!geometry_only)
+              for (unsigned int c = 0; c < 3; ++c)
+                *b++ = m.stress[3 * e + c];
           }
         for (unsigned int j = joint_begin[this_rank];
              j < joint_begin[this_rank + 1];
              ++j)
           {
+            *b++ = static_cast<double>(m.joint_status[j]);
+            if (geometry_only)
+              continue;
             *b++ = m.joint_damage[2 * j];
             *b++ = m.joint_damage[2 * j + 1];
-            *b++ = static_cast<double>(m.joint_status[j]);
             *b++ = m.joint_break_time[j];
             for (unsigned int c = 0; c < 8; ++c)
               *b++ = m.joint_force[8 * j + c];
@@ -262,24 +278,20 @@ namespace tmfdem
           const double *b = scratch.data() + displacements[r];
           for (unsigned int e = element_begin[r]; e < element_begin[r + 1]; ++e)
             {
-              for (unsigned int k = 0; k < 3; ++k)
-                {
-                  const unsigned int node = 3 * e + k;
-                  m.x[node]               = *b++;
-                  m.y[node]               = *b++;
-                  m.vx[node]              = *b++;
-                  m.vy[node]              = *b++;
-                }
-              for (unsigned int c = 0; c < 3; ++c)
-                m.stress[3 * e + c] = *b++;
+              b = unpack_nodes(m, e, b);
+              if (!geometry_only)
+                for (unsigned int c = 0; c < 3; ++c)
+                  m.stress[3 * e + c] = *b++;
             }
           for (unsigned int j = joint_begin[r]; j < joint_begin[r + 1]; ++j)
             {
-              m.joint_damage[2 * j]     = *b++;
-              m.joint_damage[2 * j + 1] = *b++;
               m.joint_status[j] =
                 static_cast<JointStatus>(static_cast<int>(*b++));
-              m.joint_break_time[j] = *b++;
+              if (geometry_only)
+                continue;
+              m.joint_damage[2 * j]     = *b++;
+              m.joint_damage[2 * j + 1] = *b++;
+              m.joint_break_time[j]     = *b++;
               for (unsigned int c = 0; c < 8; ++c)
                 m.joint_force[8 * j + c] = *b++;
             }

@@ -135,6 +135,15 @@ def compare(reference, other):
     return ok
 
 
+def check_stop_status(returncode):
+    """Exit status 3 of a run stopped by a signal. Under mpirun (signalled
+    itself: it forwards the signal to the ranks and exits with its own
+    status) not 0; the ranks' stop shows in their message."""
+    if ranks == 1:
+        return check(returncode == 3, f"exit status {returncode} (3: stopped by a signal)")
+    return check(returncode != 0, f"mpirun exit status {returncode} (not 0)")
+
+
 def fresh(folder):
     shutil.rmtree(folder, ignore_errors=True)
     return folder
@@ -218,14 +227,7 @@ elif which == "sigterm":
     stdout, stderr = process.communicate()
     print(stderr[-1500:])
     ok &= check(sent, "SIGTERM sent while running")
-    if ranks == 1:
-        ok &= check(process.returncode == 3,
-                    f"exit status {process.returncode} (3: stopped by a signal)")
-    else:
-        # mpirun, signalled itself, forwards SIGTERM to the ranks and exits
-        # with its own status: the ranks' stop shows in the message below
-        ok &= check(process.returncode != 0,
-                    f"mpirun exit status {process.returncode} (not 0)")
+    ok &= check_stop_status(process.returncode)
     ok &= check("stopped by SIGTERM" in stderr and "--resume" in stderr,
                 "clear message: stopped by SIGTERM ... --resume")
     ok &= check(glob.glob(os.path.join(folder, "checkpoints", "*.tmfchk")),
@@ -265,14 +267,7 @@ elif which == "sigint_continuum":
     stdout, stderr = process.communicate()
     print(stderr[-1500:])
     ok &= check(sent, "SIGINT sent while running")
-    if ranks == 1:
-        ok &= check(process.returncode == 3,
-                    f"exit status {process.returncode} (3: stopped by a signal)")
-    else:
-        # mpirun, signalled itself, forwards SIGTERM to the ranks and exits
-        # with its own status: the ranks' stop shows in the message below
-        ok &= check(process.returncode != 0,
-                    f"mpirun exit status {process.returncode} (not 0)")
+    ok &= check_stop_status(process.returncode)
     ok &= check("stopped by SIGINT" in stderr and "cannot be resumed" in stderr,
                 "clear message: stopped by SIGINT ... cannot be resumed")
     ok &= check(os.path.exists(os.path.join(folder, "summary.json")),

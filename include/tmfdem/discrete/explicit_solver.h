@@ -288,6 +288,8 @@ namespace tmfdem
       ElementPartition partition;
       /** Step at which the whole state was last gathered on every rank. */
       unsigned long synchronised_step = static_cast<unsigned long>(-1);
+      /** Step at which positions and joint status were last gathered. */
+      unsigned long geometry_synchronised_step = static_cast<unsigned long>(-1);
       /** Joints broke in this rank's part during the step under way. */
       bool joints_broke = false;
       /**

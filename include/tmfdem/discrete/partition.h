@@ -131,10 +131,12 @@ namespace tmfdem
        * Gives every rank the whole state: positions, velocities and
        * stresses of all nodes and triangles, and the state of all joints
        * (a joint belongs to the owner of its first triangle; both owners
-       * computed it the same way).
+       * computed it the same way). With @p geometry_only, only the node
+       * positions and velocities and the joints' status (what the contact
+       * search and the new ghosts of its plan need).
        */
       void
-      synchronise(DiscreteModel &model);
+      synchronise(DiscreteModel &model, const bool geometry_only = false);
 
       /**
        * Joins the pair lists of all ranks: on entry @p pairs holds this
