@@ -9,6 +9,7 @@
 #include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
+#include <tmfdem/io/output_schedule.h>
 
 namespace tmfdem
 {
@@ -115,22 +116,16 @@ namespace tmfdem
       double       time = parameters.time.start_time;
       const double end  = parameters.time.end_time;
       heat->initialise(time);
-      std::vector<double> output_times;
-      for (const double t : parameters.output.times)
-        if (t > time && t < end + 0.5 * time_step)
-          output_times.push_back(t);
-      if (parameters.output.interval > 0.)
-        for (double t = time + parameters.output.interval; t < end;
-             t += parameters.output.interval)
-          output_times.push_back(t);
-      output_times.push_back(end);
-      std::sort(output_times.begin(), output_times.end());
-      output_times.erase(std::unique(output_times.begin(),
-                                     output_times.end(),
-                                     [&](double a, double b) {
-                                       return std::abs(a - b) < 0.5 * time_step;
-                                     }),
-                         output_times.end());
+      // the output schedule every model uses (io/output_schedule.h): times
+      // within half a thermal step of each other are one output, the end
+      // time always one of them
+      std::vector<double> output_times =
+        OutputSchedule(parameters.output.times,
+                       parameters.output.interval,
+                       time,
+                       end,
+                       0.5 * time_step)
+          .times();
 
       auto write_output = [&]() {
         if (parameters.output.write_vtu)
