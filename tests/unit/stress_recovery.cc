@@ -127,6 +127,20 @@ namespace
             cell->vertex(k) += shift[cell->vertex_index(k)];
           }
   }
+
+  /** The exploded model of distorted_rectangle(). */
+  DiscreteModel
+  model_on_distorted_rectangle()
+  {
+    dealii::Triangulation<2> triangulation;
+    distorted_rectangle(triangulation);
+    dealii::FE_SimplexDGP<2> fe(1);
+    dealii::DoFHandler<2>    dof_handler(triangulation);
+    dof_handler.distribute_dofs(fe);
+    DiscreteModel model;
+    model.build(dof_handler);
+    return model;
+  }
 } // namespace
 
 // A quadratic stress field given at the centroids is reproduced exactly
@@ -135,14 +149,8 @@ namespace
 // vertices' polynomials too.
 TEST(StressRecovery, PatchFitReproducesQuadraticField)
 {
-  dealii::Triangulation<2> triangulation;
-  distorted_rectangle(triangulation);
-  dealii::FE_SimplexDGP<2> fe(1);
-  dealii::DoFHandler<2>    dof_handler(triangulation);
-  dof_handler.distribute_dofs(fe);
-  DiscreteModel model;
-  model.build(dof_handler);
-  const auto field = [](const double x, const double y) {
+  DiscreteModel model = model_on_distorted_rectangle();
+  const auto    field = [](const double x, const double y) {
     return std::array<double, 3>{
       {1. + 2. * x - 3. * y + 5. * x * x - 4. * x * y + 7. * y * y,
        -2. + x + y - x * x + 6. * x * y,
@@ -196,13 +204,7 @@ TEST(StressRecovery, PatchFitReproducesQuadraticField)
 // field that vanishes on the boundary: the boundary values stay exact.
 TEST(StressRecovery, KnownTractionsPrescribeBoundaryValues)
 {
-  dealii::Triangulation<2> triangulation;
-  distorted_rectangle(triangulation);
-  dealii::FE_SimplexDGP<2> fe(1);
-  dealii::DoFHandler<2>    dof_handler(triangulation);
-  dof_handler.distribute_dofs(fe);
-  DiscreteModel model;
-  model.build(dof_handler);
+  DiscreteModel       model = model_on_distorted_rectangle();
   const LameConstants lame =
     lame_constants(20e9, 0.2, Idealisation::plane_strain);
   const double s_T = 1.002, a = 1.01 * s_T;
