@@ -20,16 +20,30 @@ namespace tmfdem
                                            softening<SofteningLaw::munjiza>(D);
     }
 
+    namespace
+    {
+      /** The integral of z over [0, 1] by composite Simpson; z is smooth,
+       *  2000 intervals give 1e-12. */
+      double
+      integrate_softening(const SofteningLaw law)
+      {
+        const unsigned int n = 2000;
+        const double       h = 1. / n;
+        double sum = softening_value(law, 0.) + softening_value(law, 1.);
+        for (unsigned int i = 1; i < n; ++i)
+          sum += (i % 2 ? 4. : 2.) * softening_value(law, i * h);
+        return sum * h / 3.;
+      }
+    } // namespace
+
     double
     softening_integral(const SofteningLaw law)
     {
-      // composite Simpson; z is smooth, 2000 intervals give 1e-12
-      const unsigned int n = 2000;
-      const double       h = 1. / n;
-      double sum = softening_value(law, 0.) + softening_value(law, 1.);
-      for (unsigned int i = 1; i < n; ++i)
-        sum += (i % 2 ? 4. : 2.) * softening_value(law, i * h);
-      return sum * h / 3.;
+      // once per law, not per joint (2000 evaluations of z each: most of
+      // the set-up of a large mesh)
+      static const double munjiza = integrate_softening(SofteningLaw::munjiza);
+      static const double linear  = integrate_softening(SofteningLaw::linear);
+      return law == SofteningLaw::linear ? linear : munjiza;
     }
 
     bool
