@@ -288,9 +288,11 @@ namespace tmfdem
       if (next_output < output_times.size())
         write_output();
       write_summary(true);
-      if (parameters.output.write_final_mesh && writes_files())
-        write_file_atomically(parameters.output.directory + "/final_mesh.msh",
-                              deformed_mesh_msh(model));
+      if (parameters.output.write_final_mesh)
+        on_rank_zero([this]() {
+          write_file_atomically(parameters.output.directory + "/final_mesh.msh",
+                                deformed_mesh_msh(model));
+        });
       if (writes_files())
         std::cerr << "[tmfdem] "
                   << (with_heat ? "discrete thermo-mechanics: " :

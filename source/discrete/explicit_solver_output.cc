@@ -46,7 +46,7 @@ namespace tmfdem
       for (const auto &r : drivers.condition_reaction)
         row << ',' << r[0] << ',' << r[1];
       row << '\n';
-      history_csv->append(row.str());
+      on_rank_zero([&]() { history_csv->append(row.str()); });
     }
 
     void
@@ -55,8 +55,12 @@ namespace tmfdem
       // the whole state and every pair's forces on every rank; rank 0 writes
       synchronise();
       contact.synchronise_pairs(partition);
-      if (!writes_files())
-        return;
+      on_rank_zero([this]() { write_output_files(); });
+    }
+
+    void
+    ExplicitSolver::write_output_files()
+    {
       if (parameters.output.write_vtu)
         {
           if (with_heat)
@@ -217,145 +221,147 @@ namespace tmfdem
       const double ghosts =
         Utilities::MPI::sum(static_cast<double>(partition.n_ghosts()),
                             communicator);
-      if (!writes_files())
-        return;
-      JsonObject energies;
-      energies.add("kinetic", balance.kinetic)
-        .add("strain", balance.strain)
-        .add("initial_kinetic", balance.initial_kinetic)
-        .add("initial_strain", balance.initial_strain)
-        .add("joint_work", balance.joint_work)
-        .add("joint_stored", balance.joint_stored)
-        .add("joint_dissipated", balance.joint_work - balance.joint_stored)
-        .add("contact_work", balance.contact_work)
-        .add("contact_penalty",
-             balance.contact_work - balance.friction_dissipation)
-        .add("friction_dissipation", balance.friction_dissipation)
-        .add("viscous_dissipation", balance.viscous_dissipation)
-        .add("external_work", balance.external_work)
-        .add("thermal_work", balance.thermal_work)
-        .add("relaxation_work", balance.relaxation_work)
-        .add("elastic_work", balance.elastic_work)
-        .add("balance_error", balance.balance_error())
-        .add("relative_balance_error",
-             std::abs(balance.balance_error()) / balance.scale());
-      unsigned int by_mode[4] = {0, 0, 0, 0};
-      for (const auto s : model.joint_status)
-        ++by_mode[static_cast<unsigned int>(s)];
-      double px = 0., py = 0.;
-      for (unsigned int n = 0; n < model.n_nodes; ++n)
-        {
-          px += model.mass[n] * model.vx[n];
-          py += model.mass[n] * model.vy[n];
-        }
-      std::vector<JsonObject> reactions;
-      for (unsigned int b = 0; b < drivers.body_reaction.size(); ++b)
-        {
-          JsonObject r;
-          r.add("body", parameters.get<DiscreteBodyParameters>().bodies[b].name)
-            .add("force_x", drivers.body_reaction[b][0])
-            .add("force_y", drivers.body_reaction[b][1]);
-          reactions.push_back(r);
-        }
-      JsonObject summary;
-      summary
-        .add("model",
-             std::string(with_heat ? "discrete thermo-mechanics" :
-                                     "discrete mechanics"))
-        .add("finished", finished)
-        .add("elements", model.n_elements)
-        .add("nodes", model.n_nodes)
-        .add("joints", model.n_joints)
-        .add("steps", static_cast<long long>(step_number))
-        .add("end_time", time)
-        .add("time_step", time_step)
-        .add("stable_time_step", stable_time_step)
-        .add("joint_compliance_compensation",
-             parameters.get<DiscreteMechanicsParameters>()
-               .joint_compliance_compensation)
-        .add("compensation_max_share", compensation_share)
-        .add("compensation_capped_elements", compensation_capped)
-        .add("threads", n_threads)
-        .add("threads_requested", threads_requested)
-        .add("threads_available", threads_available)
-        .add("threads_used", threads_used)
-        .add("cpu_time_s", loop_cpu_time)
-        .add("wall_time_s", loop_wall_time)
-        .add("cpu_time_busiest_thread_s",
-             loop_thread_cpu_times.empty() ? 0. : loop_thread_cpu_times[0])
-        .add("cpu_time_other_threads_s",
-             [this] {
-               double other = 0.;
-               for (std::size_t k = 1; k < loop_thread_cpu_times.size(); ++k)
-                 other += loop_thread_cpu_times[k];
-               return other;
-             }())
-        .add("wall_time", wall_time)
-        .add("element_steps_per_second",
-             wall_time > 0. ?
-               model.n_elements * double(step_number) / wall_time :
-               0.)
-        .add("broken_joints", model.n_broken_joints())
-        .add("broken_mode_I", by_mode[1])
-        .add("broken_mode_II", by_mode[2])
-        .add("broken_mixed", by_mode[3])
-        .add("cracks", model.n_cracks())
-        .add("contact_searches", static_cast<long long>(contact.n_searches()))
-        .add("contact_pairs", contact.n_mechanical_pairs())
-        .add("peak_resident_memory_bytes", peak_memory_max)
-        .add("mpi_processes", partition.n_processes())
-        .add("ghost_elements", ghosts)
-        .add("ghost_exchange_bytes", ghost_bytes)
-        .add("synchronisations",
-             static_cast<long long>(partition.n_synchronisations()))
-        .add("synchronisation_bytes", sync_bytes)
-        .add("communication_time_s", communication_max)
-        .add("momentum_x", px)
-        .add("momentum_y", py)
-        .add("energy", energies)
-        .add("body_reactions", reactions);
-      if (!stop_reason.empty())
-        summary.add("stop_reason", stop_reason);
-      if (with_heat)
-        {
-          const HeatBalance &b = heat->balance();
-          JsonObject         boundary;
-          for (const auto &[id, q] : b.boundary_heat_in)
-            boundary.add(std::to_string(id), q);
-          JsonObject hb;
-          hb.add("boundary_heat_in", boundary)
-            .add("source_heat", b.source_heat)
-            .add("contact_exchange", b.contact_exchange)
-            .add("stored_heat", b.stored_heat)
-            .add("imbalance", b.imbalance())
-            .add("relative_imbalance", std::abs(b.imbalance()) / b.scale());
-          JsonObject rates;
-          for (const auto &[id, q] : heat->last_boundary_rate())
-            rates.add(std::to_string(id), q);
-          hb.add("boundary_heat_rate_last_step", rates);
-          summary
-            .add("coupling",
-                 parameters.get<DiscreteHeatParameters>().coupling_name())
-            .add("temperature_source", heat->name())
-            .add("contact_heat_model",
-                 contact_heat_model_name(
-                   parameters.get<DiscreteHeatParameters>().contact_heat_model))
-            .add("continuum_heat_across_cracks", heat_across_cracks)
-            .add("thermal_steps", static_cast<long long>(n_thermal_steps))
-            .add("last_relaxation_steps", last_relaxation_steps)
-            .add("relaxations_at_cap", relaxations_at_cap)
-            .add("predicted_relaxations", predicted_relaxations)
-            .add("velocity_resets", static_cast<long long>(velocity_resets))
-            .add("last_relative_unbalanced_force", relative_unbalanced_force)
-            .add("last_kinetic_to_strain_energy", last_kinetic_to_strain)
-            .add("mechanical_steps_per_thermal_step", steps_per_thermal_step)
-            .add("thermal_time_step",
-                 quasi_static ? parameters.time.time_step :
-                                steps_per_thermal_step * time_step)
-            .add("heat_balance", hb);
-        }
-      write_file_atomically(parameters.output.directory + "/summary.json",
-                            summary.str() + "\n");
+      on_rank_zero([&]() {
+        JsonObject energies;
+        energies.add("kinetic", balance.kinetic)
+          .add("strain", balance.strain)
+          .add("initial_kinetic", balance.initial_kinetic)
+          .add("initial_strain", balance.initial_strain)
+          .add("joint_work", balance.joint_work)
+          .add("joint_stored", balance.joint_stored)
+          .add("joint_dissipated", balance.joint_work - balance.joint_stored)
+          .add("contact_work", balance.contact_work)
+          .add("contact_penalty",
+               balance.contact_work - balance.friction_dissipation)
+          .add("friction_dissipation", balance.friction_dissipation)
+          .add("viscous_dissipation", balance.viscous_dissipation)
+          .add("external_work", balance.external_work)
+          .add("thermal_work", balance.thermal_work)
+          .add("relaxation_work", balance.relaxation_work)
+          .add("elastic_work", balance.elastic_work)
+          .add("balance_error", balance.balance_error())
+          .add("relative_balance_error",
+               std::abs(balance.balance_error()) / balance.scale());
+        unsigned int by_mode[4] = {0, 0, 0, 0};
+        for (const auto s : model.joint_status)
+          ++by_mode[static_cast<unsigned int>(s)];
+        double px = 0., py = 0.;
+        for (unsigned int n = 0; n < model.n_nodes; ++n)
+          {
+            px += model.mass[n] * model.vx[n];
+            py += model.mass[n] * model.vy[n];
+          }
+        std::vector<JsonObject> reactions;
+        for (unsigned int b = 0; b < drivers.body_reaction.size(); ++b)
+          {
+            JsonObject r;
+            r.add("body",
+                  parameters.get<DiscreteBodyParameters>().bodies[b].name)
+              .add("force_x", drivers.body_reaction[b][0])
+              .add("force_y", drivers.body_reaction[b][1]);
+            reactions.push_back(r);
+          }
+        JsonObject summary;
+        summary
+          .add("model",
+               std::string(with_heat ? "discrete thermo-mechanics" :
+                                       "discrete mechanics"))
+          .add("finished", finished)
+          .add("elements", model.n_elements)
+          .add("nodes", model.n_nodes)
+          .add("joints", model.n_joints)
+          .add("steps", static_cast<long long>(step_number))
+          .add("end_time", time)
+          .add("time_step", time_step)
+          .add("stable_time_step", stable_time_step)
+          .add("joint_compliance_compensation",
+               parameters.get<DiscreteMechanicsParameters>()
+                 .joint_compliance_compensation)
+          .add("compensation_max_share", compensation_share)
+          .add("compensation_capped_elements", compensation_capped)
+          .add("threads", n_threads)
+          .add("threads_requested", threads_requested)
+          .add("threads_available", threads_available)
+          .add("threads_used", threads_used)
+          .add("cpu_time_s", loop_cpu_time)
+          .add("wall_time_s", loop_wall_time)
+          .add("cpu_time_busiest_thread_s",
+               loop_thread_cpu_times.empty() ? 0. : loop_thread_cpu_times[0])
+          .add("cpu_time_other_threads_s",
+               [this] {
+                 double other = 0.;
+                 for (std::size_t k = 1; k < loop_thread_cpu_times.size(); ++k)
+                   other += loop_thread_cpu_times[k];
+                 return other;
+               }())
+          .add("wall_time", wall_time)
+          .add("element_steps_per_second",
+               wall_time > 0. ?
+                 model.n_elements * double(step_number) / wall_time :
+                 0.)
+          .add("broken_joints", model.n_broken_joints())
+          .add("broken_mode_I", by_mode[1])
+          .add("broken_mode_II", by_mode[2])
+          .add("broken_mixed", by_mode[3])
+          .add("cracks", model.n_cracks())
+          .add("contact_searches", static_cast<long long>(contact.n_searches()))
+          .add("contact_pairs", contact.n_mechanical_pairs())
+          .add("peak_resident_memory_bytes", peak_memory_max)
+          .add("mpi_processes", partition.n_processes())
+          .add("ghost_elements", ghosts)
+          .add("ghost_exchange_bytes", ghost_bytes)
+          .add("synchronisations",
+               static_cast<long long>(partition.n_synchronisations()))
+          .add("synchronisation_bytes", sync_bytes)
+          .add("communication_time_s", communication_max)
+          .add("momentum_x", px)
+          .add("momentum_y", py)
+          .add("energy", energies)
+          .add("body_reactions", reactions);
+        if (!stop_reason.empty())
+          summary.add("stop_reason", stop_reason);
+        if (with_heat)
+          {
+            const HeatBalance &b = heat->balance();
+            JsonObject         boundary;
+            for (const auto &[id, q] : b.boundary_heat_in)
+              boundary.add(std::to_string(id), q);
+            JsonObject hb;
+            hb.add("boundary_heat_in", boundary)
+              .add("source_heat", b.source_heat)
+              .add("contact_exchange", b.contact_exchange)
+              .add("stored_heat", b.stored_heat)
+              .add("imbalance", b.imbalance())
+              .add("relative_imbalance", std::abs(b.imbalance()) / b.scale());
+            JsonObject rates;
+            for (const auto &[id, q] : heat->last_boundary_rate())
+              rates.add(std::to_string(id), q);
+            hb.add("boundary_heat_rate_last_step", rates);
+            summary
+              .add("coupling",
+                   parameters.get<DiscreteHeatParameters>().coupling_name())
+              .add("temperature_source", heat->name())
+              .add(
+                "contact_heat_model",
+                contact_heat_model_name(
+                  parameters.get<DiscreteHeatParameters>().contact_heat_model))
+              .add("continuum_heat_across_cracks", heat_across_cracks)
+              .add("thermal_steps", static_cast<long long>(n_thermal_steps))
+              .add("last_relaxation_steps", last_relaxation_steps)
+              .add("relaxations_at_cap", relaxations_at_cap)
+              .add("predicted_relaxations", predicted_relaxations)
+              .add("velocity_resets", static_cast<long long>(velocity_resets))
+              .add("last_relative_unbalanced_force", relative_unbalanced_force)
+              .add("last_kinetic_to_strain_energy", last_kinetic_to_strain)
+              .add("mechanical_steps_per_thermal_step", steps_per_thermal_step)
+              .add("thermal_time_step",
+                   quasi_static ? parameters.time.time_step :
+                                  steps_per_thermal_step * time_step)
+              .add("heat_balance", hb);
+          }
+        write_file_atomically(parameters.output.directory + "/summary.json",
+                              summary.str() + "\n");
+      });
     }
 
   } // namespace discrete

@@ -140,8 +140,12 @@ namespace tmfdem
        *  conditions, central-difference update, energy and reaction sums. */
       void
       update_nodes();
+      /** The outputs at the current time (collective; rank 0 writes them
+       *  with write_output_files()). */
       void
       write_output();
+      void
+      write_output_files();
       void
       write_history_row();
       void
