@@ -291,23 +291,9 @@ namespace tmfdem
             }
         }
 
-      const HeatBalance &b = heat->balance();
-      JsonObject         boundary;
-      for (const auto &[id, q] : b.boundary_heat_in)
-        boundary.add(std::to_string(id), q);
-      JsonObject rates;
-      for (const auto &[id, q] : heat->last_boundary_rate())
-        rates.add(std::to_string(id), q);
-      JsonObject balance;
-      balance.add("boundary_heat_in", boundary)
-        .add("source_heat", b.source_heat)
-        .add("contact_heat", b.contact_heat)
-        .add("contact_exchange", b.contact_exchange)
-        .add("stored_heat", b.stored_heat)
-        .add("boundary_heat_rate_last_step", rates)
-        .add("imbalance", b.imbalance())
-        .add("relative_imbalance", std::abs(b.imbalance()) / b.scale());
-      JsonObject summary;
+      const HeatBalance &b       = heat->balance();
+      const JsonObject   balance = heat_balance_summary(*heat);
+      JsonObject         summary;
       summary.add("model", std::string("discrete heat"))
         .add("finished", stop_reason.empty())
         .add("elements", model.n_elements)

@@ -1,8 +1,10 @@
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iomanip>
 #include <sstream>
 #include <tmfdem/discrete/discrete_output.h>
+#include <tmfdem/discrete/temperature_source.h>
 #include <tmfdem/io/output_files.h>
 
 namespace tmfdem
@@ -255,6 +257,27 @@ namespace tmfdem
           << n_elements << '\n'
           << elements.str() << "$EndElements\n";
       return out.str();
+    }
+    JsonObject
+    heat_balance_summary(const TemperatureSource &source)
+    {
+      const HeatBalance &b = source.balance();
+      JsonObject         boundary;
+      for (const auto &[id, q] : b.boundary_heat_in)
+        boundary.add(std::to_string(id), q);
+      JsonObject rates;
+      for (const auto &[id, q] : source.last_boundary_rate())
+        rates.add(std::to_string(id), q);
+      JsonObject balance;
+      balance.add("boundary_heat_in", boundary)
+        .add("source_heat", b.source_heat)
+        .add("contact_heat", b.contact_heat)
+        .add("contact_exchange", b.contact_exchange)
+        .add("stored_heat", b.stored_heat)
+        .add("boundary_heat_rate_last_step", rates)
+        .add("imbalance", b.imbalance())
+        .add("relative_imbalance", std::abs(b.imbalance()) / b.scale());
+      return balance;
     }
   } // namespace discrete
 } // namespace tmfdem

@@ -322,21 +322,7 @@ namespace tmfdem
           summary.add("stop_reason", stop_reason);
         if (with_heat)
           {
-            const HeatBalance &b = heat->balance();
-            JsonObject         boundary;
-            for (const auto &[id, q] : b.boundary_heat_in)
-              boundary.add(std::to_string(id), q);
-            JsonObject hb;
-            hb.add("boundary_heat_in", boundary)
-              .add("source_heat", b.source_heat)
-              .add("contact_exchange", b.contact_exchange)
-              .add("stored_heat", b.stored_heat)
-              .add("imbalance", b.imbalance())
-              .add("relative_imbalance", std::abs(b.imbalance()) / b.scale());
-            JsonObject rates;
-            for (const auto &[id, q] : heat->last_boundary_rate())
-              rates.add(std::to_string(id), q);
-            hb.add("boundary_heat_rate_last_step", rates);
+            const JsonObject hb = heat_balance_summary(*heat);
             summary
               .add("coupling",
                    parameters.get<DiscreteHeatParameters>().coupling_name())

@@ -16,6 +16,11 @@
 
 namespace tmfdem
 {
+  class JsonObject;
+} // namespace tmfdem
+
+namespace tmfdem
+{
   namespace discrete
   {
     /** A vtu time series: `<base>_NNNNN.vtu` files and `<base>.pvd`, each
@@ -69,6 +74,13 @@ namespace tmfdem
      */
     std::string
     deformed_mesh_msh(const DiscreteModel &model);
+    class TemperatureSource;
+
+    /** summary.json's heat balance of a discrete temperature source: heat
+     *  in per boundary id, from sources, across contacts, stored [J/m], the
+     *  boundary rates of the last step [W/m] and the imbalance. */
+    JsonObject
+    heat_balance_summary(const TemperatureSource &source);
   } // namespace discrete
 } // namespace tmfdem
 
