@@ -53,6 +53,16 @@ main(int argc, char *argv[])
       parameters.resume = command_line.resume;
       install_signal_handlers();
       auto simulation = create_simulation(parameters, MPI_COMM_WORLD);
+      if (root && !parameters.unread_entries.empty())
+        {
+          std::cerr << "tmfdem: warning: Model = " << parameters.model
+                    << " does not read these entries of "
+                    << command_line.prm_file << " (their subsections are "
+                    << "not among those it reads; tmfdem --help lists them):";
+          for (const std::string &entry : parameters.unread_entries)
+            std::cerr << "\n  " << entry;
+          std::cerr << std::endl;
+        }
       if (command_line.action == CommandLine::Action::validate)
         {
           simulation->check_input();

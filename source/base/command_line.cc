@@ -117,6 +117,51 @@ namespace tmfdem
       hex << std::hex << std::setw(16) << std::setfill('0') << hash;
       return hex.str();
     }
+
+    /**
+     * The entries of @p prm whose value differs from the default, as
+     * "Section/Subsection/Entry = value": the ShortPRM prints of @p prm and
+     * of a default handler have the same lines in the same order (same
+     * declarations), so a line that differs is an entry that was set.
+     */
+    std::vector<std::string>
+    changed_entries(const ParameterHandler &prm)
+    {
+      ParameterHandler defaults;
+      Parameters::declare_parameters(defaults);
+      const auto lines = [](const ParameterHandler &handler) {
+        std::ostringstream text;
+        handler.print_parameters(text, ParameterHandler::ShortPRM);
+        std::vector<std::string> result;
+        std::istringstream       in(text.str());
+        for (std::string line; std::getline(in, line);)
+          result.push_back(Utilities::trim(line));
+        return result;
+      };
+      const std::vector<std::string> set = lines(prm), unset = lines(defaults);
+      std::vector<std::string>       changed, path;
+      if (set.size() != unset.size())
+        return changed; // cannot happen: same declarations
+      for (std::size_t i = 0; i < set.size(); ++i)
+        {
+          const std::string &line = set[i];
+          if (line.rfind("subsection ", 0) == 0)
+            path.push_back(Utilities::trim(line.substr(11)));
+          else if (line == "end" && !path.empty())
+            path.pop_back();
+          else if (line.rfind("set ", 0) == 0 && line != unset[i])
+            {
+              const auto  equals = line.find('=');
+              std::string entry;
+              for (const std::string &section : path)
+                entry += section + "/";
+              entry += Utilities::trim(line.substr(4, equals - 4)) + " = " +
+                       Utilities::trim(line.substr(equals + 1));
+              changed.push_back(entry);
+            }
+        }
+      return changed;
+    }
   } // namespace
 
   std::string
@@ -144,7 +189,10 @@ namespace tmfdem
            "(also a guard: non-finite values, inverted elements, unstable "
            "step, runaway energy), 3 stopped by a signal.\n\n"
            "Models (prm entry Model):\n" +
-           registered_simulation_descriptions();
+           registered_simulation_descriptions() +
+           "\nThe subsections each model reads (entries set elsewhere are "
+           "reported as not read):\n" +
+           registered_simulation_sections();
   }
 
   CommandLine
@@ -249,7 +297,8 @@ namespace tmfdem
         throw InputError("in parameter file '" + prm_file +
                          "': " + exception_text(exception));
       }
-    parameters.input_digest = input_digest(prm);
+    parameters.changed_entries = changed_entries(prm);
+    parameters.input_digest    = input_digest(prm);
     return parameters;
   }
 
@@ -262,7 +311,14 @@ namespace tmfdem
     text << "# tmfdem: complete default parameter file "
             "(tmfdem --print-parameters)\n"
             "# Units are SI; temperatures in degrees C. Functions of x, y, t "
-            "use muparser syntax.\n";
+            "use muparser syntax.\n"
+            "# The subsections each model reads (entries set elsewhere are "
+            "reported as not read):\n";
+    {
+      std::istringstream models(registered_simulation_sections());
+      for (std::string line; std::getline(models, line);)
+        text << "#" << line << "\n";
+    }
     prm.print_parameters(text,
                          ParameterHandler::OutputStyle(
                            ParameterHandler::PRM |

@@ -515,11 +515,97 @@ namespace tmfdem
   ParameterSections::find(const std::type_index &type) const
   {
     const auto found = map.find(type);
-    if (found == map.end())
-      throw std::logic_error(
-        std::string("Parameters::get: no parameter section of type ") +
-        type.name() + " is registered (register_parameter_section)");
-    return *found->second;
+    if (found != map.end())
+      return *found->second;
+    for (const ParameterSectionType &t : registered_parameter_sections())
+      if (t.type == type)
+        throw std::logic_error(
+          "Parameters::get: the subsection '" + t.name +
+          "' is not among those this model reads: add it to the "
+          "SectionsRead where the model is registered (register_simulation)");
+    throw std::logic_error(
+      std::string("Parameters::get: no parameter section of type ") +
+      type.name() + " is registered (register_parameter_section)");
+  }
+
+  void
+  ParameterSections::keep_only(const std::vector<std::string> &names)
+  {
+    for (const ParameterSectionType &t : registered_parameter_sections())
+      if (std::find(names.begin(), names.end(), t.name) == names.end())
+        map.erase(t.type);
+  }
+
+  // ------------------------------------------- the subsections a model reads
+  namespace
+  {
+    /** A shared subsection: its prm name and how to reset it. */
+    struct SharedSection
+    {
+      const char *name;
+      void (*reset)(Parameters &);
+    };
+
+    const std::vector<SharedSection> &
+    shared_sections()
+    {
+      static const std::vector<SharedSection> sections = {
+        {"Mesh", [](Parameters &p) { p.mesh = {}; }},
+        {"Materials", [](Parameters &p) { p.materials = {}; }},
+        {"Thermal boundary conditions",
+         [](Parameters &p) { p.thermal_boundary = {}; }},
+        {"Initial conditions", [](Parameters &p) { p.initial = {}; }},
+        {"Time stepping", [](Parameters &p) { p.time = {}; }},
+        {"Adaptive refinement", [](Parameters &p) { p.adaptivity = {}; }},
+        {"Heat solver", [](Parameters &p) { p.heat_solver = {}; }},
+        {"Output", [](Parameters &p) { p.output = {}; }},
+        {"Monitors", [](Parameters &p) { p.monitors = {}; }},
+        {"Mechanics", [](Parameters &p) { p.mechanics = {}; }},
+        {"Mechanical boundary conditions",
+         [](Parameters &p) { p.mechanical_boundary = {}; }},
+        {"Checkpoint", [](Parameters &p) { p.checkpoint = {}; }},
+        {"Guards", [](Parameters &p) { p.guards = {}; }}};
+      return sections;
+    }
+  } // namespace
+
+  std::vector<std::string>
+  Parameters::section_names()
+  {
+    std::vector<std::string> names;
+    for (const SharedSection &s : shared_sections())
+      names.emplace_back(s.name);
+    for (const ParameterSectionType &t : registered_parameter_sections())
+      names.push_back(t.name);
+    return names;
+  }
+
+  void
+  Parameters::restrict_to_sections(const std::vector<std::string> &names)
+  {
+    const std::vector<std::string> all = section_names();
+    for (const std::string &name : names)
+      if (std::find(all.begin(), all.end(), name) == all.end())
+        throw std::logic_error("a model declares that it reads the prm "
+                               "subsection '" +
+                               name + "', which does not exist");
+    const auto reads = [&names](const std::string &name) {
+      return std::find(names.begin(), names.end(), name) != names.end();
+    };
+    for (const SharedSection &s : shared_sections())
+      if (!reads(s.name))
+        s.reset(*this);
+    // an initial temperature goes with the subsection of its entry
+    initial_temperature_overrides.erase(
+      std::remove_if(initial_temperature_overrides.begin(),
+                     initial_temperature_overrides.end(),
+                     [&reads](const InitialTemperatureOverride &o) {
+                       const std::string &entry = o.temperature.entry;
+                       return !reads(entry.substr(0, entry.find('/')));
+                     }),
+      initial_temperature_overrides.end());
+    sections.keep_only(names);
+    sections_read = names;
   }
 
   // ------------------------------------------------------------ Parameters

@@ -27,6 +27,17 @@ namespace tmfdem
       "continuum heat",
       "transient or steady heat conduction with deal.II (theta scheme, AMR "
       "on quadrilaterals, MPI)",
+      {{"Mesh",
+        "Materials",
+        "Thermal boundary conditions",
+        "Initial conditions",
+        "Time stepping",
+        "Adaptive refinement",
+        "Heat solver",
+        "Output",
+        "Monitors",
+        "Checkpoint"},
+       {}},
       [](const Parameters &parameters, MPI_Comm communicator) {
         return std::make_unique<HeatSolver>(parameters, communicator);
       });

@@ -18,6 +18,31 @@ namespace tmfdem
         "quasi-static thermal stress with deal.II: small or finite strain, "
         "plane stress or plane strain, temperature from a function or the "
         "continuum heat solver (Newton, AMR on quadrilaterals, MPI)",
+        {{"Mesh",
+          "Materials",
+          "Initial conditions",
+          "Time stepping",
+          "Adaptive refinement",
+          "Mechanics",
+          "Mechanical boundary conditions",
+          "Output",
+          "Monitors",
+          "Checkpoint"},
+         {{"Mechanics/Temperature source = heat solver",
+           {"Thermal boundary conditions", "Heat solver"},
+           [](const Parameters &parameters) {
+             return parameters.mechanics.temperature_source ==
+                    MechanicsParameters::TemperatureSource::heat_solver;
+           }},
+          {"Mechanics/Temperature source = discrete heat",
+           {"Thermal boundary conditions",
+            "Discrete heat",
+            "Discrete mechanics",
+            "Discrete bodies"},
+           [](const Parameters &parameters) {
+             return parameters.mechanics.temperature_source ==
+                    MechanicsParameters::TemperatureSource::discrete_heat;
+           }}}},
         [](const Parameters &parameters,
            MPI_Comm          communicator) -> std::unique_ptr<Simulation> {
           if (parameters.mechanics.temperature_source ==

@@ -21,6 +21,18 @@ namespace tmfdem
         "discrete heat",
         "heat conduction in the discrete layer (exploded triangles, joint "
         "exchange), mechanics off, marching at the thermal step",
+        {{"Mesh",
+          "Materials",
+          "Thermal boundary conditions",
+          "Initial conditions",
+          "Time stepping",
+          "Discrete mechanics",
+          "Discrete bodies",
+          "Discrete heat",
+          "Output",
+          "Monitors",
+          "Checkpoint"},
+         {}},
         [](const Parameters &parameters, MPI_Comm communicator) {
           return std::make_unique<DiscreteHeatSolver>(parameters, communicator);
         });

@@ -33,10 +33,45 @@ namespace tmfdem
   {
     namespace
     {
+      /** What the explicit models read; the thermo-mechanics adds the heat
+       *  and, with the continuum heat as its source, the heat solver. */
+      SectionsRead
+      explicit_sections(const bool with_heat)
+      {
+        SectionsRead sections{{"Mesh",
+                               "Materials",
+                               "Time stepping",
+                               "Mechanics",
+                               "Mechanical boundary conditions",
+                               "Discrete mechanics",
+                               "Discrete bodies",
+                               "Output",
+                               "Monitors",
+                               "Checkpoint",
+                               "Guards"},
+                              {}};
+        if (with_heat)
+          {
+            for (const char *name : {"Thermal boundary conditions",
+                                     "Initial conditions",
+                                     "Discrete heat"})
+              sections.always.emplace_back(name);
+            sections.conditional.push_back(
+              {"Discrete heat/Temperature source = continuum heat",
+               {"Heat solver", "Adaptive refinement"},
+               [](const Parameters &parameters) {
+                 return parameters.get<DiscreteHeatParameters>()
+                          .temperature_source == "continuum heat";
+               }});
+          }
+        return sections;
+      }
+
       const bool registered = register_simulation(
         "discrete mechanics",
         "explicit FDEM dynamics: finite-strain triangles, cohesive joints, "
         "contact with friction (no heat)",
+        explicit_sections(false),
         [](const Parameters &parameters, MPI_Comm communicator) {
           return std::make_unique<ExplicitSolver>(parameters, communicator);
         });
@@ -45,6 +80,7 @@ namespace tmfdem
         "the discrete layer with heat: conduction, joint exchange and contact "
         "heat drive F = F_T F_e; fracture and contact reshape the heat flow "
         "(multi-rate: one thermal step every n mechanical steps)",
+        explicit_sections(true),
         [](const Parameters &parameters, MPI_Comm communicator) {
           return std::make_unique<ExplicitSolver>(parameters,
                                                   communicator,

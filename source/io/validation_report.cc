@@ -165,6 +165,16 @@ namespace tmfdem
                  mebibyte
             << " MiB (before adaptive refinement)\n";
       }
+    if (!parameters.sections_read.empty())
+      {
+        out << "  subsections read by Model = " << parameters.model << ":";
+        for (const std::string &name : parameters.sections_read)
+          out << (name == parameters.sections_read.front() ? " " : ", ")
+              << name;
+        out << "\n";
+      }
+    for (const std::string &entry : parameters.unread_entries)
+      out << "  not read by this model: " << entry << "\n";
     out << "  resident memory after the checks: "
         << Utilities::MPI::max(resident_bytes(), communicator) / mebibyte
         << " MiB per process\n";

@@ -608,9 +608,14 @@ namespace tmfdem
     operator=(ParameterSections &&) noexcept = default;
     ~ParameterSections();
 
-    /** The section of @p type; throws std::logic_error if unregistered. */
+    /** The section of @p type; throws std::logic_error if unregistered or
+     *  removed by keep_only(). */
     ParameterSection &
     find(const std::type_index &type) const;
+
+    /** Removes every section whose prm name is not in @p names. */
+    void
+    keep_only(const std::vector<std::string> &names);
 
   private:
     std::map<std::type_index, std::unique_ptr<ParameterSection>> map;
@@ -651,6 +656,15 @@ namespace tmfdem
     std::string input_digest;
     /** Continue from the newest checkpoint (command line --resume). */
     bool resume = false;
+    /** The entries the input sets to other than their default, as
+     *  "Section/Entry = value" (read_parameters()). */
+    std::vector<std::string> changed_entries;
+    /** Those of changed_entries in subsections the model does not read
+     *  (set by create_simulation(), reported as a warning). */
+    std::vector<std::string> unread_entries;
+    /** The top-level subsections this model reads (restrict_to_sections());
+     *  empty: not restricted, all. */
+    std::vector<std::string> sections_read;
     /** Initial temperatures set by registered sections (discrete bodies),
      *  filled when they complete; first match wins. */
     std::vector<InitialTemperatureOverride> initial_temperature_overrides;
@@ -694,6 +708,22 @@ namespace tmfdem
     /** True if some body or material sets its own initial temperature. */
     bool
     has_local_initial_temperature() const;
+
+    /** The names of all top-level subsections: the shared ones and the
+     *  registered ones. */
+    static std::vector<std::string>
+    section_names();
+
+    /**
+     * Keeps only the subsections named in @p names, as a model receives
+     * its input (create_simulation()): every other shared subsection goes
+     * back to its defaults, every other registered one is removed (get<T>()
+     * of it throws std::logic_error naming it), and an initial temperature
+     * override goes with the subsection of its entry. A name that is
+     * no subsection is a programming error (std::logic_error).
+     */
+    void
+    restrict_to_sections(const std::vector<std::string> &names);
 
     /** The registered sections, each with its defaults until parsed. */
     ParameterSections sections;
