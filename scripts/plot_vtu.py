@@ -72,7 +72,15 @@ def read_dataarray(elem, compressed, header, order):
 
 
 def read_vtu(path, field):
-    """Return (points (n,2), polygons as list of index arrays, values, is_point_data)."""
+    """Return (points (n,2), polygons as list of index arrays, values, is_point_data).
+    A .pvtu (one piece per MPI rank) or .pvd (its last output) is read as
+    the union of its pieces."""
+    if path.endswith(".pvtu") or path.endswith(".pvd"):
+        parts = [read_vtu(p, field) for p in resolve(path)]
+        offsets = np.cumsum([0] + [len(p[0]) for p in parts])
+        return (np.vstack([p[0] for p in parts]),
+                [c + o for p, o in zip(parts, offsets) for c in p[1]],
+                np.concatenate([p[2] for p in parts]), parts[0][3])
     root = ET.parse(path).getroot()
     compressed = root.get("compressor") is not None
     header = np.dtype(VTK_TYPES[root.get("header_type", "UInt32")])

@@ -3,7 +3,9 @@
 `mpirun -np 1, 2, 3 ...` for a fixed span and compares every output file
 of each run with the one-rank run, bitwise (summary.json without its
 wall-clock, memory and MPI-traffic entries; the date stamps deal.II writes
-into vtu/pvd headers are ignored).
+into vtu/pvd headers are ignored). On several ranks the vtu outputs are one
+piece per rank and a pvtu record; they are put back together
+(scripts/vtu_pieces.py) and must equal the one-rank vtu files bitwise.
 
 The discrete layer's reductions are exact on any number of ranks
 (include/tmfdem/discrete/partition.h), so the outputs must be identical,
@@ -18,6 +20,7 @@ triangles and bytes were exchanged.
 Exit status 0 when every case is identical on every rank count.
 """
 import argparse
+import glob
 import json
 import os
 import shutil
@@ -26,6 +29,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import results_neutral as rn  # noqa: E402
+import vtu_pieces  # noqa: E402
 
 MPI_ENTRIES = {"mpi_processes", "ghost_elements", "ghost_exchange_bytes",
                "synchronisations", "synchronisation_bytes", "communication_time_s"}
@@ -98,7 +102,14 @@ def main():
             continue
         base = folders[args.ranks[0]]
         for n in args.ranks[1:]:
-            differ, count = rn.compare(base, folders[n])
+            merged = folders[n] + "_merged"
+            records = vtu_pieces.merged_view(folders[n], merged)
+            if n > 1 and records == 0 and glob.glob(os.path.join(base, "*.vtu")):
+                status = 1
+                print(f"{case:24s} np {n}: no pvtu records (one vtu piece per rank "
+                      f"expected)", flush=True)
+                continue
+            differ, count = rn.compare(base, merged if records else folders[n])
             span_text = "whole run" if end is None else f"to t = {end:.6g} s"
             if differ:
                 status = 1
@@ -106,7 +117,8 @@ def main():
                       f"{', '.join(differ[:8])}", flush=True)
             else:
                 print(f"{case:24s} np {n} vs np {args.ranks[0]}: identical "
-                      f"({count} files, {span_text})", flush=True)
+                      f"({count} files, {records} of them vtu merged from "
+                      f"{n} pieces each, {span_text})", flush=True)
     sys.exit(status)
 
 

@@ -71,25 +71,107 @@ namespace tmfdem
       , base_name(base_name)
     {}
 
-    void
-    VtuSeries::write(const double time, const std::string &vtu_text)
+    std::string
+    VtuSeries::next_stem() const
     {
       char number[16];
       std::snprintf(number,
                     sizeof(number),
                     "%05u",
                     static_cast<unsigned int>(records.size()));
-      const std::string file = base_name + "_" + number + ".vtu";
+      return base_name + "_" + number;
+    }
+
+    void
+    VtuSeries::write(const double time, const std::string &vtu_text)
+    {
+      const std::string file = next_stem() + ".vtu";
       write_file_atomically(folder + "/" + file, vtu_text);
       records.emplace_back(time, file);
       write_pvd();
     }
 
+    namespace
+    {
+      std::string
+      piece_name(const std::string &stem, const unsigned int rank)
+      {
+        char number[16];
+        std::snprintf(number, sizeof(number), ".%04u.vtu", rank);
+        return stem + number;
+      }
+
+      /** The `<DataArray ...>` declarations between @p open and @p close
+       *  in @p piece, as `<PDataArray .../>` lines. */
+      std::string
+      parallel_declarations(const std::string &piece,
+                            const std::string &open,
+                            const std::string &close)
+      {
+        std::string  out;
+        const auto   begin = piece.find(open);
+        const auto   end   = piece.find(close);
+        const auto   tag   = std::string("<DataArray ");
+        const size_t stop  = end == std::string::npos ? piece.size() : end;
+        for (auto at = begin == std::string::npos ? stop :
+                                                    piece.find(tag, begin);
+             at < stop;
+             at = piece.find(tag, at + 1))
+          {
+            // the attributes up to format="...": type, Name, components
+            const auto format = piece.find(" format=", at);
+            out += "<PDataArray " +
+                   piece.substr(at + tag.size(), format - at - tag.size()) +
+                   "/>\n";
+          }
+        return out;
+      }
+    } // namespace
+
     void
-    VtuSeries::restore(const std::vector<std::pair<double, std::string>> &saved)
+    VtuSeries::write_piece(const unsigned int rank,
+                           const std::string &vtu_text) const
+    {
+      write_file_atomically(folder + "/" + piece_name(next_stem(), rank),
+                            vtu_text);
+    }
+
+    void
+    VtuSeries::write_parallel_record(const double       time,
+                                     const unsigned int n_ranks,
+                                     const std::string &piece_text)
+    {
+      const std::string  stem = next_stem();
+      std::ostringstream pvtu;
+      pvtu << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" "
+              "version=\"0.1\" byte_order=\"LittleEndian\">\n"
+              "<PUnstructuredGrid GhostLevel=\"0\">\n<PPointData>\n"
+           << parallel_declarations(piece_text, "<PointData>", "</PointData>")
+           << "</PPointData>\n<PCellData>\n"
+           << parallel_declarations(piece_text, "<CellData>", "</CellData>")
+           << "</PCellData>\n<PPoints>\n<PDataArray type=\"Float64\" "
+              "NumberOfComponents=\"3\"/>\n</PPoints>\n";
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        pvtu << "<Piece Source=\"" << piece_name(stem, r) << "\"/>\n";
+      pvtu << "</PUnstructuredGrid>\n</VTKFile>\n";
+      write_file_atomically(folder + "/" + stem + ".pvtu", pvtu.str());
+      records.emplace_back(time, stem + ".pvtu");
+      write_pvd();
+    }
+
+    void
+    VtuSeries::add_parallel_record(const double time)
+    {
+      records.emplace_back(time, next_stem() + ".pvtu");
+    }
+
+    void
+    VtuSeries::restore(const std::vector<std::pair<double, std::string>> &saved,
+                       const bool                                         write)
     {
       records = saved;
-      write_pvd();
+      if (write)
+        write_pvd();
     }
 
     void
@@ -110,41 +192,54 @@ namespace tmfdem
     discrete_solution_vtu(
       const DiscreteModel &model,
       const std::vector<std::pair<std::string, const std::vector<double> *>>
-        &extra_point_fields)
+                        &extra_point_fields,
+      const unsigned int first_element,
+      const unsigned int end_element)
     {
-      std::vector<double>       points(2 * model.n_nodes);
-      std::vector<unsigned int> connectivity(model.n_nodes);
-      std::vector<double>       displacement(3 * model.n_nodes),
-        velocity(3 * model.n_nodes);
-      for (unsigned int n = 0; n < model.n_nodes; ++n)
+      // triangles [first, end) own the nodes [3 first, 3 end)
+      const unsigned int  first    = std::min(first_element, model.n_elements);
+      const unsigned int  end      = std::min(end_element, model.n_elements);
+      const unsigned int  n_cells  = end > first ? end - first : 0;
+      const unsigned int  n_points = 3 * n_cells, node0 = 3 * first;
+      std::vector<double> points(2 * n_points);
+      std::vector<unsigned int> connectivity(n_points);
+      std::vector<double> displacement(3 * n_points), velocity(3 * n_points);
+      for (unsigned int i = 0; i < n_points; ++i)
         {
-          points[2 * n]           = model.x[n];
-          points[2 * n + 1]       = model.y[n];
-          connectivity[n]         = n;
-          displacement[3 * n]     = model.x[n] - model.x_ref[n];
-          displacement[3 * n + 1] = model.y[n] - model.y_ref[n];
-          displacement[3 * n + 2] = 0.;
-          velocity[3 * n]         = model.vx[n];
-          velocity[3 * n + 1]     = model.vy[n];
-          velocity[3 * n + 2]     = 0.;
+          const unsigned int n    = node0 + i;
+          points[2 * i]           = model.x[n];
+          points[2 * i + 1]       = model.y[n];
+          connectivity[i]         = i;
+          displacement[3 * i]     = model.x[n] - model.x_ref[n];
+          displacement[3 * i + 1] = model.y[n] - model.y_ref[n];
+          displacement[3 * i + 2] = 0.;
+          velocity[3 * i]         = model.vx[n];
+          velocity[3 * i + 1]     = model.vy[n];
+          velocity[3 * i + 2]     = 0.;
         }
       std::ostringstream point_data;
       point_data << std::setprecision(9);
       data_array(point_data, "Float64", "displacement", 3, displacement);
       data_array(point_data, "Float64", "velocity", 3, velocity);
       for (const auto &[name, values] : extra_point_fields)
-        data_array(point_data, "Float64", name, 1, *values);
+        data_array(point_data,
+                   "Float64",
+                   name,
+                   1,
+                   std::vector<double>(values->begin() + node0,
+                                       values->begin() + node0 + n_points));
 
-      std::vector<double> sxx(model.n_elements), syy(model.n_elements),
-        sxy(model.n_elements), damage(model.n_elements, 0.);
-      std::vector<int> material(model.n_elements), body(model.n_elements);
-      for (unsigned int e = 0; e < model.n_elements; ++e)
+      std::vector<double> sxx(n_cells), syy(n_cells), sxy(n_cells),
+        damage(n_cells, 0.);
+      std::vector<int> material(n_cells), body(n_cells);
+      for (unsigned int c = 0; c < n_cells; ++c)
         {
-          sxx[e]      = model.stress[3 * e];
-          syy[e]      = model.stress[3 * e + 1];
-          sxy[e]      = model.stress[3 * e + 2];
-          material[e] = model.material[e];
-          body[e]     = model.body[e] == no_body ? -1 : model.body[e];
+          const unsigned int e = first + c;
+          sxx[c]               = model.stress[3 * e];
+          syy[c]               = model.stress[3 * e + 1];
+          sxy[c]               = model.stress[3 * e + 2];
+          material[c]          = model.material[e];
+          body[c]              = model.body[e] == no_body ? -1 : model.body[e];
           for (unsigned int k = 0; k < 3; ++k)
             {
               const int code = model.edge_joint[3 * e + k];
@@ -156,7 +251,7 @@ namespace tmfdem
                             1. :
                             std::max(model.joint_damage[2 * j],
                                model.joint_damage[2 * j + 1]);
-                  damage[e] = std::max(damage[e], d);
+                  damage[c] = std::max(damage[c], d);
                 }
             }
         }
@@ -177,13 +272,17 @@ namespace tmfdem
     }
 
     std::string
-    crack_vtu(const DiscreteModel &model)
+    crack_vtu(const DiscreteModel &model,
+              const unsigned int   first_joint,
+              const unsigned int   end_joint)
     {
       std::vector<double>       points;
       std::vector<unsigned int> connectivity;
       std::vector<int>          mode;
       std::vector<double>       break_time;
-      for (unsigned int j = 0; j < model.n_joints; ++j)
+      for (unsigned int j = first_joint;
+           j < std::min(end_joint, model.n_joints);
+           ++j)
         if (model.joint_status[j] != JointStatus::intact)
           {
             const unsigned int *n = &model.joint_nodes[4 * j];

@@ -5,11 +5,14 @@
  * broken joints, reactions), probes.csv and lines.csv (monitor stresses
  * recovered at the vertices, stress_recovery.h) and summary.json.
  */
+#include <deal.II/base/mpi.h>
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 #include <sys/resource.h>
+#include <tmfdem/base/exceptions.h>
 #include <tmfdem/discrete/contact_heat.h>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/explicit_solver.h>
@@ -52,16 +55,70 @@ namespace tmfdem
     void
     ExplicitSolver::write_output()
     {
-      // the whole state and every pair's forces on every rank; rank 0 writes
+      // the whole state and every pair's forces on every rank; each rank
+      // writes its piece of the vtu files, rank 0 the rest
       synchronise();
       contact.synchronise_pairs(partition);
+      if (partition.distributed() && parameters.output.write_vtu)
+        write_vtu_pieces();
       on_rank_zero([this]() { write_output_files(); });
+    }
+
+    void
+    ExplicitSolver::write_vtu_pieces()
+    {
+      std::vector<double>                                              T;
+      std::vector<std::pair<std::string, const std::vector<double> *>> fields;
+      if (with_heat)
+        {
+          T.assign(heat->temperature().begin(), heat->temperature().end());
+          fields.emplace_back("T", &T);
+        }
+      // this rank's triangles (their nodes) and joints
+      const std::string solution = discrete_solution_vtu(model,
+                                                         fields,
+                                                         partition.begin(),
+                                                         partition.end());
+      const std::string cracks =
+        crack_vtu(model, partition.first_joint(), partition.end_joint());
+      std::string failure;
+      try
+        {
+          solution_series->write_piece(partition.rank(), solution);
+          crack_series->write_piece(partition.rank(), cracks);
+        }
+      catch (const std::exception &e)
+        {
+          failure = e.what();
+          if (failure.empty())
+            failure = "writing a vtu piece failed on rank " +
+                      std::to_string(partition.rank());
+        }
+      // every rank stops with the first failing rank's message
+      for (const std::string &message :
+           Utilities::MPI::all_gather(communicator, failure))
+        if (!message.empty())
+          throw RunError(message);
+      // the records once every piece is there
+      on_rank_zero([&]() {
+        solution_series->write_parallel_record(time,
+                                               partition.n_processes(),
+                                               solution);
+        crack_series->write_parallel_record(time,
+                                            partition.n_processes(),
+                                            cracks);
+      });
+      if (!writes_files())
+        {
+          solution_series->add_parallel_record(time);
+          crack_series->add_parallel_record(time);
+        }
     }
 
     void
     ExplicitSolver::write_output_files()
     {
-      if (parameters.output.write_vtu)
+      if (parameters.output.write_vtu && !partition.distributed())
         {
           if (with_heat)
             {

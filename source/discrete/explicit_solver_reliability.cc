@@ -286,15 +286,15 @@ namespace tmfdem
       // every rank has the whole state; the ghost plan of its pairs
       synchronised_step = step_number;
       partition.build_ghost_plan(model, contact.pairs());
-      // the outputs continue exactly where the checkpoint left them
-      // (rank 0 writes them)
-      if (!writes_files())
-        return;
+      // the outputs continue exactly where the checkpoint left them (every
+      // rank numbers the vtu pieces; rank 0 writes the rest)
       if (parameters.output.write_vtu)
         {
-          solution_series->restore(solution_records);
-          crack_series->restore(crack_records);
+          solution_series->restore(solution_records, writes_files());
+          crack_series->restore(crack_records, writes_files());
         }
+      if (!writes_files())
+        return;
       const std::string &folder = parameters.output.directory;
       truncate_file(folder + "/history.csv", csv_bytes[0]);
       if (probes_csv)

@@ -32,8 +32,12 @@ namespace tmfdem
                        "permission?)");
     }
     if (std::rename(temporary.c_str(), file_name.c_str()) != 0)
-      throw RunError("cannot rename '" + temporary + "' to '" + file_name +
-                     "'");
+      {
+        std::remove(temporary.c_str()); // no stray temporary left behind
+        throw RunError("cannot write '" + file_name +
+                       "' (renaming its temporary failed: a folder of that "
+                       "name, or no permission?)");
+      }
   }
 
   void

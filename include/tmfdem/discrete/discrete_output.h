@@ -23,8 +23,14 @@ namespace tmfdem
 {
   namespace discrete
   {
-    /** A vtu time series: `<base>_NNNNN.vtu` files and `<base>.pvd`, each
-     *  written atomically. */
+    /**
+     * A vtu time series: `<base>_NNNNN.vtu` files and `<base>.pvd`, each
+     * written atomically. On several MPI ranks each output is one piece per
+     * rank, `<base>_NNNNN.RRRR.vtu` (write_piece() on every rank), and a
+     * `<base>_NNNNN.pvtu` record of the pieces that the pvd lists
+     * (write_parallel_record() on rank 0; add_parallel_record() on the
+     * others keeps their count of outputs).
+     */
     class VtuSeries
     {
     public:
@@ -32,6 +38,20 @@ namespace tmfdem
       /** Writes @p vtu_text as the output at @p time [s]. */
       void
       write(const double time, const std::string &vtu_text);
+      /** Writes this rank's piece @p vtu_text of the next output. */
+      void
+      write_piece(const unsigned int rank, const std::string &vtu_text) const;
+      /** After every rank wrote its piece of the next output: writes its
+       *  pvtu record of @p n_ranks pieces (the array declarations taken from
+       *  @p piece_text, one of the pieces) and the pvd. */
+      void
+      write_parallel_record(const double       time,
+                            const unsigned int n_ranks,
+                            const std::string &piece_text);
+      /** Counts the next output at @p time without writing (ranks other
+       *  than 0). */
+      void
+      add_parallel_record(const double time);
       /** The (time [s], file) records so far, for checkpoints. */
       const std::vector<std::pair<double, std::string>> &
       get_records() const
@@ -39,11 +59,15 @@ namespace tmfdem
         return records;
       }
       /** Continues a series from a checkpoint's @p saved records: the pvd
-       *  is rewritten with exactly these (atomically). */
+       *  is rewritten with exactly these (atomically) if @p write_pvd. */
       void
-      restore(const std::vector<std::pair<double, std::string>> &saved);
+      restore(const std::vector<std::pair<double, std::string>> &saved,
+              const bool write_pvd = true);
 
     private:
+      /** `<base>_NNNNN` of the next output. */
+      std::string
+      next_stem() const;
       void
                                                   write_pvd() const;
       std::string                                 folder, base_name;
@@ -51,17 +75,24 @@ namespace tmfdem
     };
 
     /** The exploded mesh as a VTK UnstructuredGrid document. Extra nodal
-     *  scalar fields (name, values per node) are added as point data. */
+     *  scalar fields (name, values per node) are added as point data. Only
+     *  the triangles [@p first_element, @p end_element) and their nodes
+     *  (one rank's piece); end_element = -1: to the last. */
     std::string
     discrete_solution_vtu(
       const DiscreteModel &model,
       const std::vector<std::pair<std::string, const std::vector<double> *>>
-        &extra_point_fields = {});
+                        &extra_point_fields = {},
+      const unsigned int first_element      = 0,
+      const unsigned int end_element        = static_cast<unsigned int>(-1));
 
     /** Broken joints as line cells (one per joint, between the midpoints
-     *  of its two faces' end nodes). */
+     *  of its two faces' end nodes), of the joints [@p first_joint,
+     *  @p end_joint) (one rank's piece); end_joint = -1: to the last. */
     std::string
-    crack_vtu(const DiscreteModel &model);
+    crack_vtu(const DiscreteModel &model,
+              const unsigned int   first_joint = 0,
+              const unsigned int   end_joint   = static_cast<unsigned int>(-1));
 
     /**
      * The current configuration as a gmsh 2.2 ASCII mesh (Output/Write

@@ -144,6 +144,11 @@ namespace tmfdem
        *  with write_output_files()). */
       void
       write_output();
+      /** On several ranks: every rank writes its piece of the solution and
+       *  crack vtu files, rank 0 their pvtu records (collective; a failure
+       *  on any rank stops every rank with its message). */
+      void
+      write_vtu_pieces();
       void
       write_output_files();
       void
