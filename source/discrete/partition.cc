@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <tmfdem/discrete/partition.h>
 
 namespace tmfdem
@@ -303,46 +305,72 @@ namespace tmfdem
     {
       if (!distributed())
         return;
-      CommunicationTimer  timer(communication_seconds);
-      constexpr int       width = 8; // first, second, six slips
-      std::vector<double> mine(width * pairs.size());
+      CommunicationTimer timer(communication_seconds);
+      // most candidate pairs are not touching and have no friction history:
+      // the pairs go as two 32-bit ids (8 B), and only the pairs with a
+      // slip (any bit set, -0 included) add their index and six slips
+      std::vector<std::uint32_t> ids(2 * pairs.size());
+      std::vector<double>        slips;
       for (std::size_t p = 0; p < pairs.size(); ++p)
         {
-          mine[width * p]     = pairs[p].first;
-          mine[width * p + 1] = pairs[p].second;
-          for (unsigned int i = 0; i < 6; ++i)
-            mine[width * p + 2 + i] = pairs[p].slip[i];
+          ids[2 * p]     = pairs[p].first;
+          ids[2 * p + 1] = pairs[p].second;
+          bool sliding   = false;
+          for (const double s : pairs[p].slip)
+            sliding |= s != 0. || std::signbit(s);
+          if (sliding)
+            {
+              slips.push_back(static_cast<double>(p));
+              slips.insert(slips.end(),
+                           pairs[p].slip.begin(),
+                           pairs[p].slip.end());
+            }
         }
-      const int count = static_cast<int>(mine.size());
-      counts.assign(n_ranks, 0);
-      AssertThrowMPI(MPI_Allgather(&count,
-                                   1,
-                                   MPI_INT,
-                                   counts.data(),
-                                   1,
-                                   MPI_INT,
-                                   communicator));
-      displacements.assign(n_ranks + 1, 0);
+      // one rank's block of a gathered array, by rank
+      const auto gather = [this](const auto &mine, auto &all, MPI_Datatype t) {
+        const int count = static_cast<int>(mine.size());
+        counts.assign(n_ranks, 0);
+        AssertThrowMPI(MPI_Allgather(&count,
+                                     1,
+                                     MPI_INT,
+                                     counts.data(),
+                                     1,
+                                     MPI_INT,
+                                     communicator));
+        displacements.assign(n_ranks + 1, 0);
+        for (unsigned int r = 0; r < n_ranks; ++r)
+          displacements[r + 1] = displacements[r] + counts[r];
+        all.resize(displacements[n_ranks]);
+        AssertThrowMPI(MPI_Allgatherv(mine.data(),
+                                      count,
+                                      t,
+                                      all.data(),
+                                      counts.data(),
+                                      displacements.data(),
+                                      t,
+                                      communicator));
+        sync_bytes += sizeof(mine[0]) * mine.size();
+        return displacements;
+      };
+      std::vector<std::uint32_t> all_ids;
+      const std::vector<int> id_offsets = gather(ids, all_ids, MPI_UINT32_T);
+      scratch.clear();
+      const std::vector<int> slip_offsets = gather(slips, scratch, MPI_DOUBLE);
+      pairs.assign(all_ids.size() / 2, ContactPair());
+      for (std::size_t p = 0; p < pairs.size(); ++p)
+        {
+          pairs[p].first  = all_ids[2 * p];
+          pairs[p].second = all_ids[2 * p + 1];
+        }
+      constexpr unsigned int width = 7; // index, six slips
       for (unsigned int r = 0; r < n_ranks; ++r)
-        displacements[r + 1] = displacements[r] + counts[r];
-      scratch.resize(displacements[n_ranks]);
-      AssertThrowMPI(MPI_Allgatherv(mine.data(),
-                                    count,
-                                    MPI_DOUBLE,
-                                    scratch.data(),
-                                    counts.data(),
-                                    displacements.data(),
-                                    MPI_DOUBLE,
-                                    communicator));
-      sync_bytes += sizeof(double) * mine.size();
-      pairs.resize(scratch.size() / width);
-      for (std::size_t p = 0; p < pairs.size(); ++p)
-        {
-          pairs[p].first  = static_cast<unsigned int>(scratch[width * p]);
-          pairs[p].second = static_cast<unsigned int>(scratch[width * p + 1]);
-          for (unsigned int i = 0; i < 6; ++i)
-            pairs[p].slip[i] = scratch[width * p + 2 + i];
-        }
+        for (int k = slip_offsets[r]; k < slip_offsets[r + 1]; k += width)
+          {
+            ContactPair &pair =
+              pairs[id_offsets[r] / 2 + static_cast<std::size_t>(scratch[k])];
+            for (unsigned int i = 0; i < 6; ++i)
+              pair.slip[i] = scratch[k + 1 + i];
+          }
     }
 
     void
