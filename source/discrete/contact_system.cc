@@ -34,9 +34,7 @@ namespace tmfdem
     }
 
     void
-    ContactSystem::search(const DiscreteModel &model,
-                          tbb::task_arena     &arena,
-                          ElementPartition    &partition)
+    ContactSystem::update_active_elements(const DiscreteModel &model)
     {
       // active: elements with a free edge, and their intact neighbours
       std::vector<unsigned char> active(model.n_elements, 0);
@@ -60,7 +58,13 @@ namespace tmfdem
       for (unsigned int e = 0; e < model.n_elements; ++e)
         if (with_neighbours[e])
           active_elements.push_back(e);
+    }
 
+    void
+    ContactSystem::search(const DiscreteModel &model,
+                          tbb::task_arena     &arena,
+                          ElementPartition    &partition)
+    {
       const auto skip = [&](const unsigned int a, const unsigned int b) {
         return model.joined(a, b);
       };

@@ -176,13 +176,18 @@ namespace tmfdem
     void
     ExplicitSolver::search_contacts()
     {
-      // the search reads positions and joint status only
+      // the search reads the joints' status and the positions (and, for
+      // the new ghosts, velocities) of the active triangles only
       if (partition.distributed() && synchronised_step != step_number &&
           geometry_synchronised_step != step_number)
         {
-          partition.synchronise(model, true);
+          partition.synchronise_joint_status(model);
+          contact.update_active_elements(model);
+          partition.synchronise_elements(model, contact.get_active_elements());
           geometry_synchronised_step = step_number;
         }
+      else
+        contact.update_active_elements(model);
       contact.search(model, arena_for(n_threads), partition);
       partition.build_ghost_plan(model, contact.pairs());
     }

@@ -301,6 +301,85 @@ namespace tmfdem
     }
 
     void
+    ElementPartition::synchronise_joint_status(DiscreteModel &m)
+    {
+      if (!distributed())
+        return;
+      CommunicationTimer timer(communication_seconds);
+      counts.assign(n_ranks, 0);
+      displacements.assign(n_ranks + 1, 0);
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        {
+          counts[r] = static_cast<int>(joint_begin[r + 1] - joint_begin[r]);
+          displacements[r + 1] = displacements[r] + counts[r];
+        }
+      std::vector<std::uint8_t> status(displacements[n_ranks]);
+      for (unsigned int j = joint_begin[this_rank];
+           j < joint_begin[this_rank + 1];
+           ++j)
+        status[j - joint_begin[0]] =
+          static_cast<std::uint8_t>(m.joint_status[j]);
+      AssertThrowMPI(MPI_Allgatherv(MPI_IN_PLACE,
+                                    0,
+                                    MPI_DATATYPE_NULL,
+                                    status.data(),
+                                    counts.data(),
+                                    displacements.data(),
+                                    MPI_UINT8_T,
+                                    communicator));
+      sync_bytes += counts[this_rank];
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        if (r != this_rank)
+          for (unsigned int j = joint_begin[r]; j < joint_begin[r + 1]; ++j)
+            m.joint_status[j] =
+              static_cast<JointStatus>(status[j - joint_begin[0]]);
+    }
+
+    void
+    ElementPartition::synchronise_elements(
+      DiscreteModel                   &m,
+      const std::vector<unsigned int> &elements)
+    {
+      if (!distributed())
+        return;
+      CommunicationTimer timer(communication_seconds);
+      // the list is sorted and the same on every rank: rank r's part is
+      // the elements in [element_begin[r], element_begin[r + 1])
+      std::vector<std::size_t> first(n_ranks + 1, elements.size());
+      for (unsigned int r = 0; r <= n_ranks; ++r)
+        first[r] =
+          std::lower_bound(elements.begin(), elements.end(), element_begin[r]) -
+          elements.begin();
+      counts.assign(n_ranks, 0);
+      displacements.assign(n_ranks + 1, 0);
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        {
+          counts[r] = static_cast<int>(ghost_width * (first[r + 1] - first[r]));
+          displacements[r + 1] = displacements[r] + counts[r];
+        }
+      scratch.resize(displacements[n_ranks]);
+      double *b = scratch.data() + displacements[this_rank];
+      for (std::size_t i = first[this_rank]; i < first[this_rank + 1]; ++i)
+        b = pack_nodes(m, elements[i], b);
+      AssertThrowMPI(MPI_Allgatherv(MPI_IN_PLACE,
+                                    0,
+                                    MPI_DATATYPE_NULL,
+                                    scratch.data(),
+                                    counts.data(),
+                                    displacements.data(),
+                                    MPI_DOUBLE,
+                                    communicator));
+      sync_bytes += sizeof(double) * counts[this_rank];
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        if (r != this_rank)
+          {
+            const double *in = scratch.data() + displacements[r];
+            for (std::size_t i = first[r]; i < first[r + 1]; ++i)
+              in = unpack_nodes(m, elements[i], in);
+          }
+    }
+
+    void
     ElementPartition::gather_pairs(std::vector<ContactPair> &pairs)
     {
       if (!distributed())

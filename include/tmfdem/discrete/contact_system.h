@@ -69,9 +69,23 @@ namespace tmfdem
       node_stiffness_bound() const;
 
       /**
+       * The elements that take part in the next search: those with a free
+       * edge (no intact joint) and their intact neighbours, in index order,
+       * from the joints' status in @p model. search() uses them; on several
+       * ranks they are what the search gathers (partition.h).
+       */
+      void
+      update_active_elements(const DiscreteModel &model);
+      const std::vector<unsigned int> &
+      get_active_elements() const
+      {
+        return active_elements;
+      }
+
+      /**
        * Rebuilds the pair list from the current geometry of @p model: the
-       * active elements (with a free edge, and their intact neighbours),
-       * pairs of those whose boxes come within the buffer and that are not
+       * active elements of update_active_elements() (call it first), pairs
+       * of those whose boxes come within the buffer and that are not
        * joined by an intact joint. Pairs within one rigid group stay in the
        * list (contact heat flows between them) but carry no force. Friction
        * history of pairs that persist is kept. On several ranks each rank

@@ -139,6 +139,23 @@ namespace tmfdem
       synchronise(DiscreteModel &model, const bool geometry_only = false);
 
       /**
+       * What a contact search needs, in two steps: the status of every
+       * joint (one byte each) ...
+       */
+      void
+      synchronise_joint_status(DiscreteModel &model);
+      /**
+       * ... then, once every rank knows the same active @p elements (sorted;
+       * ContactSystem::update_active_elements()), the positions and
+       * velocities of their nodes only: the triangles with no free edge
+       * near them take no part in the search, and those a rank needs later
+       * (joined neighbours) come with the ghost exchange.
+       */
+      void
+      synchronise_elements(DiscreteModel                   &model,
+                           const std::vector<unsigned int> &elements);
+
+      /**
        * Joins the pair lists of all ranks: on entry @p pairs holds this
        * rank's pairs (first triangle its own, sorted), on return the pairs of
        * all ranks in rank order, which is the sorted list one rank makes,
