@@ -3,11 +3,13 @@
 the last cracks_*.vtu of a discrete run.
 
     count_radial_cracks.py OUTPUT_FOLDER [OUTPUT_FOLDER ...] [--gap DEGREES]
+                           [--time SECONDS]
 
 The broken joints are grouped by the polar angle of their midpoints: joints
 whose angles lie within --gap degrees (default 10) of a neighbour belong to
 one crack. Per crack: its angle, its number of joints and the radii it
-spans [m]. Needs only numpy.
+spans [m]. --time picks the cracks_*.vtu written nearest that time [s]
+instead of the last one. Needs only numpy.
 """
 import argparse
 import os
@@ -20,11 +22,16 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot_vtu import read_vtu  # noqa: E402
 
 
-def last_cracks(folder):
+def last_cracks(folder, time=None):
+    """(time [s], path) of the last cracks_*.vtu, or of the one written
+    nearest time [s]."""
     pvd = os.path.join(folder, "cracks.pvd")
     sets = [(float(d.get("timestep")), d.get("file"))
             for d in ET.parse(pvd).getroot().iter("DataSet")]
-    t, f = max(sets)
+    if time is None:
+        t, f = max(sets)
+    else:
+        t, f = min(sets, key=lambda s: abs(s[0] - time))
     return t, os.path.join(folder, f)
 
 
@@ -61,9 +68,11 @@ def main():
     p = argparse.ArgumentParser()
     p.add_argument("folders", nargs="+")
     p.add_argument("--gap", type=float, default=10.)
+    p.add_argument("--time", type=float, default=None,
+                   help="output time [s]; default: the last written")
     args = p.parse_args()
     for folder in args.folders:
-        t, vtu = last_cracks(folder)
+        t, vtu = last_cracks(folder, args.time)
         found = cracks(vtu, args.gap)
         print(f"{folder}: t = {t:g} s, {sum(c[1] for c in found)} broken joints in "
               f"{len(found)} crack(s)")
