@@ -218,6 +218,31 @@ namespace tmfdem
         }
     }
 
+    std::size_t
+    ElementPartition::block_layout()
+    {
+      displacements.assign(n_ranks + 1, 0);
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        displacements[r + 1] = displacements[r] + counts[r];
+      return displacements[n_ranks];
+    }
+
+    template <typename T>
+    void
+    ElementPartition::allgather_blocks(std::vector<T> &buffer,
+                                       MPI_Datatype    type)
+    {
+      AssertThrowMPI(MPI_Allgatherv(MPI_IN_PLACE,
+                                    0,
+                                    MPI_DATATYPE_NULL,
+                                    buffer.data(),
+                                    counts.data(),
+                                    displacements.data(),
+                                    type,
+                                    communicator));
+      sync_bytes += sizeof(T) * counts[this_rank];
+    }
+
     void
     ElementPartition::synchronise(DiscreteModel &m, const bool geometry_only)
     {
@@ -230,15 +255,11 @@ namespace tmfdem
       const unsigned int per_element = geometry_only ? 12 : element_width;
       const unsigned int per_joint   = geometry_only ? 1 : joint_width;
       counts.assign(n_ranks, 0);
-      displacements.assign(n_ranks + 1, 0);
       for (unsigned int r = 0; r < n_ranks; ++r)
-        {
-          counts[r] = static_cast<int>(
-            per_element * (element_begin[r + 1] - element_begin[r]) +
-            per_joint * (joint_begin[r + 1] - joint_begin[r]));
-          displacements[r + 1] = displacements[r] + counts[r];
-        }
-      scratch.resize(displacements[n_ranks]);
+        counts[r] = static_cast<int>(
+          per_element * (element_begin[r + 1] - element_begin[r]) +
+          per_joint * (joint_begin[r + 1] - joint_begin[r]));
+      scratch.resize(block_layout());
       // pack mine in place
       {
         double *b = scratch.data() + displacements[this_rank];
@@ -263,15 +284,7 @@ namespace tmfdem
               *b++ = m.joint_force[8 * j + c];
           }
       }
-      AssertThrowMPI(MPI_Allgatherv(MPI_IN_PLACE,
-                                    0,
-                                    MPI_DATATYPE_NULL,
-                                    scratch.data(),
-                                    counts.data(),
-                                    displacements.data(),
-                                    MPI_DOUBLE,
-                                    communicator));
-      sync_bytes += sizeof(double) * counts[this_rank];
+      allgather_blocks(scratch, MPI_DOUBLE);
       ++synchronisations;
       for (unsigned int r = 0; r < n_ranks; ++r)
         {
@@ -307,27 +320,15 @@ namespace tmfdem
         return;
       CommunicationTimer timer(communication_seconds);
       counts.assign(n_ranks, 0);
-      displacements.assign(n_ranks + 1, 0);
       for (unsigned int r = 0; r < n_ranks; ++r)
-        {
-          counts[r] = static_cast<int>(joint_begin[r + 1] - joint_begin[r]);
-          displacements[r + 1] = displacements[r] + counts[r];
-        }
-      std::vector<std::uint8_t> status(displacements[n_ranks]);
+        counts[r] = static_cast<int>(joint_begin[r + 1] - joint_begin[r]);
+      std::vector<std::uint8_t> status(block_layout());
       for (unsigned int j = joint_begin[this_rank];
            j < joint_begin[this_rank + 1];
            ++j)
         status[j - joint_begin[0]] =
           static_cast<std::uint8_t>(m.joint_status[j]);
-      AssertThrowMPI(MPI_Allgatherv(MPI_IN_PLACE,
-                                    0,
-                                    MPI_DATATYPE_NULL,
-                                    status.data(),
-                                    counts.data(),
-                                    displacements.data(),
-                                    MPI_UINT8_T,
-                                    communicator));
-      sync_bytes += counts[this_rank];
+      allgather_blocks(status, MPI_UINT8_T);
       for (unsigned int r = 0; r < n_ranks; ++r)
         if (r != this_rank)
           for (unsigned int j = joint_begin[r]; j < joint_begin[r + 1]; ++j)
@@ -351,25 +352,13 @@ namespace tmfdem
           std::lower_bound(elements.begin(), elements.end(), element_begin[r]) -
           elements.begin();
       counts.assign(n_ranks, 0);
-      displacements.assign(n_ranks + 1, 0);
       for (unsigned int r = 0; r < n_ranks; ++r)
-        {
-          counts[r] = static_cast<int>(ghost_width * (first[r + 1] - first[r]));
-          displacements[r + 1] = displacements[r] + counts[r];
-        }
-      scratch.resize(displacements[n_ranks]);
+        counts[r] = static_cast<int>(ghost_width * (first[r + 1] - first[r]));
+      scratch.resize(block_layout());
       double *b = scratch.data() + displacements[this_rank];
       for (std::size_t i = first[this_rank]; i < first[this_rank + 1]; ++i)
         b = pack_nodes(m, elements[i], b);
-      AssertThrowMPI(MPI_Allgatherv(MPI_IN_PLACE,
-                                    0,
-                                    MPI_DATATYPE_NULL,
-                                    scratch.data(),
-                                    counts.data(),
-                                    displacements.data(),
-                                    MPI_DOUBLE,
-                                    communicator));
-      sync_bytes += sizeof(double) * counts[this_rank];
+      allgather_blocks(scratch, MPI_DOUBLE);
       for (unsigned int r = 0; r < n_ranks; ++r)
         if (r != this_rank)
           {
@@ -416,19 +405,11 @@ namespace tmfdem
                                      1,
                                      MPI_INT,
                                      communicator));
-        displacements.assign(n_ranks + 1, 0);
-        for (unsigned int r = 0; r < n_ranks; ++r)
-          displacements[r + 1] = displacements[r] + counts[r];
-        all.resize(displacements[n_ranks]);
-        AssertThrowMPI(MPI_Allgatherv(mine.data(),
-                                      count,
-                                      t,
-                                      all.data(),
-                                      counts.data(),
-                                      displacements.data(),
-                                      t,
-                                      communicator));
-        sync_bytes += sizeof(mine[0]) * mine.size();
+        all.resize(block_layout());
+        std::copy(mine.begin(),
+                  mine.end(),
+                  all.begin() + displacements[this_rank]);
+        allgather_blocks(all, t);
         return displacements;
       };
       std::vector<std::uint32_t> all_ids;

@@ -224,7 +224,19 @@ namespace tmfdem
       mutable double communication_seconds = 0.;
       /** Scratch of synchronise(). */
       std::vector<double> scratch;
-      std::vector<int>    counts, displacements;
+      /** Entries per rank of a gathered array, and where each rank's block
+       *  starts (block_layout()). */
+      std::vector<int> counts, displacements;
+
+      /** Sets displacements from counts; returns the total count. */
+      std::size_t
+      block_layout();
+      /** MPI_Allgatherv in place: every rank's block of @p buffer (laid
+       *  out by block_layout(), this rank's block filled) to every rank;
+       *  counts the bytes this rank sends. */
+      template <typename T>
+      void
+      allgather_blocks(std::vector<T> &buffer, MPI_Datatype type);
     };
   } // namespace discrete
 } // namespace tmfdem
