@@ -76,6 +76,13 @@ namespace tmfdem
       double friction_tangent;     ///< tan(phi) [-]
       double softening_width_I;    ///< w_I [m]
       double softening_width_II;   ///< w_II [m]
+      /** Opening at the peak traction, 2 f_t / k_n [m] (derived; computed
+       *  once here instead of per Gauss point and step). */
+      double opening_peak;
+      /** Slip at the peak shear traction without compression, 2 c / k_t
+       *  [m] (derived; under compression the peak grows, see
+       *  cohesive_traction()). */
+      double slip_peak_open;
     };
 
     /** Tractions on a joint face pair [Pa]. */
@@ -100,10 +107,14 @@ namespace tmfdem
     {
       JointTraction t{0., 0., 0., 0.};
       const double  ft           = k.tensile_strength;
-      const double  opening_peak = 2. * ft / k.normal_stiffness;
+      const double  opening_peak = k.opening_peak;
       const double  compression  = o < 0. ? k.normal_stiffness * o : 0.;
-      const double  fs        = k.cohesion - compression * k.friction_tangent;
-      const double  slip_peak = 2. * fs / k.tangential_stiffness;
+      // Mohr-Coulomb: f_s = c - sigma_n tan(phi); without compression the
+      // peak slip is the stored 2 c / k_t (the same value bit for bit)
+      const double fs = o < 0. ? k.cohesion - compression * k.friction_tangent :
+                                 k.cohesion;
+      const double slip_peak =
+        o < 0. ? 2. * fs / k.tangential_stiffness : k.slip_peak_open;
       const double  abs_s     = std::abs(s);
       if (o > opening_peak)
         t.d_opening = (o - opening_peak) / k.softening_width_I;

@@ -110,7 +110,10 @@ namespace tmfdem
               }
           }
       knots[n_knots++] = u1;
-      std::sort(knots + 1, knots + n_knots - 1);
+      // sort the (at most three) interior breakpoints: insertion sort
+      for (unsigned int i = 2; i + 1 < n_knots; ++i)
+        for (unsigned int k = i; k > 1 && knots[k] < knots[k - 1]; --k)
+          std::swap(knots[k], knots[k - 1]);
 
       result                         = EdgePotentialIntegrals();
       result.clipped_length_fraction = u1 - u0;
