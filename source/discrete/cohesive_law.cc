@@ -63,8 +63,8 @@ namespace tmfdem
       k.tensile_strength     = tensile_strength;
       k.cohesion             = cohesion;
       k.friction_tangent     = std::tan(friction_angle_degrees * M_PI / 180.);
-      k.opening_peak         = 2. * tensile_strength / k.normal_stiffness;
-      k.slip_peak_open       = 2. * cohesion / k.tangential_stiffness;
+      k.inverse_opening_peak   = k.normal_stiffness / (2. * tensile_strength);
+      k.inverse_slip_peak_open = k.tangential_stiffness / (2. * cohesion);
       const double integral  = softening_integral(law);
       const double pre_peak_I =
         4. / 3. * tensile_strength * tensile_strength / k.normal_stiffness;

@@ -43,8 +43,9 @@ namespace tmfdem
         const double ex = 0.5 * (m.x[n[1]] + m.x[n[3]] - m.x[n[0]] - m.x[n[2]]);
         const double ey = 0.5 * (m.y[n[1]] + m.y[n[3]] - m.y[n[0]] - m.y[n[2]]);
         g.L             = std::sqrt(ex * ex + ey * ey);
-        g.tx            = ex / g.L;
-        g.ty            = ey / g.L;
+        const double inverse_L = 1. / g.L;
+        g.tx                   = ex * inverse_L;
+        g.ty                   = ey * inverse_L;
         g.nx            = g.ty;
         g.ny            = -g.tx;
         return g;

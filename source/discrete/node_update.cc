@@ -124,6 +124,8 @@ namespace tmfdem
                       fjy += jf[2 * slot + 1];
                     }
                   const double mass = m.mass[node];
+                  // dt / ((1 + c dt / 2) m): one division per node
+                  const double b_m = damp_b / mass;
                   const double fgx  = mass * d.gravity[0],
                                fgy  = mass * d.gravity[1];
                   const double fx =
@@ -141,8 +143,8 @@ namespace tmfdem
                         d.node_conditions[slot];
                       const double tx = nc.force[0], ty = nc.force[1];
                       double       gx = fx + tx, gy = fy + ty;
-                      vx_new = damp_a * vx_old + damp_b * gx / mass;
-                      vy_new = damp_a * vy_old + damp_b * gy / mass;
+                      vx_new = damp_a * vx_old + b_m * gx;
+                      vy_new = damp_a * vy_old + b_m * gy;
                       if (!nc.prescribed[0])
                         unbalanced += (gx - f_v[2 * k]) * (gx - f_v[2 * k]);
                       if (!nc.prescribed[1])
@@ -170,8 +172,8 @@ namespace tmfdem
                   else if (b == no_body ||
                            d.body_motion[b] == DiscreteBody::Motion::free)
                     {
-                      vx_new          = damp_a * vx_old + damp_b * fx / mass;
-                      vy_new          = damp_a * vy_old + damp_b * fy / mass;
+                      vx_new          = damp_a * vx_old + b_m * fx;
+                      vy_new          = damp_a * vy_old + b_m * fy;
                       const double ux = fx - f_v[2 * k],
                                    uy = fy - f_v[2 * k + 1];
                       unbalanced += ux * ux + uy * uy;

@@ -123,8 +123,9 @@ namespace tmfdem
       const double b_xx = fe00 * fe00 + fe01 * fe01;
       const double b_yy = fe10 * fe10 + fe11 * fe11;
       const double b_xy = fe00 * fe10 + fe01 * fe11;
-      const double mu_J = lame.mu / J;
-      const double vol  = 0.5 * lame.lambda * (J - 1. / J);
+      const double inverse_J = 1. / J;
+      const double mu_J      = lame.mu * inverse_J;
+      const double vol       = 0.5 * lame.lambda * (J - inverse_J);
       return {mu_J * (b_xx - 1.) + vol, mu_J * (b_yy - 1.) + vol, mu_J * b_xy};
     }
 

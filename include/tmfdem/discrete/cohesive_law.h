@@ -76,13 +76,13 @@ namespace tmfdem
       double friction_tangent;     ///< tan(phi) [-]
       double softening_width_I;    ///< w_I [m]
       double softening_width_II;   ///< w_II [m]
-      /** Opening at the peak traction, 2 f_t / k_n [m] (derived; computed
-       *  once here instead of per Gauss point and step). */
-      double opening_peak;
-      /** Slip at the peak shear traction without compression, 2 c / k_t
-       *  [m] (derived; under compression the peak grows, see
-       *  cohesive_traction()). */
-      double slip_peak_open;
+      /** 1 / o_p with the opening at the peak traction o_p = 2 f_t / k_n
+       *  [1/m] (derived, so that the step multiplies instead of divides). */
+      double inverse_opening_peak;
+      /** 1 / s_p with the slip at the peak shear traction without
+       *  compression s_p = 2 c / k_t [1/m] (derived; under compression the
+       *  peak grows, see cohesive_traction()). */
+      double inverse_slip_peak_open;
     };
 
     /** Tractions on a joint face pair [Pa]. */
@@ -106,20 +106,25 @@ namespace tmfdem
                       double               &damage)
     {
       JointTraction t{0., 0., 0., 0.};
-      const double  ft           = k.tensile_strength;
-      const double  opening_peak = k.opening_peak;
-      const double  compression  = o < 0. ? k.normal_stiffness * o : 0.;
-      // Mohr-Coulomb: f_s = c - sigma_n tan(phi); without compression the
-      // peak slip is the stored 2 c / k_t (the same value bit for bit)
+      const double  ft          = k.tensile_strength;
+      const double  compression = o < 0. ? k.normal_stiffness * o : 0.;
+      // opening and slip relative to their peaks, r = o / o_p and
+      // r_s = |s| / s_p (o_p = 2 f_t / k_n, s_p = 2 f_s / k_t): products
+      // with the stored reciprocals where f_s = c (no compression); under
+      // compression Mohr-Coulomb f_s = c - sigma_n tan(phi) grows with it
       const double fs = o < 0. ? k.cohesion - compression * k.friction_tangent :
                                  k.cohesion;
-      const double slip_peak =
-        o < 0. ? 2. * fs / k.tangential_stiffness : k.slip_peak_open;
-      const double  abs_s     = std::abs(s);
-      if (o > opening_peak)
-        t.d_opening = (o - opening_peak) / k.softening_width_I;
-      if (abs_s > slip_peak)
-        t.d_slip = (abs_s - slip_peak) / k.softening_width_II;
+      const double abs_s = std::abs(s);
+      const double r     = o * k.inverse_opening_peak;
+      const double r_s =
+        o < 0. ? abs_s * k.tangential_stiffness / (2. * fs) :
+                 abs_s * k.inverse_slip_peak_open;
+      // beyond a peak: the softening displacements (rare; divisions here)
+      if (r > 1.)
+        t.d_opening = (o - 2. * ft / k.normal_stiffness) / k.softening_width_I;
+      if (r_s > 1.)
+        t.d_slip =
+          (abs_s - 2. * fs / k.tangential_stiffness) / k.softening_width_II;
       double D = damage;
       if (t.d_opening > 0. || t.d_slip > 0.)
         {
@@ -133,15 +138,11 @@ namespace tmfdem
 
       if (o < 0.)
         t.normal = compression;
-      else if (o <= opening_peak)
-        {
-          const double r = o / opening_peak;
-          t.normal       = z * ft * r * (2. - r);
-        }
+      else if (r <= 1.)
+        t.normal = z * ft * r * (2. - r);
       else
         t.normal = z * ft;
 
-      const double r_s = abs_s / slip_peak;
       const double shear_magnitude =
         z * fs * (r_s < 1. ? r_s * (2. - r_s) : 1.);
       t.shear = s < 0. ? -shear_magnitude : shear_magnitude;
