@@ -190,8 +190,11 @@ namespace tmfdem
                                                contact.settings().buffer,
                                                candidates,
                                                extent);
-          contact.search(
-            model, arena_for(n_threads), partition, &candidates, &extent);
+          contact.search(model,
+                         arena_for(n_threads),
+                         partition,
+                         &candidates,
+                         &extent);
           partition.build_ghost_plan(model, contact.pairs());
           partition.exchange_new_ghosts(model);
           return;

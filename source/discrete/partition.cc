@@ -371,8 +371,11 @@ namespace tmfdem
       constexpr unsigned int width = 5;
       std::vector<double>    regions(width * n_ranks);
       {
-        const double mine[width] = {
-          region.x0, region.y0, region.x1, region.y1, region.largest};
+        const double mine[width] = {region.x0,
+                                    region.y0,
+                                    region.x1,
+                                    region.y1,
+                                    region.largest};
         AssertThrowMPI(MPI_Allgather(mine,
                                      width,
                                      MPI_DOUBLE,
@@ -402,8 +405,8 @@ namespace tmfdem
       const auto    meets     = [&](const unsigned int r) {
         return boxes_overlap(&regions[width * r], my_region);
       };
-      constexpr int tag = 4712;
-      constexpr unsigned int record = 1 + ghost_width; // index, nodes
+      constexpr int                    tag    = 4712;
+      constexpr unsigned int           record = 1 + ghost_width; // index, nodes
       std::vector<std::vector<double>> send(this_rank);
       std::vector<MPI_Request>         send_requests;
       for (unsigned int r = 0; r < this_rank; ++r)
@@ -480,15 +483,15 @@ namespace tmfdem
       new_requests.reserve(2 * neighbours.size());
       for (std::size_t i = 0; i < neighbours.size(); ++i)
         {
-          const Neighbour &n        = neighbours[i];
-          const auto       previous = std::find_if(
-            previous_neighbours.begin(),
-            previous_neighbours.end(),
-            [&](const Neighbour &p) { return p.rank == n.rank; });
+          const Neighbour &n = neighbours[i];
+          const auto       previous =
+            std::find_if(previous_neighbours.begin(),
+                         previous_neighbours.end(),
+                         [&](const Neighbour &p) { return p.rank == n.rank; });
           static const std::vector<unsigned int> none;
-          const auto &old_send =
-            previous == previous_neighbours.end() ? none :
-                                                    previous->send_elements;
+          const auto &old_send    = previous == previous_neighbours.end() ?
+                                      none :
+                                      previous->send_elements;
           const auto &old_receive = previous == previous_neighbours.end() ?
                                       none :
                                       previous->receive_elements;

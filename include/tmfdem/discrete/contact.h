@@ -230,8 +230,8 @@ namespace tmfdem
               std::vector<ContactPair>        &pairs,
               tbb::task_arena                 &arena,
               const unsigned int               first_begin = 0,
-              const unsigned int first_end = static_cast<unsigned int>(-1),
-              const SearchExtent *extent   = nullptr);
+              const unsigned int  first_end = static_cast<unsigned int>(-1),
+              const SearchExtent *extent    = nullptr);
 
       /** The same on one thread. */
       template <typename Excluded>

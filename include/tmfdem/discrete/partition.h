@@ -1,9 +1,10 @@
 /**
  * @file
  * The discrete layer on several MPI processes: which triangles each rank
- * owns, the ghost exchange of every explicit step and the full
- * synchronisation before whatever reads the whole state (contact search,
- * heat, energy, outputs, checkpoints).
+ * owns, the ghost exchange of every explicit step, the exchange of
+ * candidates by bounding boxes before a contact search, and the full
+ * synchronisation before whatever reads the whole state (heat, energy,
+ * outputs, checkpoints).
  *
  * The data layout is that of deal.II's parallel::shared::Triangulation:
  * every rank holds the whole exploded mesh (DiscreteModel), owns a part of
@@ -216,7 +217,9 @@ namespace tmfdem
       {
         return ghost_bytes;
       }
-      /** Bytes this rank contributed to synchronisations so far. */
+      /** Bytes this rank contributed to synchronisations so far, the
+       *  exchanges of a contact search included (joints' status, regions,
+       *  candidates, new ghosts, pair lists). */
       std::uint64_t
       synchronisation_bytes_sent() const
       {
@@ -256,9 +259,9 @@ namespace tmfdem
         std::vector<unsigned int> send_elements, receive_elements;
         std::vector<double>       send_buffer, receive_buffer;
       };
-      std::vector<Neighbour>   neighbours;
+      std::vector<Neighbour> neighbours;
       /** The neighbours of the previous plan (exchange_new_ghosts()). */
-      std::vector<Neighbour> previous_neighbours;
+      std::vector<Neighbour>   previous_neighbours;
       std::vector<MPI_Request> requests;
 
       std::uint64_t  ghost_bytes           = 0;
