@@ -13,7 +13,7 @@ not merely close. Each run also reports, from its summary.json, that it
 really ran on that many processes (mpi_processes) and how many ghost
 triangles and bytes were exchanged.
 
-    rank_independence.py TMFDEM [--ranks 1 2 3] [--cases joint_pull ...]
+    rank_independence.py TMFDEM [--ranks 1 2 3] [--cases joint_pull|path.prm ...]
                          [--mechanical-steps N] [--thermal-steps N]
                          [--set ENTRY=VALUE ...] [--end-time T] [--out FOLDER]
 
@@ -77,7 +77,11 @@ def main():
     rn.VOLATILE.update(MPI_ENTRIES)
     status = 0
     for case in args.cases:
-        prm = os.path.join(rn.ROOT, "prm", case + ".prm")
+        # a name from prm/, or a path to a prm file (tests/data/...)
+        if case.endswith(".prm"):
+            prm, case = case, os.path.splitext(os.path.basename(case))[0]
+        else:
+            prm = os.path.join(rn.ROOT, "prm", case + ".prm")
         work = os.path.join(args.out, case)
         os.makedirs(work, exist_ok=True)
         try:

@@ -61,22 +61,28 @@ namespace tmfdem
     }
 
     void
-    ContactSystem::search(const DiscreteModel &model,
-                          tbb::task_arena     &arena,
-                          ElementPartition    &partition)
+    ContactSystem::search(const DiscreteModel             &model,
+                          tbb::task_arena                 &arena,
+                          ElementPartition                &partition,
+                          const std::vector<unsigned int> *candidates,
+                          const SearchExtent              *extent)
     {
       const auto skip = [&](const unsigned int a, const unsigned int b) {
         return model.joined(a, b);
       };
+      Assert((candidates == nullptr) == (extent == nullptr),
+             ExcInternalError());
       linked_cells.rebuild(model.x,
                            model.y,
-                           active_elements,
+                           candidates != nullptr ? *candidates :
+                                                   active_elements,
                            contact.buffer,
                            skip,
                            pair_list,
                            arena,
                            partition.begin(),
-                           partition.end());
+                           partition.end(),
+                           extent);
       partition.gather_pairs(pair_list);
       index_pairs(model.n_elements);
       flag_rigid_pairs();

@@ -176,18 +176,30 @@ namespace tmfdem
     void
     ExplicitSolver::search_contacts()
     {
-      // the search reads the joints' status and the positions (and, for
-      // the new ghosts, velocities) of the active triangles only
-      if (partition.distributed() && synchronised_step != step_number &&
-          geometry_synchronised_step != step_number)
+      // on several ranks, without the whole state: the joints' status,
+      // then the active triangles near each rank's region by bounding
+      // boxes, and the ghosts new to the plan (partition.h)
+      if (partition.distributed() && synchronised_step != step_number)
         {
           partition.synchronise_joint_status(model);
           contact.update_active_elements(model);
-          partition.synchronise_elements(model, contact.get_active_elements());
-          geometry_synchronised_step = step_number;
+          std::vector<unsigned int> candidates;
+          SearchExtent              extent;
+          partition.exchange_search_candidates(model,
+                                               contact.get_active_elements(),
+                                               contact.settings().buffer,
+                                               candidates,
+                                               extent);
+          contact.search(model,
+                         arena_for(n_threads),
+                         partition,
+                         &candidates,
+                         &extent);
+          partition.build_ghost_plan(model, contact.pairs());
+          partition.exchange_new_ghosts(model);
+          return;
         }
-      else
-        contact.update_active_elements(model);
+      contact.update_active_elements(model);
       contact.search(model, arena_for(n_threads), partition);
       partition.build_ghost_plan(model, contact.pairs());
     }

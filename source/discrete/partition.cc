@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <tmfdem/discrete/partition.h>
 
 namespace tmfdem
@@ -109,6 +110,7 @@ namespace tmfdem
         if (owns(model.joint_elements[2 * k + 1]))
           joint_subset.others.push_back(k);
       neighbours.clear();
+      previous_neighbours.clear();
       requests.clear();
     }
 
@@ -157,6 +159,7 @@ namespace tmfdem
           couple(model.joint_elements[2 * j], model.joint_elements[2 * j + 1]);
       for (const ContactPair &p : pairs)
         couple(p.first, p.second);
+      previous_neighbours = std::move(neighbours);
       neighbours.clear();
       for (unsigned int r = 0; r < n_ranks; ++r)
         {
@@ -337,35 +340,209 @@ namespace tmfdem
     }
 
     void
-    ElementPartition::synchronise_elements(
+    ElementPartition::exchange_search_candidates(
       DiscreteModel                   &m,
-      const std::vector<unsigned int> &elements)
+      const std::vector<unsigned int> &elements,
+      const double                     buffer,
+      std::vector<unsigned int>       &candidates,
+      SearchExtent                    &extent)
+    {
+      Assert(distributed(), ExcInternalError());
+      CommunicationTimer timer(communication_seconds);
+      // the list is sorted and the same on every rank: my active triangles
+      // are elements[mine_begin, mine_end)
+      const std::size_t mine_begin =
+        std::lower_bound(elements.begin(), elements.end(), begin()) -
+        elements.begin();
+      const std::size_t mine_end =
+        std::lower_bound(elements.begin(), elements.end(), end()) -
+        elements.begin();
+      const std::size_t n_mine = mine_end - mine_begin;
+      // the search boxes of my active triangles and their hull, my region
+      std::vector<double> boxes(4 * n_mine);
+      SearchExtent        region;
+      for (std::size_t i = 0; i < n_mine; ++i)
+        {
+          const unsigned int e = elements[mine_begin + i];
+          search_box(&m.x[3 * e], &m.y[3 * e], buffer, &boxes[4 * i]);
+          region.add(&boxes[4 * i]);
+        }
+      // every rank's region and largest box side
+      constexpr unsigned int width = 5;
+      std::vector<double>    regions(width * n_ranks);
+      {
+        const double mine[width] = {region.x0,
+                                    region.y0,
+                                    region.x1,
+                                    region.y1,
+                                    region.largest};
+        AssertThrowMPI(MPI_Allgather(mine,
+                                     width,
+                                     MPI_DOUBLE,
+                                     regions.data(),
+                                     width,
+                                     MPI_DOUBLE,
+                                     communicator));
+        sync_bytes += sizeof(mine);
+      }
+      // the extent of all active triangles: minima and maxima are exact,
+      // in any order
+      extent            = SearchExtent();
+      extent.n_elements = elements.size();
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        {
+          const double *R = &regions[width * r];
+          extent.x0       = std::min(extent.x0, R[0]);
+          extent.y0       = std::min(extent.y0, R[1]);
+          extent.x1       = std::max(extent.x1, R[2]);
+          extent.y1       = std::max(extent.y1, R[3]);
+          extent.largest  = std::max(extent.largest, R[4]);
+        }
+      // pairs (a, b), a < b, are made by the owner of a: a rank sends to the
+      // lower ranks whose region meets its own (an empty region, no active
+      // triangle, meets none) and receives from the higher ones
+      const double *my_region = &regions[width * this_rank];
+      const auto    meets     = [&](const unsigned int r) {
+        return boxes_overlap(&regions[width * r], my_region);
+      };
+      constexpr int                    tag    = 4712;
+      constexpr unsigned int           record = 1 + ghost_width; // index, nodes
+      std::vector<std::vector<double>> send(this_rank);
+      std::vector<MPI_Request>         send_requests;
+      for (unsigned int r = 0; r < this_rank; ++r)
+        if (meets(r))
+          {
+            const double *R = &regions[width * r];
+            for (std::size_t i = 0; i < n_mine; ++i)
+              if (boxes_overlap(&boxes[4 * i], R))
+                {
+                  const unsigned int e = elements[mine_begin + i];
+                  send[r].resize(send[r].size() + record);
+                  double *b = send[r].data() + send[r].size() - record;
+                  *b++      = static_cast<double>(e);
+                  pack_nodes(m, e, b);
+                }
+            send_requests.emplace_back();
+            AssertThrowMPI(MPI_Isend(send[r].data(),
+                                     static_cast<int>(send[r].size()),
+                                     MPI_DOUBLE,
+                                     r,
+                                     tag,
+                                     communicator,
+                                     &send_requests.back()));
+            sync_bytes += sizeof(double) * send[r].size();
+          }
+      // mine, then what the higher ranks send in rank order: sorted
+      candidates.assign(elements.begin() + mine_begin,
+                        elements.begin() + mine_end);
+      std::vector<double> received;
+      for (unsigned int r = this_rank + 1; r < n_ranks; ++r)
+        if (meets(r))
+          {
+            MPI_Status status;
+            AssertThrowMPI(MPI_Probe(r, tag, communicator, &status));
+            int count = 0;
+            AssertThrowMPI(MPI_Get_count(&status, MPI_DOUBLE, &count));
+            received.resize(count);
+            AssertThrowMPI(MPI_Recv(received.data(),
+                                    count,
+                                    MPI_DOUBLE,
+                                    r,
+                                    tag,
+                                    communicator,
+                                    MPI_STATUS_IGNORE));
+            for (const double *b = received.data();
+                 b < received.data() + received.size();)
+              {
+                const unsigned int e = static_cast<unsigned int>(*b++);
+                AssertThrow(owner(e) == r && e < m.n_elements,
+                            ExcInternalError());
+                candidates.push_back(e);
+                b = unpack_nodes(m, e, b);
+              }
+          }
+      AssertThrowMPI(MPI_Waitall(static_cast<int>(send_requests.size()),
+                                 send_requests.data(),
+                                 MPI_STATUSES_IGNORE));
+    }
+
+    void
+    ElementPartition::exchange_new_ghosts(DiscreteModel &m)
     {
       if (!distributed())
         return;
       CommunicationTimer timer(communication_seconds);
-      // the list is sorted and the same on every rank: rank r's part is
-      // the elements in [element_begin[r], element_begin[r + 1])
-      std::vector<std::size_t> first(n_ranks + 1, elements.size());
-      for (unsigned int r = 0; r <= n_ranks; ++r)
-        first[r] =
-          std::lower_bound(elements.begin(), elements.end(), element_begin[r]) -
-          elements.begin();
-      counts.assign(n_ranks, 0);
-      for (unsigned int r = 0; r < n_ranks; ++r)
-        counts[r] = static_cast<int>(ghost_width * (first[r + 1] - first[r]));
-      scratch.resize(block_layout());
-      double *b = scratch.data() + displacements[this_rank];
-      for (std::size_t i = first[this_rank]; i < first[this_rank + 1]; ++i)
-        b = pack_nodes(m, elements[i], b);
-      allgather_blocks(scratch, MPI_DOUBLE);
-      for (unsigned int r = 0; r < n_ranks; ++r)
-        if (r != this_rank)
-          {
-            const double *in = scratch.data() + displacements[r];
-            for (std::size_t i = first[r]; i < first[r + 1]; ++i)
-              in = unpack_nodes(m, elements[i], in);
-          }
+      const int          tag = 4713;
+      // per neighbour: the triangles new to its send and receive lists
+      // (both sides of a plan see the same lists, so they agree)
+      std::vector<std::vector<unsigned int>> new_send(neighbours.size()),
+        new_receive(neighbours.size());
+      std::vector<std::vector<double>> send_data(neighbours.size()),
+        receive_data(neighbours.size());
+      std::vector<MPI_Request> new_requests;
+      new_requests.reserve(2 * neighbours.size());
+      for (std::size_t i = 0; i < neighbours.size(); ++i)
+        {
+          const Neighbour &n = neighbours[i];
+          const auto       previous =
+            std::find_if(previous_neighbours.begin(),
+                         previous_neighbours.end(),
+                         [&](const Neighbour &p) { return p.rank == n.rank; });
+          static const std::vector<unsigned int> none;
+          const auto &old_send    = previous == previous_neighbours.end() ?
+                                      none :
+                                      previous->send_elements;
+          const auto &old_receive = previous == previous_neighbours.end() ?
+                                      none :
+                                      previous->receive_elements;
+          std::set_difference(n.send_elements.begin(),
+                              n.send_elements.end(),
+                              old_send.begin(),
+                              old_send.end(),
+                              std::back_inserter(new_send[i]));
+          std::set_difference(n.receive_elements.begin(),
+                              n.receive_elements.end(),
+                              old_receive.begin(),
+                              old_receive.end(),
+                              std::back_inserter(new_receive[i]));
+          if (!new_receive[i].empty())
+            {
+              receive_data[i].resize(ghost_width * new_receive[i].size());
+              new_requests.emplace_back();
+              AssertThrowMPI(MPI_Irecv(receive_data[i].data(),
+                                       static_cast<int>(receive_data[i].size()),
+                                       MPI_DOUBLE,
+                                       n.rank,
+                                       tag,
+                                       communicator,
+                                       &new_requests.back()));
+            }
+          if (!new_send[i].empty())
+            {
+              send_data[i].resize(ghost_width * new_send[i].size());
+              double *b = send_data[i].data();
+              for (const unsigned int e : new_send[i])
+                b = pack_nodes(m, e, b);
+              new_requests.emplace_back();
+              AssertThrowMPI(MPI_Isend(send_data[i].data(),
+                                       static_cast<int>(send_data[i].size()),
+                                       MPI_DOUBLE,
+                                       n.rank,
+                                       tag,
+                                       communicator,
+                                       &new_requests.back()));
+              sync_bytes += sizeof(double) * send_data[i].size();
+            }
+        }
+      AssertThrowMPI(MPI_Waitall(static_cast<int>(new_requests.size()),
+                                 new_requests.data(),
+                                 MPI_STATUSES_IGNORE));
+      for (std::size_t i = 0; i < neighbours.size(); ++i)
+        {
+          const double *b = receive_data[i].data();
+          for (const unsigned int e : new_receive[i])
+            b = unpack_nodes(m, e, b);
+        }
     }
 
     void

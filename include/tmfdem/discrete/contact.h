@@ -151,6 +151,59 @@ namespace tmfdem
     };
 
     /**
+     * The search box of a triangle with node coordinates @p xe, @p ye (three
+     * each): its bounding box enlarged by half the @p buffer on every side,
+     * written to @p box as xmin, ymin, xmax, ymax [m]. Two triangles are
+     * candidates when their search boxes overlap (closed intervals:
+     * boxes_overlap()). The one expression the search and the exchange of
+     * candidates between ranks (partition.h) use, so both agree bitwise.
+     */
+    inline void
+    search_box(const double *xe,
+               const double *ye,
+               const double  buffer,
+               double       *box)
+    {
+      box[0] = std::min(xe[0], std::min(xe[1], xe[2])) - 0.5 * buffer;
+      box[1] = std::min(ye[0], std::min(ye[1], ye[2])) - 0.5 * buffer;
+      box[2] = std::max(xe[0], std::max(xe[1], xe[2])) + 0.5 * buffer;
+      box[3] = std::max(ye[0], std::max(ye[1], ye[2])) + 0.5 * buffer;
+    }
+
+    /** Whether boxes @p a and @p b (xmin, ymin, xmax, ymax) overlap or
+     *  touch. */
+    inline bool
+    boxes_overlap(const double *a, const double *b)
+    {
+      return !(a[0] > b[2] || b[0] > a[2] || a[1] > b[3] || b[1] > a[3]);
+    }
+
+    /**
+     * The extent of a linked-cell grid: the hull of the search boxes of all
+     * active elements, the largest box side and their number. The grid,
+     * and hence the pair list, follows from these alone; a rank that bins
+     * only some of the active elements (partition.h) passes the extent of
+     * all of them to get the grid one rank makes.
+     */
+    struct SearchExtent
+    {
+      double      x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300; ///< [m]
+      double      largest    = 0.; ///< largest box side [m]
+      std::size_t n_elements = 0;  ///< active elements in all
+
+      /** Takes in one search @p box. */
+      void
+      add(const double *box)
+      {
+        largest = std::max(largest, std::max(box[2] - box[0], box[3] - box[1]));
+        x0      = std::min(x0, box[0]);
+        y0      = std::min(y0, box[1]);
+        x1      = std::max(x1, box[2]);
+        y1      = std::max(y1, box[3]);
+      }
+    };
+
+    /**
      * Linked-cell broad phase: candidate pairs of active elements whose
      * bounding boxes, enlarged by the buffer, overlap.
      */
@@ -167,6 +220,8 @@ namespace tmfdem
        * @p excluded must be safe to call from several threads. Only pairs
        * whose first element lies in [@p first_begin, @p first_end) are
        * made (one MPI rank's share, partition.h); the default is all.
+       * With @p extent, the grid is made for that extent (the active
+       * elements of all ranks) instead of that of @p active_elements.
        */
       template <typename Excluded>
       void
@@ -178,7 +233,8 @@ namespace tmfdem
               std::vector<ContactPair>        &pairs,
               tbb::task_arena                 &arena,
               const unsigned int               first_begin = 0,
-              const unsigned int first_end = static_cast<unsigned int>(-1));
+              const unsigned int  first_end = static_cast<unsigned int>(-1),
+              const SearchExtent *extent    = nullptr);
 
       /** The same on one thread. */
       template <typename Excluded>
@@ -213,7 +269,8 @@ namespace tmfdem
                               std::vector<ContactPair>        &pairs,
                               tbb::task_arena                 &arena,
                               const unsigned int               first_begin,
-                              const unsigned int               first_end)
+                              const unsigned int               first_end,
+                              const SearchExtent              *extent)
     {
       const std::size_t n = active.size();
       new_pairs.clear();
@@ -223,31 +280,24 @@ namespace tmfdem
           return;
         }
       box.resize(4 * n);
-      double gx0 = 1e300, gy0 = 1e300, gx1 = -1e300, gy1 = -1e300;
-      double largest = 0.;
+      SearchExtent local;
+      local.n_elements = n;
       for (std::size_t i = 0; i < n; ++i)
         {
-          const unsigned int e  = active[i];
-          const double      *xe = &x[3 * e], *ye = &y[3 * e];
-          double            *bx = &box[4 * i];
-          bx[0]   = std::min(xe[0], std::min(xe[1], xe[2])) - 0.5 * buffer;
-          bx[1]   = std::min(ye[0], std::min(ye[1], ye[2])) - 0.5 * buffer;
-          bx[2]   = std::max(xe[0], std::max(xe[1], xe[2])) + 0.5 * buffer;
-          bx[3]   = std::max(ye[0], std::max(ye[1], ye[2])) + 0.5 * buffer;
-          largest = std::max(largest, std::max(bx[2] - bx[0], bx[3] - bx[1]));
-          gx0     = std::min(gx0, bx[0]);
-          gy0     = std::min(gy0, bx[1]);
-          gx1     = std::max(gx1, bx[2]);
-          gy1     = std::max(gy1, bx[3]);
+          const unsigned int e = active[i];
+          search_box(&x[3 * e], &y[3 * e], buffer, &box[4 * i]);
+          local.add(&box[4 * i]);
         }
-      double cell = largest;
-      auto   dims = [&](const double c) {
+      const SearchExtent &g   = extent != nullptr ? *extent : local;
+      const double        gx0 = g.x0, gy0 = g.y0, gx1 = g.x1, gy1 = g.y1;
+      double              cell = g.largest;
+      auto                dims = [&](const double c) {
         return std::array<std::size_t, 2>{
           {static_cast<std::size_t>((gx1 - gx0) / c) + 1,
            static_cast<std::size_t>((gy1 - gy0) / c) + 1}};
       };
       // keep the grid at most 4 cells per element (bodies far apart)
-      while (dims(cell)[0] * dims(cell)[1] > 4 * n + 16)
+      while (dims(cell)[0] * dims(cell)[1] > 4 * g.n_elements + 16)
         cell *= 2.;
       const auto nc = dims(cell);
       cell_start.assign(nc[0] * nc[1] + 1, 0);
@@ -324,9 +374,7 @@ namespace tmfdem
                         const unsigned int j = cell_items[p];
                         if (active[j] <= active[i])
                           continue;
-                        const double *bi = &box[4 * i], *bj = &box[4 * j];
-                        if (bi[0] > bj[2] || bj[0] > bi[2] || bi[1] > bj[3] ||
-                            bj[1] > bi[3])
+                        if (!boxes_overlap(&box[4 * i], &box[4 * j]))
                           continue;
                         if (excluded(active[i], active[j]))
                           continue;

@@ -72,7 +72,7 @@ namespace tmfdem
        * The elements that take part in the next search: those with a free
        * edge (no intact joint) and their intact neighbours, in index order,
        * from the joints' status in @p model. search() uses them; on several
-       * ranks they are what the search gathers (partition.h).
+       * ranks every rank finds the same (partition.h).
        */
       void
       update_active_elements(const DiscreteModel &model);
@@ -90,12 +90,18 @@ namespace tmfdem
        * list (contact heat flows between them) but carry no force. Friction
        * history of pairs that persist is kept. On several ranks each rank
        * makes the pairs of its own first triangles and the lists are joined
-       * (@p partition): every rank ends with the whole list.
+       * (@p partition): every rank ends with the whole list. With
+       * @p candidates (sorted) and @p extent, a rank bins only those (its
+       * own active triangles and the others' near its region, from
+       * ElementPartition::exchange_search_candidates()) on the grid of the
+       * extent of all active triangles: the same pairs.
        */
       void
-      search(const DiscreteModel &model,
-             tbb::task_arena     &arena,
-             ElementPartition    &partition);
+      search(const DiscreteModel             &model,
+             tbb::task_arena                 &arena,
+             ElementPartition                &partition,
+             const std::vector<unsigned int> *candidates = nullptr,
+             const SearchExtent              *extent     = nullptr);
 
       /** Forces of the pairs with a triangle of this rank (@p partition)
        *  at the current state, with the law of the settings, over the step

@@ -297,8 +297,6 @@ namespace tmfdem
       ElementPartition partition;
       /** Step at which the whole state was last gathered on every rank. */
       unsigned long synchronised_step = static_cast<unsigned long>(-1);
-      /** Step at which positions and joint status were last gathered. */
-      unsigned long geometry_synchronised_step = static_cast<unsigned long>(-1);
       /** Joints broke in this rank's part during the step under way. */
       bool joints_broke = false;
       /**
@@ -309,8 +307,9 @@ namespace tmfdem
        */
       void
       synchronise();
-      /** The contact search on the whole state, then the ghost plan from
-       *  its pairs. */
+      /** The contact search (on several ranks: by bounding boxes, unless
+       *  the whole state is there anyway), then the ghost plan from its
+       *  pairs. */
       void
       search_contacts();
       /** Broken joints on all ranks (collective; no synchronisation). */

@@ -1,9 +1,10 @@
 /**
  * @file
  * The discrete layer on several MPI processes: which triangles each rank
- * owns, the ghost exchange of every explicit step and the full
- * synchronisation before whatever reads the whole state (contact search,
- * heat, energy, outputs, checkpoints).
+ * owns, the ghost exchange of every explicit step, the exchange of
+ * candidates by bounding boxes before a contact search, and the full
+ * synchronisation before whatever reads the whole state (heat, energy,
+ * outputs, checkpoints).
  *
  * The data layout is that of deal.II's parallel::shared::Triangulation:
  * every rank holds the whole exploded mesh (DiscreteModel), owns a part of
@@ -19,7 +20,16 @@
  * triangles (the pair list of the last search): the ghosts. Owners send
  * them after every node update (point-to-point, pre-sized buffers); the
  * plan is rebuilt after every contact search from the pair list, which is
- * the same on every rank (the search runs on the synchronised state).
+ * the same on every rank.
+ *
+ * A contact search needs no full synchronisation: the joints' status goes
+ * to every rank (one byte per joint), so every rank knows the same active
+ * triangles; then each rank receives, from the ranks whose region (the
+ * hull of their active triangles' search boxes) meets its own, only the
+ * triangles whose search box meets its region (exchange_search_candidates()),
+ * makes the pairs of its own first triangles, and the pair lists are
+ * joined (gather_pairs()). The ghosts new to the plan then come from their
+ * owners (exchange_new_ghosts()).
  */
 #ifndef tmfdem_discrete_partition_h
 #define tmfdem_discrete_partition_h
@@ -128,12 +138,24 @@ namespace tmfdem
       exchange_ghosts(DiscreteModel &model);
 
       /**
+       * After build_ghost_plan() following a search by bounding boxes
+       * (exchange_search_candidates()): sends and receives the positions
+       * and velocities of the ghosts that were not in the previous plan
+       * (the ghosts of the previous plan are current: exchange_ghosts()
+       * after every node update). The partner of a pair made by a lower
+       * rank came to it with the search, but the higher rank computes the
+       * pair's forces too and needs the lower rank's triangle: so every
+       * ghost is current before the first force computation of the plan.
+       */
+      void
+      exchange_new_ghosts(DiscreteModel &model);
+
+      /**
        * Gives every rank the whole state: positions, velocities and
        * stresses of all nodes and triangles, and the state of all joints
        * (a joint belongs to the owner of its first triangle; both owners
        * computed it the same way). With @p geometry_only, only the node
-       * positions and velocities and the joints' status (what the contact
-       * search and the new ghosts of its plan need).
+       * positions and velocities and the joints' status.
        */
       void
       synchronise(DiscreteModel &model, const bool geometry_only = false);
@@ -146,14 +168,34 @@ namespace tmfdem
       synchronise_joint_status(DiscreteModel &model);
       /**
        * ... then, once every rank knows the same active @p elements (sorted;
-       * ContactSystem::update_active_elements()), the positions and
-       * velocities of their nodes only: the triangles with no free edge
-       * near them take no part in the search, and those a rank needs later
-       * (joined neighbours) come with the ghost exchange.
+       * ContactSystem::update_active_elements()), the triangles the search
+       * of this rank needs, by bounding boxes. A pair (a, b), a < b, is made
+       * by the owner of a, and only when the search boxes of a and b
+       * overlap (search_box(), contact.h: the bounding box enlarged by half
+       * the @p buffer [m]). Each rank takes the hull of the search boxes of
+       * its own active triangles, its region; the regions (4 doubles) and
+       * the largest box side go to every rank (MPI_Allgather). A rank then
+       * sends to each lower rank whose region meets its own the positions
+       * and velocities (and index) of its own active triangles whose search
+       * box meets that rank's region (point-to-point; who sends to whom
+       * follows from the regions every rank knows): a box that overlaps
+       * the box of a triangle of the region meets the region, so a lower
+       * rank receives every partner its pairs can have; the rest stay
+       * where they are. Receivers write them into @p model.
+       *
+       * On return @p candidates holds, sorted, this rank's own active
+       * triangles and those received: what its search bins. @p extent is
+       * that of the active triangles of all ranks (exact: minima and
+       * maxima), so the linked-cell grid is the one one rank makes and the
+       * pairs of this rank's first triangles are bitwise those one rank
+       * makes.
        */
       void
-      synchronise_elements(DiscreteModel                   &model,
-                           const std::vector<unsigned int> &elements);
+      exchange_search_candidates(DiscreteModel                   &model,
+                                 const std::vector<unsigned int> &elements,
+                                 const double                     buffer,
+                                 std::vector<unsigned int>       &candidates,
+                                 SearchExtent                    &extent);
 
       /**
        * Joins the pair lists of all ranks: on entry @p pairs holds this
@@ -175,7 +217,9 @@ namespace tmfdem
       {
         return ghost_bytes;
       }
-      /** Bytes this rank contributed to synchronisations so far. */
+      /** Bytes this rank contributed to synchronisations so far, the
+       *  exchanges of a contact search included (joints' status, regions,
+       *  candidates, new ghosts, pair lists). */
       std::uint64_t
       synchronisation_bytes_sent() const
       {
@@ -215,7 +259,9 @@ namespace tmfdem
         std::vector<unsigned int> send_elements, receive_elements;
         std::vector<double>       send_buffer, receive_buffer;
       };
-      std::vector<Neighbour>   neighbours;
+      std::vector<Neighbour> neighbours;
+      /** The neighbours of the previous plan (exchange_new_ghosts()). */
+      std::vector<Neighbour>   previous_neighbours;
       std::vector<MPI_Request> requests;
 
       std::uint64_t  ghost_bytes           = 0;
