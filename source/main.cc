@@ -16,15 +16,44 @@
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/validation_report.h>
 
+namespace
+{
+  /**
+   * Started without a launcher (no mpirun, srun, ...), Open MPI 4.1 makes
+   * the process a singleton: MPI_Init starts a support daemon and probes
+   * the network, about 0.5 s of a small case's 0.7 s. A process that is
+   * not launched as one rank of several never needs either, so tmfdem asks
+   * Open MPI for an isolated singleton (no daemon) with only the self
+   * transport, and without session directories: isolated singletons all
+   * share the job id [0,1] and so the session directory
+   * /tmp/ompi.HOST.UID/jf.0/1, which one process removes at MPI_Finalize
+   * while another creates it (orte_init failed in 1 of 320 concurrent
+   * launches; doc/performance.md, "Start-up time"). Settings in the
+   * environment win (setenv does not overwrite).
+   */
+  void
+  isolate_open_mpi_singleton()
+  {
+    for (const char *launched : {"OMPI_COMM_WORLD_SIZE",
+                                 "PMIX_RANK",
+                                 "PMI_RANK",
+                                 "PMI_SIZE",
+                                 "SLURM_PROCID"})
+      if (std::getenv(launched) != nullptr)
+        return;
+    setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
+    setenv("OMPI_MCA_orte_create_session_dirs", "0", 0);
+    setenv("OMPI_MCA_pml", "ob1", 0);
+    setenv("OMPI_MCA_btl", "self", 0);
+  }
+} // namespace
+
 int
 main(int argc, char *argv[])
 {
   using namespace tmfdem;
   tmfdem::install_signal_handlers(); // SIGINT/SIGTERM during start-up too
-  // Open MPI's singleton start-up (about 0.5 s of MPI_Init) is left as it
-  // is: isolating the singleton (OMPI_MCA_ess_singleton_isolated=1) cut it
-  // to 0.05 s but failed orte_init in 1 of 320 concurrent launches
-  // (doc/performance.md); a user may still set it in the environment.
+  isolate_open_mpi_singleton();
   dealii::Utilities::MPI::MPI_InitFinalize
     mpi(argc, argv, dealii::numbers::invalid_unsigned_int);
   // ranks x threads <= cores (include/tmfdem/base/threads.h)
