@@ -760,10 +760,34 @@ namespace tmfdem
           }
       if (values != nullptr)
         {
+          // the values likewise: most pairs carry none (not touching), so
+          // only the pairs with any bit set go, as index and values
           Assert(values->size() == width * ids.size() / 2, ExcInternalError());
-          const std::vector<double> mine = std::move(*values);
-          gather(mine, *values, MPI_DOUBLE);
-          Assert(values->size() == width * pairs.size(), ExcInternalError());
+          std::vector<double> sparse;
+          for (std::size_t p = 0; p < ids.size() / 2; ++p)
+            {
+              const double *v   = values->data() + width * p;
+              bool          any = false;
+              for (unsigned int i = 0; i < width; ++i)
+                any |= v[i] != 0. || std::signbit(v[i]);
+              if (any)
+                {
+                  sparse.push_back(static_cast<double>(p));
+                  sparse.insert(sparse.end(), v, v + width);
+                }
+            }
+          std::vector<double>    all;
+          const std::vector<int> value_offsets =
+            gather(sparse, all, MPI_DOUBLE);
+          values->assign(width * pairs.size(), 0.);
+          for (unsigned int r = 0; r < n_ranks; ++r)
+            for (int k = value_offsets[r]; k < value_offsets[r + 1];
+                 k += 1 + width)
+              std::copy(all.begin() + k + 1,
+                        all.begin() + k + 1 + width,
+                        values->begin() +
+                          width * (id_offsets[r] / 2 +
+                                   static_cast<std::size_t>(all[k])));
         }
     }
 

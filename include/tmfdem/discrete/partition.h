@@ -227,7 +227,8 @@ namespace tmfdem
        * doubles per pair of them; on return the pairs of all ranks in rank
        * order, which is the sorted list one rank makes, with the friction
        * history each owner kept, and the values of all pairs in the same
-       * order.
+       * order. Only the pairs with a slip or a value (any bit set) send
+       * them, with their index: 8 B for a pair that is not touching.
        */
       void
       gather_pairs(std::vector<ContactPair> &pairs,
