@@ -40,6 +40,10 @@ namespace tmfdem
       // search at these same positions) before the source filters them
       if (contact.enabled() && contact.search_needed())
         search_contacts();
+      // on several ranks each keeps the pairs of its own triangles; the
+      // heat, on every rank, reads all (one gather per search)
+      if (contact.enabled())
+        contact.gather_all_pairs(partition);
       heat->update_contact_pairs();
     }
 

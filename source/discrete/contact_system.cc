@@ -83,13 +83,34 @@ namespace tmfdem
                            partition.begin(),
                            partition.end(),
                            extent);
-      partition.gather_pairs(pair_list);
+      // each rank keeps the pairs with a triangle of its own (partition.h)
+      partition.exchange_pairs(pair_list, candidates != nullptr);
       index_pairs(model.n_elements);
       flag_rigid_pairs();
       travel_since_search = 0.;
       search_is_needed    = false;
       ++searches;
       local_pairs_of_search = 0;
+      all_pairs_of_search   = 0;
+    }
+
+    const std::vector<ContactPair> &
+    ContactSystem::all_pairs(const ElementPartition &partition) const
+    {
+      return partition.distributed() ? all_pair_list : pair_list;
+    }
+
+    void
+    ContactSystem::gather_all_pairs(ElementPartition &partition)
+    {
+      if (!partition.distributed() || all_pairs_of_search == searches + 1)
+        return;
+      all_pair_list.clear();
+      for (const ContactPair &p : pair_list)
+        if (partition.owns(p.first))
+          all_pair_list.push_back(p);
+      partition.gather_pairs(all_pair_list);
+      all_pairs_of_search = searches + 1;
     }
 
     void
@@ -105,12 +126,16 @@ namespace tmfdem
     }
 
     unsigned int
-    ContactSystem::n_mechanical_pairs() const
+    ContactSystem::n_mechanical_pairs(const ElementPartition &partition) const
     {
+      // each pair counted by the owner of its first triangle
       unsigned int n = 0;
-      for (const char rigid : pair_is_rigid)
-        n += rigid ? 0 : 1;
-      return n;
+      for (std::size_t p = 0; p < pair_list.size(); ++p)
+        if (!pair_is_rigid[p] && partition.owns(pair_list[p].first))
+          ++n;
+      std::vector<double> count(1, n);
+      partition.sum(count); // exact: integers
+      return static_cast<unsigned int>(count[0]);
     }
 
     void
@@ -249,28 +274,30 @@ namespace tmfdem
     }
 
     void
-    ContactSystem::synchronise_pairs(const ElementPartition &partition)
+    ContactSystem::synchronise_pairs(ElementPartition &partition)
     {
       if (!partition.distributed())
         return;
-      constexpr unsigned int width = 18; // 6 slips, 12 forces
-      std::vector<double>    data(width * pair_list.size(), 0.);
+      // the pairs each rank made, with their friction history and forces
+      // (both owners of a pair computed the same), to every rank in rank
+      // order: the sorted list of one rank
+      constexpr unsigned int   width = 12;
+      std::vector<ContactPair> all;
+      std::vector<double>      forces;
       for (std::size_t p = 0; p < pair_list.size(); ++p)
         if (partition.owns(pair_list[p].first))
           {
-            for (unsigned int i = 0; i < 6; ++i)
-              data[width * p + i] = pair_list[p].slip[i];
-            for (unsigned int i = 0; i < 12; ++i)
-              data[width * p + 6 + i] = pair_force[12 * p + i];
+            all.push_back(pair_list[p]);
+            forces.insert(forces.end(),
+                          pair_force.begin() + width * p,
+                          pair_force.begin() + width * (p + 1));
           }
-      partition.sum(data); // exact: one rank holds each pair's values
-      for (std::size_t p = 0; p < pair_list.size(); ++p)
-        {
-          for (unsigned int i = 0; i < 6; ++i)
-            pair_list[p].slip[i] = data[width * p + i];
-          for (unsigned int i = 0; i < 12; ++i)
-            pair_force[12 * p + i] = data[width * p + 6 + i];
-        }
+      partition.gather_pairs(all, &forces, width);
+      pair_list.swap(all);
+      index_pairs(static_cast<unsigned int>(element_pair_start.size() - 1));
+      pair_force.swap(forces);
+      flag_rigid_pairs();
+      local_pairs_of_search = 0;
     }
 
     void
@@ -293,6 +320,7 @@ namespace tmfdem
       in.get(count);
       searches              = count;
       local_pairs_of_search = 0;
+      all_pairs_of_search   = 0;
       in.get(pair_list);
       for (const auto &p : pair_list)
         if (p.first >= n_elements || p.second >= n_elements)

@@ -275,7 +275,8 @@ namespace tmfdem
                             communicator);
       const double communication_max =
         Utilities::MPI::max(partition.communication_time(), communicator);
-      const double ghosts =
+      const unsigned int contact_pairs = contact.n_mechanical_pairs(partition);
+      const double       ghosts =
         Utilities::MPI::sum(static_cast<double>(partition.n_ghosts()),
                             communicator);
       on_rank_zero([&]() {
@@ -362,7 +363,7 @@ namespace tmfdem
           .add("broken_mixed", by_mode[3])
           .add("cracks", model.n_cracks())
           .add("contact_searches", static_cast<long long>(contact.n_searches()))
-          .add("contact_pairs", contact.n_mechanical_pairs())
+          .add("contact_pairs", contact_pairs)
           .add("peak_resident_memory_bytes", peak_memory_max)
           .add("mpi_processes", partition.n_processes())
           .add("ghost_elements", ghosts)

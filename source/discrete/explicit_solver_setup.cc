@@ -83,7 +83,7 @@ namespace tmfdem
           heat->initialise(time);
           // contact heat takes its candidates from the contact search
           if (contact.enabled())
-            heat->share_contact_candidates(&contact.pairs());
+            heat->share_contact_candidates(&contact.all_pairs(partition));
           const unsigned int n = parameters.get<DiscreteHeatParameters>()
                                    .mechanical_steps_per_thermal_step;
           quasi_static = parameters.get<DiscreteHeatParameters>().coupling ==

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <iterator>
 #include <tmfdem/discrete/partition.h>
 
@@ -405,6 +406,10 @@ namespace tmfdem
       const auto    meets     = [&](const unsigned int r) {
         return boxes_overlap(&regions[width * r], my_region);
       };
+      region_partners.clear();
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        if (r != this_rank && meets(r))
+          region_partners.push_back(r);
       constexpr int                    tag    = 4712;
       constexpr unsigned int           record = 1 + ghost_width; // index, nodes
       std::vector<std::vector<double>> send(this_rank);
@@ -545,8 +550,156 @@ namespace tmfdem
         }
     }
 
+    namespace
+    {
+      /** A pair's friction history is kept where any slip has a bit set
+       *  (-0 included). */
+      inline bool
+      sliding(const ContactPair &pair)
+      {
+        bool any = false;
+        for (const double s : pair.slip)
+          any |= s != 0. || std::signbit(s);
+        return any;
+      }
+
+      /** Appends @p n bytes of @p data to @p buffer. */
+      inline void
+      put_bytes(std::vector<unsigned char> &buffer,
+                const void                 *data,
+                const std::size_t           n)
+      {
+        const auto *bytes = static_cast<const unsigned char *>(data);
+        buffer.insert(buffer.end(), bytes, bytes + n);
+      }
+    } // namespace
+
     void
-    ElementPartition::gather_pairs(std::vector<ContactPair> &pairs)
+    ElementPartition::exchange_pairs(std::vector<ContactPair> &pairs,
+                                     const bool                by_regions)
+    {
+      if (!distributed())
+        return;
+      CommunicationTimer timer(communication_seconds);
+      constexpr int      tag = 4714;
+      // a pair (a, b), a < b, made here (a mine) goes to the owner of b
+      // when that is another, higher, rank: per such rank the message
+      // [n, (a, b) n times as 32-bit ids, (index, six slips) per sliding
+      // pair], in bytes. The list is sorted by a, not by the owner of b:
+      // one pass that fills every rank's message.
+      std::vector<unsigned int> partners;
+      if (by_regions)
+        partners = region_partners;
+      else
+        for (unsigned int r = 0; r < n_ranks; ++r)
+          if (r != this_rank)
+            partners.push_back(r);
+      const auto higher_begin =
+        std::upper_bound(partners.begin(), partners.end(), this_rank);
+      // per higher partner: ids, then the sliding records
+      const std::size_t n_higher = partners.end() - higher_begin;
+      std::vector<std::vector<std::uint32_t>> ids(n_higher);
+      std::vector<std::vector<unsigned char>> records(n_higher);
+      for (const ContactPair &pair : pairs)
+        {
+          const unsigned int r = owner(pair.second);
+          if (r == this_rank)
+            continue;
+          const auto partner =
+            std::lower_bound(higher_begin, partners.end(), r);
+          // a higher rank whose region does not meet mine sent me no
+          // candidate, so I made no pair with its triangles
+          AssertThrow(partner != partners.end() && *partner == r,
+                      ExcInternalError());
+          const std::size_t   k = partner - higher_begin;
+          const std::uint32_t index =
+            static_cast<std::uint32_t>(ids[k].size() / 2);
+          ids[k].push_back(pair.first);
+          ids[k].push_back(pair.second);
+          if (sliding(pair))
+            {
+              put_bytes(records[k], &index, sizeof(index));
+              put_bytes(records[k], pair.slip.data(), sizeof(pair.slip));
+            }
+        }
+      std::vector<std::vector<unsigned char>> send(n_higher);
+      std::vector<MPI_Request>                send_requests(n_higher);
+      for (std::size_t k = 0; k < n_higher; ++k)
+        {
+          const std::uint32_t n = static_cast<std::uint32_t>(ids[k].size() / 2);
+          put_bytes(send[k], &n, sizeof(n));
+          put_bytes(send[k], ids[k].data(), sizeof(std::uint32_t) * 2 * n);
+          send[k].insert(send[k].end(), records[k].begin(), records[k].end());
+          AssertThrowMPI(MPI_Isend(send[k].data(),
+                                   static_cast<int>(send[k].size()),
+                                   MPI_BYTE,
+                                   *(higher_begin + k),
+                                   tag,
+                                   communicator,
+                                   &send_requests[k]));
+          sync_bytes += send[k].size();
+        }
+      // the pairs of the lower ranks with a second triangle here, in rank
+      // order (their first triangles precede mine), then mine
+      std::vector<ContactPair>   joined;
+      std::vector<unsigned char> received;
+      for (auto r = partners.begin(); r != higher_begin; ++r)
+        {
+          MPI_Status status;
+          AssertThrowMPI(MPI_Probe(*r, tag, communicator, &status));
+          int count = 0;
+          AssertThrowMPI(MPI_Get_count(&status, MPI_BYTE, &count));
+          received.resize(count);
+          AssertThrowMPI(MPI_Recv(received.data(),
+                                  count,
+                                  MPI_BYTE,
+                                  *r,
+                                  tag,
+                                  communicator,
+                                  MPI_STATUS_IGNORE));
+          std::uint32_t n = 0;
+          AssertThrow(received.size() >= sizeof(n), ExcInternalError());
+          std::memcpy(&n, received.data(), sizeof(n));
+          const std::size_t ids_end = sizeof(n) + sizeof(std::uint32_t) * 2 * n;
+          constexpr std::size_t record =
+            sizeof(std::uint32_t) + sizeof(ContactPair::slip);
+          AssertThrow(received.size() >= ids_end &&
+                        (received.size() - ids_end) % record == 0,
+                      ExcInternalError());
+          const std::size_t first = joined.size();
+          joined.resize(first + n);
+          for (std::size_t p = 0; p < n; ++p)
+            {
+              std::uint32_t id[2];
+              std::memcpy(id,
+                          received.data() + sizeof(n) + sizeof(id) * p,
+                          sizeof(id));
+              AssertThrow(owner(id[0]) == *r && owns(id[1]) && id[0] < id[1],
+                          ExcInternalError());
+              joined[first + p].first  = id[0];
+              joined[first + p].second = id[1];
+            }
+          for (std::size_t b = ids_end; b < received.size(); b += record)
+            {
+              std::uint32_t index = 0;
+              std::memcpy(&index, received.data() + b, sizeof(index));
+              AssertThrow(index < n, ExcInternalError());
+              std::memcpy(joined[first + index].slip.data(),
+                          received.data() + b + sizeof(index),
+                          sizeof(ContactPair::slip));
+            }
+        }
+      joined.insert(joined.end(), pairs.begin(), pairs.end());
+      pairs.swap(joined);
+      AssertThrowMPI(MPI_Waitall(static_cast<int>(send_requests.size()),
+                                 send_requests.data(),
+                                 MPI_STATUSES_IGNORE));
+    }
+
+    void
+    ElementPartition::gather_pairs(std::vector<ContactPair> &pairs,
+                                   std::vector<double>      *values,
+                                   const unsigned int        width)
     {
       if (!distributed())
         return;
@@ -560,10 +713,7 @@ namespace tmfdem
         {
           ids[2 * p]     = pairs[p].first;
           ids[2 * p + 1] = pairs[p].second;
-          bool sliding   = false;
-          for (const double s : pairs[p].slip)
-            sliding |= s != 0. || std::signbit(s);
-          if (sliding)
+          if (sliding(pairs[p]))
             {
               slips.push_back(static_cast<double>(p));
               slips.insert(slips.end(),
@@ -599,15 +749,46 @@ namespace tmfdem
           pairs[p].first  = all_ids[2 * p];
           pairs[p].second = all_ids[2 * p + 1];
         }
-      constexpr unsigned int width = 7; // index, six slips
+      constexpr unsigned int record = 7; // index, six slips
       for (unsigned int r = 0; r < n_ranks; ++r)
-        for (int k = slip_offsets[r]; k < slip_offsets[r + 1]; k += width)
+        for (int k = slip_offsets[r]; k < slip_offsets[r + 1]; k += record)
           {
             ContactPair &pair =
               pairs[id_offsets[r] / 2 + static_cast<std::size_t>(scratch[k])];
             for (unsigned int i = 0; i < 6; ++i)
               pair.slip[i] = scratch[k + 1 + i];
           }
+      if (values != nullptr)
+        {
+          // the values likewise: most pairs carry none (not touching), so
+          // only the pairs with any bit set go, as index and values
+          Assert(values->size() == width * ids.size() / 2, ExcInternalError());
+          std::vector<double> sparse;
+          for (std::size_t p = 0; p < ids.size() / 2; ++p)
+            {
+              const double *v   = values->data() + width * p;
+              bool          any = false;
+              for (unsigned int i = 0; i < width; ++i)
+                any |= v[i] != 0. || std::signbit(v[i]);
+              if (any)
+                {
+                  sparse.push_back(static_cast<double>(p));
+                  sparse.insert(sparse.end(), v, v + width);
+                }
+            }
+          std::vector<double>    all;
+          const std::vector<int> value_offsets =
+            gather(sparse, all, MPI_DOUBLE);
+          values->assign(width * pairs.size(), 0.);
+          for (unsigned int r = 0; r < n_ranks; ++r)
+            for (int k = value_offsets[r]; k < value_offsets[r + 1];
+                 k += 1 + width)
+              std::copy(all.begin() + k + 1,
+                        all.begin() + k + 1 + width,
+                        values->begin() +
+                          width * (id_offsets[r] / 2 +
+                                   static_cast<std::size_t>(all[k])));
+        }
     }
 
     void

@@ -89,8 +89,10 @@ namespace tmfdem
        * joined by an intact joint. Pairs within one rigid group stay in the
        * list (contact heat flows between them) but carry no force. Friction
        * history of pairs that persist is kept. On several ranks each rank
-       * makes the pairs of its own first triangles and the lists are joined
-       * (@p partition): every rank ends with the whole list. With
+       * makes the pairs of its own first triangles and keeps the pairs with
+       * a triangle of its own: the owner of the first triangle sends a pair
+       * to the owner of the second (ElementPartition::exchange_pairs()).
+       * With
        * @p candidates (sorted) and @p extent, a rank bins only those (its
        * own active triangles and the others' near its region, from
        * ElementPartition::exchange_search_candidates()) on the grid of the
@@ -168,31 +170,45 @@ namespace tmfdem
       }
 
       /** The candidate pairs of the last search, sorted by (first, second):
-       *  the mechanical contacts and the candidates of contact heat. */
+       *  the mechanical contacts. On several ranks those with a triangle of
+       *  this rank (the subsequence of the list of one rank), or, after
+       *  synchronise_pairs() until the next search, all. */
       const std::vector<ContactPair> &
       pairs() const
       {
         return pair_list;
       }
+      /** All candidate pairs of the last search, sorted: the candidates of
+       *  contact heat, which runs on every rank with the whole state. On
+       *  one rank pairs(); on several the list of gather_all_pairs(), whose
+       *  address stays the same. */
+      const std::vector<ContactPair> &
+      all_pairs(const ElementPartition &partition) const;
+      /** On several ranks: brings all_pairs() up to date (one gather per
+       *  search, ElementPartition::gather_pairs()); a no-op on one rank. */
+      void
+      gather_all_pairs(ElementPartition &partition);
       bool
       has_pairs() const
       {
         return !pair_list.empty();
       }
-      /** Pairs that carry contact forces (not within a rigid group). */
+      /** Pairs that carry contact forces (not within a rigid group), of
+       *  all ranks (collective on several ranks). */
       unsigned int
-      n_mechanical_pairs() const;
+      n_mechanical_pairs(const ElementPartition &partition) const;
       unsigned long
       n_searches() const
       {
         return searches;
       }
 
-      /** On several ranks: every pair's friction history and forces taken
-       *  from the owner of its first triangle (before outputs and
-       *  checkpoints); a no-op on one rank. */
+      /** On several ranks: the whole pair list on every rank, every pair's
+       *  friction history and forces taken from the owner of its first
+       *  triangle (before outputs and checkpoints, rare); pairs() holds all
+       *  pairs until the next search. A no-op on one rank. */
       void
-      synchronise_pairs(const ElementPartition &partition);
+      synchronise_pairs(ElementPartition &partition);
 
       /** Writes the search state and the pairs with their friction
        *  history to a checkpoint. */
@@ -236,9 +252,13 @@ namespace tmfdem
        *  the search numbered local_pairs_of_search - 1. */
       std::vector<unsigned int> local_pairs;
       unsigned long             local_pairs_of_search = 0;
-      double                    travel_since_search   = 0.; ///< [m]
-      bool                      search_is_needed      = true;
-      unsigned long             searches              = 0;
+      /** Several ranks: all pairs (all_pairs()), gathered for the search
+       *  numbered all_pairs_of_search - 1. */
+      std::vector<ContactPair> all_pair_list;
+      unsigned long            all_pairs_of_search = 0;
+      double                   travel_since_search = 0.; ///< [m]
+      bool                     search_is_needed    = true;
+      unsigned long            searches            = 0;
     };
   } // namespace discrete
 } // namespace tmfdem

@@ -19,17 +19,21 @@
  * joined to its triangles (joints) and of the contact partners of its
  * triangles (the pair list of the last search): the ghosts. Owners send
  * them after every node update (point-to-point, pre-sized buffers); the
- * plan is rebuilt after every contact search from the pair list, which is
- * the same on every rank.
+ * plan is rebuilt after every contact search from the rank's pair list
+ * (the pairs with a triangle of its own).
  *
  * A contact search needs no full synchronisation: the joints' status goes
  * to every rank (one byte per joint), so every rank knows the same active
  * triangles; then each rank receives, from the ranks whose region (the
  * hull of their active triangles' search boxes) meets its own, only the
  * triangles whose search box meets its region (exchange_search_candidates()),
- * makes the pairs of its own first triangles, and the pair lists are
- * joined (gather_pairs()). The ghosts new to the plan then come from their
- * owners (exchange_new_ghosts()).
+ * makes the pairs of its own first triangles and sends those whose second
+ * triangle is another rank's to that rank (exchange_pairs()): each rank
+ * keeps the pairs with a triangle of its own, in the order of one rank's
+ * list. The ghosts new to the plan then come from their owners
+ * (exchange_new_ghosts()). The whole pair list goes to every rank only
+ * before outputs and checkpoints and for the contact heat
+ * (gather_pairs()).
  */
 #ifndef tmfdem_discrete_partition_h
 #define tmfdem_discrete_partition_h
@@ -198,13 +202,38 @@ namespace tmfdem
                                  SearchExtent                    &extent);
 
       /**
-       * Joins the pair lists of all ranks: on entry @p pairs holds this
-       * rank's pairs (first triangle its own, sorted), on return the pairs of
-       * all ranks in rank order, which is the sorted list one rank makes,
-       * with the friction history each owner kept.
+       * After a contact search: on entry @p pairs holds the pairs this
+       * rank made (first triangle its own, sorted, with the friction
+       * history it kept); on return the pairs with a triangle of this rank,
+       * sorted: first those made by lower ranks whose second triangle is
+       * here, received in rank order, then its own. A pair (a, b), a < b,
+       * lies on the owners of a and b only; the owner of a sends it
+       * (point-to-point: two 32-bit ids, 8 B, and, where it slides, its
+       * index and six slips) to the owner of b, which computes its forces
+       * too. Each rank's list is thus the subsequence of the list one rank
+       * makes that holds its triangles: every triangle of the rank sees its
+       * pairs in the order of np 1 (forces and friction sums bitwise).
+       * With @p by_regions (the search followed exchange_search_candidates())
+       * only ranks whose regions meet exchange messages; else every lower
+       * rank sends one to every higher rank.
        */
       void
-      gather_pairs(std::vector<ContactPair> &pairs);
+      exchange_pairs(std::vector<ContactPair> &pairs, const bool by_regions);
+
+      /**
+       * The whole pair list on every rank (rare: outputs, checkpoints,
+       * contact heat): on entry @p pairs holds the pairs this rank made
+       * (first triangle its own, sorted) and @p values, if given, @p width
+       * doubles per pair of them; on return the pairs of all ranks in rank
+       * order, which is the sorted list one rank makes, with the friction
+       * history each owner kept, and the values of all pairs in the same
+       * order. Only the pairs with a slip or a value (any bit set) send
+       * them, with their index: 8 B for a pair that is not touching.
+       */
+      void
+      gather_pairs(std::vector<ContactPair> &pairs,
+                   std::vector<double>      *values = nullptr,
+                   const unsigned int        width  = 0);
 
       /** Sums @p values over the ranks, in place. Exact where at most one
        *  rank holds a non-zero entry (the per-chunk sums). */
@@ -219,7 +248,8 @@ namespace tmfdem
       }
       /** Bytes this rank contributed to synchronisations so far, the
        *  exchanges of a contact search included (joints' status, regions,
-       *  candidates, new ghosts, pair lists). */
+       *  candidates, new ghosts, cross-rank pairs) and the gathers of the
+       *  whole pair list. */
       std::uint64_t
       synchronisation_bytes_sent() const
       {
@@ -268,6 +298,9 @@ namespace tmfdem
       std::uint64_t  sync_bytes            = 0;
       unsigned long  synchronisations      = 0;
       mutable double communication_seconds = 0.;
+      /** The other ranks whose region met this rank's in the last
+       *  exchange_search_candidates(), ascending (exchange_pairs()). */
+      std::vector<unsigned int> region_partners;
       /** Scratch of synchronise(). */
       std::vector<double> scratch;
       /** Entries per rank of a gathered array, and where each rank's block
