@@ -72,6 +72,30 @@ namespace tmfdem
           }
         return b;
       }
+
+      /** Receives the next message with @p tag from rank @p source into
+       *  @p buffer, sized to the message (its length unknown beforehand). */
+      template <typename T>
+      void
+      receive_message(const MPI_Comm     communicator,
+                      const int          source,
+                      const int          tag,
+                      const MPI_Datatype type,
+                      std::vector<T>    &buffer)
+      {
+        MPI_Status status;
+        AssertThrowMPI(MPI_Probe(source, tag, communicator, &status));
+        int count = 0;
+        AssertThrowMPI(MPI_Get_count(&status, type, &count));
+        buffer.resize(count);
+        AssertThrowMPI(MPI_Recv(buffer.data(),
+                                count,
+                                type,
+                                source,
+                                tag,
+                                communicator,
+                                MPI_STATUS_IGNORE));
+      }
     } // namespace
 
     void
@@ -444,18 +468,7 @@ namespace tmfdem
       for (unsigned int r = this_rank + 1; r < n_ranks; ++r)
         if (meets(r))
           {
-            MPI_Status status;
-            AssertThrowMPI(MPI_Probe(r, tag, communicator, &status));
-            int count = 0;
-            AssertThrowMPI(MPI_Get_count(&status, MPI_DOUBLE, &count));
-            received.resize(count);
-            AssertThrowMPI(MPI_Recv(received.data(),
-                                    count,
-                                    MPI_DOUBLE,
-                                    r,
-                                    tag,
-                                    communicator,
-                                    MPI_STATUS_IGNORE));
+            receive_message(communicator, r, tag, MPI_DOUBLE, received);
             for (const double *b = received.data();
                  b < received.data() + received.size();)
               {
@@ -645,18 +658,7 @@ namespace tmfdem
       std::vector<unsigned char> received;
       for (auto r = partners.begin(); r != higher_begin; ++r)
         {
-          MPI_Status status;
-          AssertThrowMPI(MPI_Probe(*r, tag, communicator, &status));
-          int count = 0;
-          AssertThrowMPI(MPI_Get_count(&status, MPI_BYTE, &count));
-          received.resize(count);
-          AssertThrowMPI(MPI_Recv(received.data(),
-                                  count,
-                                  MPI_BYTE,
-                                  *r,
-                                  tag,
-                                  communicator,
-                                  MPI_STATUS_IGNORE));
+          receive_message(communicator, *r, tag, MPI_BYTE, received);
           std::uint32_t n = 0;
           AssertThrow(received.size() >= sizeof(n), ExcInternalError());
           std::memcpy(&n, received.data(), sizeof(n));
