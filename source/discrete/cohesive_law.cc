@@ -58,14 +58,14 @@ namespace tmfdem
                          const SofteningLaw law,
                          JointConstants    &k)
     {
-      k.normal_stiffness     = normal_penalty / length;
-      k.tangential_stiffness = tangential_penalty / length;
-      k.tensile_strength     = tensile_strength;
-      k.cohesion             = cohesion;
-      k.friction_tangent     = std::tan(friction_angle_degrees * M_PI / 180.);
+      k.normal_stiffness       = normal_penalty / length;
+      k.tangential_stiffness   = tangential_penalty / length;
+      k.tensile_strength       = tensile_strength;
+      k.cohesion               = cohesion;
+      k.friction_tangent       = std::tan(friction_angle_degrees * M_PI / 180.);
       k.inverse_opening_peak   = k.normal_stiffness / (2. * tensile_strength);
       k.inverse_slip_peak_open = k.tangential_stiffness / (2. * cohesion);
-      const double integral  = softening_integral(law);
+      const double integral    = softening_integral(law);
       const double pre_peak_I =
         4. / 3. * tensile_strength * tensile_strength / k.normal_stiffness;
       const double pre_peak_II =

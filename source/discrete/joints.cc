@@ -46,8 +46,8 @@ namespace tmfdem
         const double inverse_L = 1. / g.L;
         g.tx                   = ex * inverse_L;
         g.ty                   = ey * inverse_L;
-        g.nx            = g.ty;
-        g.ny            = -g.tx;
+        g.nx                   = g.ty;
+        g.ny                   = -g.tx;
         return g;
       }
 

@@ -126,8 +126,8 @@ namespace tmfdem
                   const double mass = m.mass[node];
                   // dt / ((1 + c dt / 2) m): one division per node
                   const double b_m = damp_b / mass;
-                  const double fgx  = mass * d.gravity[0],
-                               fgy  = mass * d.gravity[1];
+                  const double fgx = mass * d.gravity[0],
+                               fgy = mass * d.gravity[1];
                   const double fx =
                     f_el[2 * k] + f_v[2 * k] + fjx + f_contact[2 * k] + fgx;
                   const double fy = f_el[2 * k + 1] + f_v[2 * k + 1] + fjy +

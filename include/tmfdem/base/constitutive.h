@@ -119,10 +119,10 @@ namespace tmfdem
                    const double         fe11,
                    const LameConstants &lame)
     {
-      const double J    = fe00 * fe11 - fe01 * fe10;
-      const double b_xx = fe00 * fe00 + fe01 * fe01;
-      const double b_yy = fe10 * fe10 + fe11 * fe11;
-      const double b_xy = fe00 * fe10 + fe01 * fe11;
+      const double J         = fe00 * fe11 - fe01 * fe10;
+      const double b_xx      = fe00 * fe00 + fe01 * fe01;
+      const double b_yy      = fe10 * fe10 + fe11 * fe11;
+      const double b_xy      = fe00 * fe10 + fe01 * fe11;
       const double inverse_J = 1. / J;
       const double mu_J      = lame.mu * inverse_J;
       const double vol       = 0.5 * lame.lambda * (J - inverse_J);

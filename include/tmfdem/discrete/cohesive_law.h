@@ -112,13 +112,12 @@ namespace tmfdem
       // r_s = |s| / s_p (o_p = 2 f_t / k_n, s_p = 2 f_s / k_t): products
       // with the stored reciprocals where f_s = c (no compression); under
       // compression Mohr-Coulomb f_s = c - sigma_n tan(phi) grows with it
-      const double fs = o < 0. ? k.cohesion - compression * k.friction_tangent :
-                                 k.cohesion;
+      const double fs =
+        o < 0. ? k.cohesion - compression * k.friction_tangent : k.cohesion;
       const double abs_s = std::abs(s);
       const double r     = o * k.inverse_opening_peak;
-      const double r_s =
-        o < 0. ? abs_s * k.tangential_stiffness / (2. * fs) :
-                 abs_s * k.inverse_slip_peak_open;
+      const double r_s   = o < 0. ? abs_s * k.tangential_stiffness / (2. * fs) :
+                                    abs_s * k.inverse_slip_peak_open;
       // beyond a peak: the softening displacements (rare; divisions here)
       if (r > 1.)
         t.d_opening = (o - 2. * ft / k.normal_stiffness) / k.softening_width_I;
