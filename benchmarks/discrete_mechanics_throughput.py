@@ -26,7 +26,8 @@ its libtmfdem.so: a copy of tmfdem alone loads its build folder's library) the p
 by side on one thread: REPEATS rounds of (reference, candidate) runs of both
 cases, alternating, and prints each run's rate, the candidate / reference
 ratio of the median rates and of the median loop CPU times, and whether the
-two builds' history.csv are identical.
+two builds' history.csv are identical (if not, the three columns that differ
+most in the first round, relative to each column's largest value).
 usage: benchmarks/discrete_mechanics_throughput.py [path/to/tmfdem [REPEATS]]
        benchmarks/discrete_mechanics_throughput.py --against REFERENCE path/to/tmfdem [REPEATS]"""
 import json
@@ -174,6 +175,27 @@ def identical(a, b):
         return fa.read() == fb.read()
 
 
+def history_difference(a, b):
+    """Largest difference between two history.csv files, per column, over
+    that column's largest magnitude in the first; the three largest as text."""
+    import csv
+    with open(os.path.join(a, "history.csv")) as fa, open(os.path.join(b, "history.csv")) as fb:
+        ra, rb = list(csv.DictReader(fa)), list(csv.DictReader(fb))
+    if len(ra) != len(rb):
+        return f"{len(ra)} against {len(rb)} rows"
+    worst = {}
+    for column in ra[0] if ra else []:
+        try:
+            va = [float(r[column]) for r in ra]
+            vb = [float(r[column]) for r in rb]
+        except (ValueError, KeyError):
+            continue
+        scale = max(abs(v) for v in va) or 1.
+        worst[column] = max(abs(x - y) for x, y in zip(va, vb)) / scale
+    top = sorted(worst.items(), key=lambda kv: -kv[1])[:3]
+    return ", ".join(f"{k} {v:.1e}" for k, v in top)
+
+
 def compare_builds():
     """Reference and candidate side by side on one thread, alternating."""
     print(f"cores: {os.cpu_count()}, load average before: "
@@ -209,6 +231,11 @@ def compare_builds():
               f"median loop CPU {median(cpus['candidate']) / median(cpus['reference']):.3f} "
               f"(below 1: candidate faster); history.csv of the builds "
               f"{'identical' if same else 'DIFFER'}", flush=True)
+        if not same:
+            print(f"{name}: largest difference of round 1 per column / the "
+                  f"column's largest value: "
+                  f"{history_difference(os.path.join(work, f'{name}_0_reference'), os.path.join(work, f'{name}_0_candidate'))}",
+                  flush=True)
 
 
 def main():
