@@ -16,6 +16,11 @@ triangles and bytes were exchanged.
     rank_independence.py TMFDEM [--ranks 1 2 3] [--cases joint_pull|path.prm ...]
                          [--mechanical-steps N] [--thermal-steps N]
                          [--set ENTRY=VALUE ...] [--end-time T] [--out FOLDER]
+                         [--distributed-heat]
+
+With --distributed-heat a run on several ranks must report in summary.json
+that each rank advanced the temperatures of its own triangles
+(heat_distributed), not the whole field replicated.
 
 Exit status 0 when every case is identical on every rank count.
 """
@@ -32,7 +37,8 @@ import results_neutral as rn  # noqa: E402
 import vtu_pieces  # noqa: E402
 
 MPI_ENTRIES = {"mpi_processes", "ghost_elements", "ghost_exchange_bytes",
-               "synchronisations", "synchronisation_bytes", "communication_time_s"}
+               "synchronisations", "synchronisation_bytes", "communication_time_s",
+               "heat_distributed"}
 DEFAULT_CASES = ["joint_pull", "block_on_incline", "two_blocks_collision",
                  "plate_traction", "sheet_free_expansion", "thermal_shock_disc",
                  "contact_conduction", "cut_plate"]
@@ -73,6 +79,8 @@ def main():
     parser.add_argument("--end-time", type=float,
                         help="End time [s] instead of the span of --mechanical/--thermal-steps")
     parser.add_argument("--out", default=os.path.join("output", "rank_independence"))
+    parser.add_argument("--distributed-heat", action="store_true",
+                        help="require heat_distributed in summary.json on several ranks")
     args = parser.parse_args()
     rn.VOLATILE.update(MPI_ENTRIES)
     status = 0
@@ -95,11 +103,16 @@ def main():
                 if s.get("mpi_processes") != n:
                     raise RuntimeError(f"np {n}: summary.json says mpi_processes = "
                                        f"{s.get('mpi_processes')}")
+                if args.distributed_heat and n > 1 and s.get("heat_distributed") is not True:
+                    raise RuntimeError(f"np {n}: summary.json says heat_distributed = "
+                                       f"{s.get('heat_distributed')}, not true")
                 print(f"{case:24s} np {n}: {s['steps']} steps, broken joints "
                       f"{s['broken_joints']}, contact searches {s['contact_searches']}, "
                       f"ghost triangles {s['ghost_elements']:.0f}, ghost bytes "
                       f"{s['ghost_exchange_bytes']:.3g}, synchronisations "
-                      f"{s['synchronisations']}", flush=True)
+                      f"{s['synchronisations']}"
+                      + (f", heat distributed {s['heat_distributed']}"
+                         if "heat_distributed" in s else ""), flush=True)
         except RuntimeError as e:
             status = 1
             print(f"{case:24s} RUN FAILED: {e}", flush=True)

@@ -40,9 +40,9 @@ namespace tmfdem
       // search at these same positions) before the source filters them
       if (contact.enabled() && contact.search_needed())
         search_contacts();
-      // on several ranks each keeps the pairs of its own triangles; the
-      // heat, on every rank, reads all (one gather per search)
-      if (contact.enabled())
+      // on several ranks each keeps the pairs of its own triangles; a heat
+      // that runs replicated reads all (one gather per search)
+      if (contact.enabled() && !heat_distributed)
         contact.gather_all_pairs(partition);
       heat->update_contact_pairs();
     }
@@ -51,8 +51,10 @@ namespace tmfdem
     ExplicitSolver::multi_rate_thermal_step()
     {
       // M -> T: current geometry, broken joints, contacts (on several
-      // ranks the heat runs on each with the whole state: partition.h)
-      synchronise();
+      // ranks each advances its own triangles, or, replicated, all of
+      // them from the whole state: partition.h)
+      if (!heat_distributed)
+        synchronise();
       check_cracks_seen_by_heat();
       update_heat_contact_pairs();
       heat->step(thermal_time, time - thermal_time);
@@ -68,6 +70,8 @@ namespace tmfdem
       // one thermal step of physical time (M -> T: current geometry,
       // joints, contacts) and the new thermal stretch (T -> M) ...
       const double dt = quasi_static_thermal_step();
+      // the whole state (on several ranks): the relaxation predictor
+      // extrapolates every node from it; the heat reads its own part
       synchronise();
       check_cracks_seen_by_heat();
       update_heat_contact_pairs();
@@ -212,9 +216,18 @@ namespace tmfdem
     void
     ExplicitSolver::update_thermal_stretch()
     {
-      const Vector<double> &T      = heat->temperature();
-      double                before = 0., after = 0.;
-      for (unsigned int e = 0; e < model.n_elements; ++e)
+      // this rank's triangles where the heat is distributed (the others'
+      // stretches come with the next synchronise()), else every triangle;
+      // the work per chunk, the chunks added in order: the same on any
+      // number of ranks
+      const Vector<double> &T     = heat->temperature();
+      const unsigned int    first = heat_distributed ? partition.begin() : 0;
+      const unsigned int    end =
+        heat_distributed ? partition.end() : model.n_elements;
+      std::vector<double> work(2 * ((model.n_elements + chunk_size - 1) /
+                                    chunk_size),
+                               0.);
+      for (unsigned int e = first; e < end; ++e)
         {
           const MaterialProperties &m = parameters.materials[model.material[e]];
           const double dT = (T[3 * e] + T[3 * e + 1] + T[3 * e + 2]) / 3. -
@@ -228,9 +241,21 @@ namespace tmfdem
             continue;
           // the strain energy this changes at fixed geometry (energy.h)
           const Matrix2 F = deformation_gradient(model, e);
-          before += element_strain_energy(model, e, F, s_old, element_lame[e]);
-          after += element_strain_energy(model, e, F, s_new, element_lame[e]);
+          double       *w = &work[2 * (e / chunk_size)];
+          w[0] += element_strain_energy(model, e, F, s_old, element_lame[e]);
+          w[1] += element_strain_energy(model, e, F, s_new, element_lame[e]);
           model.thermal_stretch[e] = s_new;
+        }
+      if (heat_distributed)
+        {
+          partition.sum(work); // exact: each chunk from one rank
+          thermal_state_gathered = false;
+        }
+      double before = 0., after = 0.;
+      for (std::size_t c = 0; c < work.size(); c += 2)
+        {
+          before += work[c];
+          after += work[c + 1];
         }
       balance.thermal_work += after - before;
     }

@@ -1,9 +1,3 @@
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/precondition.h>
-#include <deal.II/lac/solver_cg.h>
-#include <deal.II/lac/solver_control.h>
-#include <deal.II/numerics/matrix_tools.h>
-
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -14,6 +8,7 @@
 #include <tmfdem/discrete/contact_heat.h>
 #include <tmfdem/discrete/discrete_heat.h>
 #include <tmfdem/discrete/discrete_parameters.h>
+#include <tmfdem/discrete/partition.h>
 #include <tmfdem/io/checkpoint.h>
 
 namespace tmfdem
@@ -233,6 +228,75 @@ namespace tmfdem
               dirichlet_condition[n] = it->second;
             }
         }
+      for (const auto &[id, heat] : heat_balance.boundary_heat_in)
+        {
+          const unsigned int slot = balance_slot.size();
+          balance_slot[id]        = slot;
+        }
+      // one rank: everything is this rank's (distribute() narrows it)
+      first_element = 0;
+      end_element   = model.n_elements;
+      local_joints.resize(model.n_joints);
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        local_joints[j] = j;
+      first_edge = 0;
+      end_edge   = boundary_edges.size();
+      n_chunks   = (model.n_elements + chunk_elements - 1) / chunk_elements;
+    }
+
+    bool
+    DiscreteHeat::distribute(ElementPartition &p)
+    {
+      partition      = &p;
+      chunk_elements = p.chunk_size();
+      n_chunks       = (model.n_elements + chunk_elements - 1) / chunk_elements;
+      first_element  = p.begin();
+      end_element    = p.end();
+      Assert(first_element % chunk_elements == 0, ExcInternalError());
+      // the joints with a triangle here: earlier ranks' joints to our
+      // triangles, then our own (joints are numbered by their first
+      // triangle), ascending
+      local_joints = p.joints().others;
+      for (unsigned int j = p.joints().begin; j < p.joints().end; ++j)
+        local_joints.push_back(j);
+      // boundary edges were made in triangle order
+      const auto edge_of = [&](const unsigned int e) {
+        return static_cast<std::size_t>(
+          std::lower_bound(boundary_edges.begin(),
+                           boundary_edges.end(),
+                           e,
+                           [](const BoundaryEdge &b, const unsigned int e) {
+                             return b.element < e;
+                           }) -
+          boundary_edges.begin());
+      };
+      first_edge = edge_of(first_element);
+      end_edge   = edge_of(end_element);
+      row_start.clear(); // the rows of the matrix change
+      return true;
+    }
+
+    unsigned int
+    DiscreteHeat::n_contact_pairs() const
+    {
+      unsigned int n = 0;
+      for (const auto &[c, t] : contact_pairs)
+        n += c >= first_element && c < end_element ? 1 : 0;
+      return n;
+    }
+
+    void
+    DiscreteHeat::reduce_chunks(std::vector<double> &partials,
+                                const unsigned int   width,
+                                std::vector<double> &totals) const
+    {
+      // each chunk's sums come from one rank; adding zeros is exact
+      if (partition != nullptr)
+        partition->sum(partials);
+      totals.assign(width, 0.);
+      for (unsigned int c = 0; c < n_chunks; ++c)
+        for (unsigned int i = 0; i < width; ++i)
+          totals[i] += partials[c * width + i];
     }
 
     DiscreteHeat::~DiscreteHeat() = default;
@@ -304,7 +368,7 @@ namespace tmfdem
     DiscreteHeat::set_dirichlet_values(const double time)
     {
       set_function_time(time);
-      for (unsigned int n = 0; n < model.n_nodes; ++n)
+      for (unsigned int n = 3 * first_element; n < 3 * end_element; ++n)
         if (dirichlet_node[n])
           T[n] = conditions[dirichlet_condition[n]].temperature->value(
             Point<2>(model.x_ref[n], model.y_ref[n]));
@@ -313,9 +377,10 @@ namespace tmfdem
     double
     DiscreteHeat::stable_time_step() const
     {
-      // Gershgorin: lambda_max <= max_i (2 K_ii + 2 sum G + h L/2) / C_i
+      // Gershgorin: lambda_max <= max_i (2 K_ii + 2 sum G + h L/2) / C_i,
+      // over this rank's nodes, then the largest over the ranks (exact)
       std::vector<double> row(model.n_nodes, 0.);
-      for (unsigned int e = 0; e < model.n_elements; ++e)
+      for (unsigned int e = first_element; e < end_element; ++e)
         {
           // with anisotropy the largest principal value: K(D) <= K(k_max I)
           // in the order of symmetric matrices, so the bound holds
@@ -324,7 +389,7 @@ namespace tmfdem
           for (unsigned int a = 0; a < 3; ++a)
             row[3 * e + a] += 2. * K[a][a];
         }
-      for (unsigned int j = 0; j < model.n_joints; ++j)
+      for (const unsigned int j : local_joints)
         for (unsigned int s = 0; s < 4; ++s)
           row[model.joint_nodes[4 * j + s]] += 2. * joint_conductance[j];
       for_each_contact_transfer([&](const unsigned int         c,
@@ -352,88 +417,95 @@ namespace tmfdem
           }
       });
       set_function_time(0.);
-      for (const auto &b : boundary_edges)
-        if (conditions[b.condition].type ==
-            ThermalBoundaryCondition::Type::robin)
-          {
-            const unsigned int n0 = 3 * b.element + b.edge;
-            const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
-            const double       L =
-              std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
-            for (const unsigned int n : {n0, n1})
-              row[n] += 0.5 * L *
-                        conditions[b.condition].coefficient->value(
-                          Point<2>(model.x_ref[n], model.y_ref[n]));
-          }
+      for (std::size_t i = first_edge; i < end_edge; ++i)
+        {
+          const BoundaryEdge &b = boundary_edges[i];
+          if (conditions[b.condition].type !=
+              ThermalBoundaryCondition::Type::robin)
+            continue;
+          const unsigned int n0 = 3 * b.element + b.edge;
+          const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
+          const double       L =
+            std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
+          for (const unsigned int n : {n0, n1})
+            row[n] += 0.5 * L *
+                      conditions[b.condition].coefficient->value(
+                        Point<2>(model.x_ref[n], model.y_ref[n]));
+        }
       double lambda = 0.;
-      for (unsigned int n = 0; n < model.n_nodes; ++n)
+      for (unsigned int n = 3 * first_element; n < 3 * end_element; ++n)
         if (!dirichlet_node[n])
           lambda = std::max(lambda, row[n] / lumped_capacity[n]);
+      if (partition != nullptr)
+        lambda = partition->max(lambda);
       return lambda > 0. ? 2. / lambda : 1e300;
     }
 
     void
-    DiscreteHeat::heat_rates(
-      const double                          time,
-      Vector<double>                       &rate,
-      std::map<types::boundary_id, double> &boundary_rate,
-      double                               &source_rate) const
+    DiscreteHeat::heat_rates(const double         time,
+                             Vector<double>      &rate,
+                             std::vector<double> &partials) const
     {
       rate.reinit(model.n_nodes);
-      tbb::task_arena &arena = arena_for(n_threads);
-      // conduction inside the triangles (each writes its own nodes)
-      for_each_chunk(arena,
-                     model.n_elements,
-                     512,
-                     [&](const std::size_t begin,
-                         const std::size_t end,
-                         const std::size_t) {
-                       for (std::size_t e = begin; e < end; ++e)
-                         {
-                           double K[3][3];
-                           element_conductivity_matrix(e, K);
-                           for (unsigned int a = 0; a < 3; ++a)
-                             {
-                               double q = 0.;
-                               for (unsigned int b = 0; b < 3; ++b)
-                                 q -= K[a][b] * T[3 * e + b];
-                               rate[3 * e + a] += q;
-                             }
-                         }
-                     });
-      // intact joints: fluxes in parallel, added in joint order
-      std::vector<double> joint_flux(2 * model.n_joints);
+      const unsigned int W     = balance_width();
+      tbb::task_arena   &arena = arena_for(n_threads);
+      // conduction inside this rank's triangles (each writes its own nodes)
       for_each_chunk(
         arena,
-        model.n_joints,
+        end_element - first_element,
         512,
         [&](const std::size_t begin, const std::size_t end, const std::size_t) {
-          for (std::size_t j = begin; j < end; ++j)
-            if (model.joint_status[j] == JointStatus::intact)
-              for (unsigned int side = 0; side < 2; ++side)
+          for (std::size_t e = first_element + begin; e < first_element + end;
+               ++e)
+            {
+              double K[3][3];
+              element_conductivity_matrix(e, K);
+              for (unsigned int a = 0; a < 3; ++a)
                 {
-                  const unsigned int a = model.joint_nodes[4 * j + side];
-                  const unsigned int b = model.joint_nodes[4 * j + 2 + side];
-                  joint_flux[2 * j + side] =
-                    joint_conductance[j] * (T[b] - T[a]);
+                  double q = 0.;
+                  for (unsigned int b = 0; b < 3; ++b)
+                    q -= K[a][b] * T[3 * e + b];
+                  rate[3 * e + a] += q;
                 }
+            }
         });
-      for (unsigned int j = 0; j < model.n_joints; ++j)
-        if (model.joint_status[j] == JointStatus::intact)
+      // intact joints with a triangle here: fluxes in parallel, added in
+      // joint order (every node sees its joints in the order of one rank)
+      std::vector<double> joint_flux(2 * local_joints.size());
+      for_each_chunk(
+        arena,
+        local_joints.size(),
+        512,
+        [&](const std::size_t begin, const std::size_t end, const std::size_t) {
+          for (std::size_t i = begin; i < end; ++i)
+            {
+              const unsigned int j = local_joints[i];
+              if (model.joint_status[j] == JointStatus::intact)
+                for (unsigned int side = 0; side < 2; ++side)
+                  {
+                    const unsigned int a = model.joint_nodes[4 * j + side];
+                    const unsigned int b = model.joint_nodes[4 * j + 2 + side];
+                    joint_flux[2 * i + side] =
+                      joint_conductance[j] * (T[b] - T[a]);
+                  }
+            }
+        });
+      for (std::size_t i = 0; i < local_joints.size(); ++i)
+        if (model.joint_status[local_joints[i]] == JointStatus::intact)
           for (unsigned int end = 0; end < 2; ++end)
             {
+              const unsigned int j = local_joints[i];
               const unsigned int a = model.joint_nodes[4 * j + end];
               const unsigned int b = model.joint_nodes[4 * j + 2 + end];
-              const double       q = joint_flux[2 * j + end];
+              const double       q = joint_flux[2 * i + end];
               rate[a] += q;
               rate[b] -= q;
             }
       // contact heat over overlaps (nodal heats of a pair sum to zero)
-      add_contact_heat(rate);
+      add_contact_heat(rate, &partials);
       // sources
       set_function_time(time);
-      source_rate = 0.;
-      for (unsigned int e = 0; e < model.n_elements; ++e)
+      for (unsigned int e = first_element; e < end_element; ++e)
         {
           const double  *x = &model.x_ref[3 * e], *y = &model.y_ref[3 * e];
           const Point<2> centroid((x[0] + x[1] + x[2]) / 3.,
@@ -444,21 +516,21 @@ namespace tmfdem
               const double q = s * model.reference_area[e] / 3.;
               for (unsigned int a = 0; a < 3; ++a)
                 rate[3 * e + a] += q;
-              source_rate += 3. * q;
+              partials[chunk_of(e) * W + 1] += 3. * q;
             }
         }
       // Neumann and Robin, lumped on the edge's two nodes
-      for (auto &[id, r] : boundary_rate)
-        r = 0.;
-      for (const auto &b : boundary_edges)
+      for (std::size_t i = first_edge; i < end_edge; ++i)
         {
-          const auto &f = conditions[b.condition];
+          const BoundaryEdge &b = boundary_edges[i];
+          const auto         &f = conditions[b.condition];
           if (f.type == ThermalBoundaryCondition::Type::dirichlet)
             continue;
           const unsigned int n0 = 3 * b.element + b.edge;
           const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
           const double       L =
             std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
+          double *sums = &partials[chunk_of(b.element) * W];
           for (const unsigned int n : {n0, n1})
             {
               const Point<2> p(model.x_ref[n], model.y_ref[n]);
@@ -468,7 +540,7 @@ namespace tmfdem
                     0.5 * L * f.coefficient->value(p) *
                     (f.ambient->value(p) - T[n]);
               rate[n] += q;
-              boundary_rate[b.id] += q;
+              sums[3 + balance_slot.at(b.id)] += q;
             }
         }
     }
@@ -476,240 +548,94 @@ namespace tmfdem
     void
     DiscreteHeat::step(const double time, const double time_step)
     {
-      const Vector<double>                 T_old = T;
-      Vector<double>                       rate;
-      std::map<types::boundary_id, double> boundary_rate =
-        heat_balance.boundary_heat_in;
-      double         source_rate = 0.;
-      Vector<double> stored_change(model.n_nodes);
+      // the ghosts' temperatures (new ghosts after a contact search too)
+      if (partition != nullptr)
+        partition->exchange_ghost_node_values(T.begin());
+      const Vector<double> T_old = T;
+      Vector<double>       rate;
+      const unsigned int   W = balance_width();
+      std::vector<double>  partials(n_chunks * W, 0.);
+      // the paper's contact term is not a conductance (its Jacobian is
+      // neither symmetric nor definite, heat_jacobian() is zero): the
+      // implicit step takes it at the start of the step, T = T_old
+      const bool lagged_contact =
+        use_implicit &&
+        parameters.get<DiscreteHeatParameters>().contact_heat_model ==
+          ContactHeatModel::paper_literal;
+      Vector<double>      lagged_contact_heat;
+      std::vector<double> lagged_partials;
+      if (lagged_contact)
+        {
+          lagged_contact_heat.reinit(model.n_nodes);
+          lagged_partials.assign(n_chunks * W, 0.);
+          add_contact_heat(lagged_contact_heat, &lagged_partials);
+        }
       if (!use_implicit)
         {
-          heat_rates(time, rate, boundary_rate, source_rate);
-          for (unsigned int n = 0; n < model.n_nodes; ++n)
+          heat_rates(time, rate, partials);
+          for (unsigned int n = 3 * first_element; n < 3 * end_element; ++n)
             if (!dirichlet_node[n])
               T[n] += time_step * rate[n] / lumped_capacity[n];
           set_dirichlet_values(time + time_step);
-          for (unsigned int n = 0; n < model.n_nodes; ++n)
-            stored_change[n] = lumped_capacity[n] * (T[n] - T_old[n]);
         }
       else
         {
-          set_function_time(time + time_step);
-          assemble_implicit(time_step);
-          // right-hand side: M/dt T_old + loads at t + dt (T-independent
-          // parts); Robin's T part is in the matrix
-          Vector<double> rhs(model.n_nodes);
-          Vector<double> capacity_T(model.n_nodes);
-          for (unsigned int e = 0; e < model.n_elements; ++e)
-            {
-              const double c =
-                volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
-              for (unsigned int a = 0; a < 3; ++a)
-                for (unsigned int b = 0; b < 3; ++b)
-                  capacity_T[3 * e + a] +=
-                    c * (a == b ? 2. : 1.) * T_old[3 * e + b];
-            }
-          rhs.add(1. / time_step, capacity_T);
-          set_function_time(time + time_step);
-          for (unsigned int e = 0; e < model.n_elements; ++e)
-            {
-              const double *x = &model.x_ref[3 * e], *y = &model.y_ref[3 * e];
-              const double  s = sources[model.material[e]]->value(
-                Point<2>((x[0] + x[1] + x[2]) / 3., (y[0] + y[1] + y[2]) / 3.));
-              for (unsigned int a = 0; a < 3; ++a)
-                rhs[3 * e + a] += s * model.reference_area[e] / 3.;
-            }
-          for (const auto &b : boundary_edges)
-            {
-              const auto &f = conditions[b.condition];
-              if (f.type == ThermalBoundaryCondition::Type::dirichlet)
-                continue;
-              const unsigned int n0 = 3 * b.element + b.edge;
-              const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
-              const double       L  = std::hypot(model.x[n1] - model.x[n0],
-                                          model.y[n1] - model.y[n0]);
-              for (const unsigned int n : {n0, n1})
-                {
-                  const Point<2> p(model.x_ref[n], model.y_ref[n]);
-                  rhs[n] +=
-                    f.type == ThermalBoundaryCondition::Type::neumann ?
-                      0.5 * L * f.flux->value(p) :
-                      0.5 * L * f.coefficient->value(p) * f.ambient->value(p);
-                }
-            }
-          // the paper's contact term is not a conductance (its Jacobian is
-          // neither symmetric nor definite, heat_jacobian() is zero): it is
-          // taken at the start of the step, T = T_old, on the right-hand side
-          const bool lagged_contact =
-            parameters.get<DiscreteHeatParameters>().contact_heat_model ==
-            ContactHeatModel::paper_literal;
-          Vector<double> lagged_contact_heat;
-          double         lagged_contact_exchange = 0.;
-          if (lagged_contact)
-            {
-              lagged_contact_heat.reinit(model.n_nodes);
-              add_contact_heat(lagged_contact_heat);
-              lagged_contact_exchange = last_contact_exchange;
-              rhs += lagged_contact_heat;
-            }
-          set_dirichlet_values(time + time_step);
-          std::map<types::global_dof_index, double> boundary_values;
-          for (unsigned int n = 0; n < model.n_nodes; ++n)
-            if (dirichlet_node[n])
-              boundary_values[n] = T[n];
-          Vector<double> solution = T_old;
-          for (const auto &[n, v] : boundary_values)
-            solution[n] = v;
-          MatrixTools::apply_boundary_values(boundary_values,
-                                             matrix,
-                                             solution,
-                                             rhs,
-                                             true);
-          SolverControl control(
-            std::max<unsigned int>(1000, model.n_nodes),
-            parameters.get<DiscreteHeatParameters>().solver_tolerance *
-              std::max(1e-300, rhs.l2_norm()));
-          SolverCG<Vector<double>>               cg(control);
-          PreconditionSSOR<SparseMatrix<double>> ssor;
-          ssor.initialize(matrix, 1.2);
-          try
-            {
-              cg.solve(matrix, solution, rhs, ssor);
-            }
-          catch (const SolverControl::NoConvergence &e)
-            {
-              throw RunError(
-                "discrete heat: CG did not converge in " +
-                std::to_string(e.last_step) +
-                " iterations at t = " + std::to_string(time + time_step) +
-                " s (residual " + std::to_string(e.last_residual) +
-                "); Discrete heat/Linear solver tolerance may be too "
-                "strict.");
-            }
-          iterations = control.last_step();
-          T          = solution;
-          heat_rates(time + time_step, rate, boundary_rate, source_rate);
+          solve_implicit(time, time_step, T_old, lagged_contact_heat);
+          heat_rates(time + time_step, rate, partials);
           if (lagged_contact)
             {
               // the balance with the contact heat the step used
               Vector<double> current_contact_heat(model.n_nodes);
-              add_contact_heat(current_contact_heat);
+              add_contact_heat(current_contact_heat, nullptr);
               rate -= current_contact_heat;
               rate += lagged_contact_heat;
-              last_contact_exchange = lagged_contact_exchange;
-            }
-          for (unsigned int e = 0; e < model.n_elements; ++e)
-            {
-              const double c =
-                volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
-              for (unsigned int a = 0; a < 3; ++a)
-                for (unsigned int b = 0; b < 3; ++b)
-                  stored_change[3 * e + a] +=
-                    c * (a == b ? 2. : 1.) * (T[3 * e + b] - T_old[3 * e + b]);
+              for (unsigned int c = 0; c < n_chunks; ++c)
+                partials[c * W + 2] = lagged_partials[c * W + 2];
             }
         }
-      // the balance: Neumann/Robin/source at the rates used, Dirichlet heat
-      // from the residual of the held nodes
-      last_rate = boundary_rate;
-      heat_balance.contact_exchange += time_step * last_contact_exchange;
-      for (const auto &[id, r] : boundary_rate)
-        heat_balance.boundary_heat_in[id] += time_step * r;
-      heat_balance.source_heat += time_step * source_rate;
-      for (unsigned int n = 0; n < model.n_nodes; ++n)
+      // stored heat (lumped or consistent capacity, as the step) and the
+      // Dirichlet heat from the residual of the held nodes, per chunk
+      const unsigned int n_slots = balance_slot.size();
+      for (unsigned int e = first_element; e < end_element; ++e)
         {
-          heat_balance.stored_heat += stored_change[n];
-          if (dirichlet_node[n])
-            {
-              // which boundary id: the first of its condition
-              const auto &ids =
-                parameters.thermal_boundary.conditions[dirichlet_condition[n]]
-                  .boundary_ids;
-              heat_balance.boundary_heat_in[ids.front()] +=
-                stored_change[n] - time_step * rate[n];
-              last_rate[ids.front()] += stored_change[n] / time_step - rate[n];
-            }
-        }
-    }
-
-    void
-    DiscreteHeat::assemble_implicit(const double time_step)
-    {
-      if (sparsity.n_rows() != model.n_nodes)
-        {
-          DynamicSparsityPattern dsp(model.n_nodes);
-          for (unsigned int e = 0; e < model.n_elements; ++e)
-            for (unsigned int a = 0; a < 3; ++a)
-              for (unsigned int b = 0; b < 3; ++b)
-                dsp.add(3 * e + a, 3 * e + b);
-          for (unsigned int j = 0; j < model.n_joints; ++j)
-            for (unsigned int end = 0; end < 2; ++end)
-              {
-                const unsigned int a = model.joint_nodes[4 * j + end];
-                const unsigned int b = model.joint_nodes[4 * j + 2 + end];
-                dsp.add(a, b);
-                dsp.add(b, a);
-              }
-          for (const auto &[c, t] : contact_pairs)
-            for (unsigned int a = 0; a < 3; ++a)
-              for (unsigned int b = 0; b < 3; ++b)
-                {
-                  dsp.add(3 * c + a, 3 * t + b);
-                  dsp.add(3 * t + b, 3 * c + a);
-                }
-          sparsity.copy_from(dsp);
-          matrix.reinit(sparsity);
-        }
-      matrix = 0.;
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        {
-          double K[3][3];
-          element_conductivity_matrix(e, K);
+          double      *sums = &partials[chunk_of(e) * W];
           const double c =
             volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
           for (unsigned int a = 0; a < 3; ++a)
-            for (unsigned int b = 0; b < 3; ++b)
-              matrix.add(3 * e + a,
-                         3 * e + b,
-                         K[a][b] + c * (a == b ? 2. : 1.) / time_step);
-        }
-      for (unsigned int j = 0; j < model.n_joints; ++j)
-        if (model.joint_status[j] == JointStatus::intact)
-          for (unsigned int end = 0; end < 2; ++end)
             {
-              const unsigned int a = model.joint_nodes[4 * j + end];
-              const unsigned int b = model.joint_nodes[4 * j + 2 + end];
-              const double       G = joint_conductance[j];
-              matrix.add(a, a, G);
-              matrix.add(b, b, G);
-              matrix.add(a, b, -G);
-              matrix.add(b, a, -G);
+              const unsigned int n = 3 * e + a;
+              double             stored_change =
+                use_implicit ? 0. : lumped_capacity[n] * (T[n] - T_old[n]);
+              if (use_implicit)
+                for (unsigned int b = 0; b < 3; ++b)
+                  stored_change +=
+                    c * (a == b ? 2. : 1.) * (T[3 * e + b] - T_old[3 * e + b]);
+              sums[0] += stored_change;
+              if (dirichlet_node[n])
+                {
+                  // which boundary id: the first of its condition
+                  const unsigned int slot =
+                    balance_slot.at(parameters.thermal_boundary
+                                      .conditions[dirichlet_condition[n]]
+                                      .boundary_ids.front());
+                  sums[3 + n_slots + slot] +=
+                    stored_change - time_step * rate[n];
+                  sums[3 + 2 * n_slots + slot] +=
+                    stored_change / time_step - rate[n];
+                }
             }
-      // contact conductance: +K = h_c L_c w w^T, w = (N_c, -N_t)
-      for_each_contact_transfer([&](const unsigned int         c,
-                                    const unsigned int         t,
-                                    const ContactHeatTransfer &transfer) {
-        const auto         J = transfer.heat_jacobian();
-        const unsigned int nodes[6] =
-          {3 * c, 3 * c + 1, 3 * c + 2, 3 * t, 3 * t + 1, 3 * t + 2};
-        for (unsigned int a = 0; a < 6; ++a)
-          for (unsigned int b = 0; b < 6; ++b)
-            matrix.add(nodes[a], nodes[b], -J[a][b]);
-      });
-      for (const auto &b : boundary_edges)
+        }
+      std::vector<double> totals;
+      reduce_chunks(partials, W, totals);
+      heat_balance.stored_heat += totals[0];
+      heat_balance.source_heat += time_step * totals[1];
+      last_contact_exchange = totals[2];
+      heat_balance.contact_exchange += time_step * totals[2];
+      for (const auto &[id, slot] : balance_slot)
         {
-          const auto &f = conditions[b.condition];
-          if (f.type != ThermalBoundaryCondition::Type::robin)
-            continue;
-          const unsigned int n0 = 3 * b.element + b.edge;
-          const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
-          const double       L =
-            std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
-          for (const unsigned int n : {n0, n1})
-            matrix.add(n,
-                       n,
-                       0.5 * L *
-                         f.coefficient->value(
-                           Point<2>(model.x_ref[n], model.y_ref[n])));
+          heat_balance.boundary_heat_in[id] +=
+            time_step * totals[3 + slot] + totals[3 + n_slots + slot];
+          last_rate[id] = totals[3 + slot] + totals[3 + 2 * n_slots + slot];
         }
     }
 

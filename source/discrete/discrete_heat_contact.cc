@@ -53,7 +53,7 @@ namespace tmfdem
     DiscreteHeat::update_contact_pairs()
     {
       contact_pairs.clear();
-      sparsity.reinit(0, 0, 0); // couplings change: rebuild the pattern
+      row_start.clear(); // couplings change: rebuild the pattern
       if (contact_conductance <= 0.)
         return;
       // candidates: the mechanics' (one search for both), or our own
@@ -119,24 +119,23 @@ namespace tmfdem
         arena_for(n_threads));
     }
 
-    double
-    DiscreteHeat::add_contact_heat(Vector<double> &rate) const
+    void
+    DiscreteHeat::add_contact_heat(Vector<double>      &rate,
+                                   std::vector<double> *partials) const
     {
-      double total          = 0.;
-      last_contact_exchange = 0.;
+      const unsigned int W = balance_width();
       for_each_contact_transfer([&](const unsigned int         c,
                                     const unsigned int         t,
                                     const ContactHeatTransfer &transfer) {
-        last_contact_exchange += std::abs(transfer.heat_flow);
+        // |Q| counted once, by the owner of the pair's first triangle
+        if (partials != nullptr && c >= first_element && c < end_element)
+          (*partials)[chunk_of(c) * W + 2] += std::abs(transfer.heat_flow);
         for (unsigned int k = 0; k < 3; ++k)
           {
             rate[3 * c + k] += transfer.contactor_nodal_heat[k];
             rate[3 * t + k] += transfer.target_nodal_heat[k];
-            total +=
-              transfer.contactor_nodal_heat[k] + transfer.target_nodal_heat[k];
           }
       });
-      return total;
     }
 
   } // namespace discrete

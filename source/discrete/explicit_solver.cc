@@ -154,7 +154,16 @@ namespace tmfdem
     void
     ExplicitSolver::synchronise()
     {
-      if (!partition.distributed() || synchronised_step == step_number)
+      if (!partition.distributed())
+        return;
+      if (heat_distributed && !thermal_state_gathered)
+        {
+          // temperatures and thermal stretches of the last thermal step
+          partition.gather_element_values(heat->temperature().begin(), 3);
+          partition.gather_element_values(model.thermal_stretch.data(), 1);
+          thermal_state_gathered = true;
+        }
+      if (synchronised_step == step_number)
         return;
       partition.synchronise(model);
       synchronised_step = step_number;

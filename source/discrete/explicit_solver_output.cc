@@ -385,6 +385,7 @@ namespace tmfdem
               .add("coupling",
                    parameters.get<DiscreteHeatParameters>().coupling_name())
               .add("temperature_source", heat->name())
+              .add("heat_distributed", heat_distributed)
               .add(
                 "contact_heat_model",
                 contact_heat_model_name(

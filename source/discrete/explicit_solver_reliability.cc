@@ -284,7 +284,8 @@ namespace tmfdem
       in.finish();
 
       // every rank has the whole state; the ghost plan of its pairs
-      synchronised_step = step_number;
+      synchronised_step      = step_number;
+      thermal_state_gathered = true;
       partition.build_ghost_plan(model, contact.pairs());
       // the outputs continue exactly where the checkpoint left them (every
       // rank numbers the vtu pieces; rank 0 writes the rest)

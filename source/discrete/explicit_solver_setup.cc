@@ -80,10 +80,23 @@ namespace tmfdem
             parameters,
             model,
             communicator);
+          // each rank advances the temperatures of its own triangles
+          // (discrete heat): its pairs from the contact search, its ghosts
+          // from the plan. Without contact mechanics but with contact heat,
+          // the heat's own search needs every triangle's position: the
+          // heat then runs replicated on the whole state (partition.h)
+          heat_distributed =
+            (contact.enabled() ||
+             parameters.get<DiscreteHeatParameters>().contact_conductance <=
+               0.) &&
+            heat->distribute(partition) && partition.distributed();
           heat->initialise(time);
-          // contact heat takes its candidates from the contact search
+          // contact heat takes its candidates from the contact search: on
+          // several ranks each rank's pairs, or all of them (replicated)
           if (contact.enabled())
-            heat->share_contact_candidates(&contact.all_pairs(partition));
+            heat->share_contact_candidates(heat_distributed ?
+                                             &contact.pairs() :
+                                             &contact.all_pairs(partition));
           const unsigned int n = parameters.get<DiscreteHeatParameters>()
                                    .mechanical_steps_per_thermal_step;
           quasi_static = parameters.get<DiscreteHeatParameters>().coupling ==

@@ -103,9 +103,10 @@ namespace tmfdem
                             const DiscreteModel &model,
                             const unsigned int   chunk_size)
     {
-      communicator = comm;
-      this_rank    = Utilities::MPI::this_mpi_process(comm);
-      n_ranks      = Utilities::MPI::n_mpi_processes(comm);
+      communicator   = comm;
+      chunk_elements = chunk_size;
+      this_rank      = Utilities::MPI::this_mpi_process(comm);
+      n_ranks        = Utilities::MPI::n_mpi_processes(comm);
       const std::size_t n_chunks =
         (model.n_elements + chunk_size - 1) / chunk_size;
       element_begin.assign(n_ranks + 1, model.n_elements);
@@ -244,6 +245,73 @@ namespace tmfdem
           for (const unsigned int e : n.receive_elements)
             b = unpack_nodes(m, e, b);
         }
+    }
+
+    void
+    ElementPartition::exchange_ghost_node_values(double *values)
+    {
+      if (!distributed())
+        return;
+      CommunicationTimer timer(communication_seconds);
+      const int          tag = 4713;
+      for (std::size_t i = 0; i < neighbours.size(); ++i)
+        {
+          Neighbour &n = neighbours[i];
+          n.receive_values.resize(3 * n.receive_elements.size());
+          n.send_values.resize(3 * n.send_elements.size());
+          AssertThrowMPI(MPI_Irecv(n.receive_values.data(),
+                                   static_cast<int>(n.receive_values.size()),
+                                   MPI_DOUBLE,
+                                   n.rank,
+                                   tag,
+                                   communicator,
+                                   &requests[2 * i]));
+          double *b = n.send_values.data();
+          for (const unsigned int e : n.send_elements)
+            for (unsigned int k = 0; k < 3; ++k)
+              *b++ = values[3 * e + k];
+          AssertThrowMPI(MPI_Isend(n.send_values.data(),
+                                   static_cast<int>(n.send_values.size()),
+                                   MPI_DOUBLE,
+                                   n.rank,
+                                   tag,
+                                   communicator,
+                                   &requests[2 * i + 1]));
+          ghost_bytes += sizeof(double) * n.send_values.size();
+        }
+      AssertThrowMPI(MPI_Waitall(static_cast<int>(requests.size()),
+                                 requests.data(),
+                                 MPI_STATUSES_IGNORE));
+      for (const Neighbour &n : neighbours)
+        {
+          const double *b = n.receive_values.data();
+          for (const unsigned int e : n.receive_elements)
+            for (unsigned int k = 0; k < 3; ++k)
+              values[3 * e + k] = *b++;
+        }
+    }
+
+    void
+    ElementPartition::gather_element_values(double            *values,
+                                            const unsigned int width)
+    {
+      if (!distributed())
+        return;
+      CommunicationTimer timer(communication_seconds);
+      counts.assign(n_ranks, 0);
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        counts[r] =
+          static_cast<int>(width * (element_begin[r + 1] - element_begin[r]));
+      block_layout();
+      AssertThrowMPI(MPI_Allgatherv(MPI_IN_PLACE,
+                                    0,
+                                    MPI_DATATYPE_NULL,
+                                    values,
+                                    counts.data(),
+                                    displacements.data(),
+                                    MPI_DOUBLE,
+                                    communicator));
+      sync_bytes += sizeof(double) * counts[this_rank];
     }
 
     std::size_t
@@ -805,6 +873,15 @@ namespace tmfdem
                                    MPI_DOUBLE,
                                    MPI_SUM,
                                    communicator));
+    }
+
+    double
+    ElementPartition::max(const double value) const
+    {
+      if (!distributed())
+        return value;
+      CommunicationTimer timer(communication_seconds);
+      return Utilities::MPI::max(value, communicator);
     }
   } // namespace discrete
 } // namespace tmfdem

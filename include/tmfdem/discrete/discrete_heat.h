@@ -14,13 +14,20 @@
  *
  * The nodal temperatures are a deal.II Vector indexed like the DoFs of
  * FE_SimplexDGP(1) on the discrete layer's triangulation (node 3e+k).
+ *
+ * On several MPI ranks (distribute()) each rank advances the nodes of its
+ * own triangles (ElementPartition): rates, matrix rows and boundary terms
+ * of its triangles, joints and contact pairs, the temperatures of its
+ * ghosts from their owners. The implicit step solves with conjugate
+ * gradients and a Jacobi preconditioner on the rows of each rank, and every
+ * sum (dot products, heat balance) is taken per chunk of triangles and the
+ * chunks added in order: temperatures and balance are bitwise the same on
+ * any number of ranks and threads (doc/theory.md, "MPI").
  */
 #ifndef tmfdem_discrete_discrete_heat_h
 #define tmfdem_discrete_discrete_heat_h
 
 #include <deal.II/base/function_parser.h>
-#include <deal.II/lac/sparse_matrix.h>
-#include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
 #include <algorithm>
@@ -89,6 +96,11 @@ namespace tmfdem
       void
       initialise(const double time) override;
 
+      /** Runs on the ranks of @p partition (TemperatureSource::distribute;
+       *  on one rank it only takes the chunks of the balance sums). */
+      bool
+      distribute(ElementPartition &partition) override;
+
       /** Stable explicit step of the lumped system [s]. */
       double
       stable_time_step() const override;
@@ -148,12 +160,10 @@ namespace tmfdem
         shared_candidates = candidates;
       }
 
-      /** Number of overlapping (conducting) contact pairs. */
+      /** Number of overlapping (conducting) contact pairs (of this rank's
+       *  first triangles on several ranks). */
       unsigned int
-      n_contact_pairs() const
-      {
-        return contact_pairs.size();
-      }
+      n_contact_pairs() const;
 
       /** Heat rate through each boundary id in the last step [W/m]. */
       const std::map<types::boundary_id, double> &
@@ -184,16 +194,70 @@ namespace tmfdem
       load(CheckpointReader &in) override;
 
     private:
-      /** Heat rates into each node from conduction, joints, boundary
-       *  conditions and sources at time @p time [W/m]; Dirichlet nodes
-       *  excluded. Also per boundary id rates. */
+      /** Heat rates into each node of this rank's triangles from
+       *  conduction, joints, contacts, boundary conditions and sources at
+       *  time @p time [W/m]. Adds the boundary, source and contact
+       *  exchange rates to the chunk sums @p partials (balance layout). */
       void
-      heat_rates(const double                          time,
-                 Vector<double>                       &rate,
-                 std::map<types::boundary_id, double> &boundary_rate,
-                 double                               &source_rate) const;
+      heat_rates(const double         time,
+                 Vector<double>      &rate,
+                 std::vector<double> &partials) const;
+      /** Backward Euler: assembles this rank's rows of M/dt + K (+ joints,
+       *  contacts, Robin) and the right-hand side @p rhs at t + dt, applies
+       *  the Dirichlet values at t + dt (rows and columns), solves into T
+       *  (CG, Jacobi) and returns with the ghosts of T current. */
       void
-      assemble_implicit(const double time_step);
+      solve_implicit(const double          time,
+                     const double          time_step,
+                     const Vector<double> &T_old,
+                     const Vector<double> &lagged_contact_heat);
+      /** The sparsity of this rank's rows (node 3 first_element on),
+       *  columns sorted: every coupling of elements, joints and contacts. */
+      void
+      make_row_pattern();
+      /** Adds @p v to entry (i, j) if row i is this rank's. */
+      void
+      add_to_matrix(const unsigned int i, const unsigned int j, const double v);
+      /** y = A x on this rank's rows (x with current ghosts). */
+      void
+      multiply(const std::vector<double> &x, std::vector<double> &y) const;
+
+      /** @name Sums taken per chunk of triangles, then the chunks in order
+       *  (the same on any number of ranks and threads) */
+      ///@{
+      /** Entries per chunk in the balance sums: stored heat, source rate,
+       *  contact exchange, then per boundary id (balance_slot) the
+       *  Neumann/Robin rate, the Dirichlet heat and the Dirichlet rate. */
+      unsigned int
+      balance_width() const
+      {
+        return 3 + 3 * balance_slot.size();
+      }
+      /** Chunk of triangle @p e. */
+      unsigned int
+      chunk_of(const unsigned int e) const
+      {
+        return e / chunk_elements;
+      }
+      /** Sums the chunk sums of all ranks (@p width per chunk) and adds the
+       *  chunks in order into @p totals. */
+      void
+      reduce_chunks(std::vector<double> &partials,
+                    const unsigned int   width,
+                    std::vector<double> &totals) const;
+      /** Dot products a_i . b_i over this rank's nodes, summed per chunk and
+       *  reduced (reduce_chunks()): the same on any number of ranks. */
+      void
+      dot_products(
+        const std::vector<std::pair<const double *, const double *>> &vectors,
+        std::vector<double> &results) const;
+      ///@}
+      /** True if node @p n is one of this rank's (its triangle's). */
+      bool
+      owns_node(const unsigned int n) const
+      {
+        return n >= 3 * first_element && n < 3 * end_element;
+      }
       void
       set_dirichlet_values(const double time);
       void
@@ -239,12 +303,31 @@ namespace tmfdem
       std::vector<ConditionFunctions>                 conditions;
       std::vector<std::unique_ptr<FunctionParser<2>>> sources; ///< by material
 
-      // implicit
-      SparsityPattern      sparsity;
-      SparseMatrix<double> matrix;
-      double               assembled_time_step = -1.;
-      std::vector<char>    assembled_joint_state;
-      unsigned int         iterations = 0;
+      /** @name This rank's part (all of it on one rank) */
+      ///@{
+      ElementPartition *partition = nullptr;
+      /** Own triangles [first_element, end_element). */
+      unsigned int first_element = 0, end_element = 0;
+      /** Joints computed here (those with a triangle of this rank),
+       *  ascending. */
+      std::vector<unsigned int> local_joints;
+      /** Own boundary edges: boundary_edges[first_edge, end_edge). */
+      std::size_t first_edge = 0, end_edge = 0;
+      /** Triangles per chunk of the sums, and the number of chunks. */
+      unsigned int chunk_elements = 512, n_chunks = 0;
+      /** Slot of each boundary id in the balance sums. */
+      std::map<types::boundary_id, unsigned int> balance_slot;
+      ///@}
+
+      /** @name Implicit: this rank's rows of the matrix (CSR, global
+       *  columns sorted), with its diagonal for the preconditioner */
+      ///@{
+      std::vector<std::size_t>  row_start;
+      std::vector<unsigned int> row_column;
+      std::vector<double>       row_value;
+      std::vector<double>       diagonal;
+      unsigned int              iterations = 0;
+      ///@}
 
       /** Conducting pairs: (contactor, target) triangles. */
       std::vector<std::pair<unsigned int, unsigned int>> contact_pairs;
@@ -273,11 +356,14 @@ namespace tmfdem
       /** Scratch of compute_contact_transfers(), one entry per pair. */
       mutable std::vector<ContactHeatTransfer> transfers;
       mutable std::vector<char>                overlapping;
-      /** Adds the contact heats of T to @p rate; returns their sum. */
-      double
-      add_contact_heat(Vector<double> &rate) const;
-      /** Sum of |Q| over the pairs in the last add_contact_heat() [W/m]. */
-      mutable double                       last_contact_exchange = 0.;
+      /** Adds the contact heats of T to @p rate and, if given, |Q| of
+       *  every pair whose first triangle is this rank's to its chunk in
+       *  @p partials (balance layout). */
+      void
+      add_contact_heat(Vector<double>      &rate,
+                       std::vector<double> *partials) const;
+      /** Sum of |Q| over the pairs in the last step [W/m]. */
+      double                               last_contact_exchange = 0.;
       std::map<types::boundary_id, double> last_rate;
 
       HeatBalance    heat_balance;

@@ -182,6 +182,13 @@ namespace tmfdem
       bool with_heat = false;
       /** The temperature source (Discrete heat/Temperature source). */
       std::unique_ptr<TemperatureSource> heat;
+      /** On several ranks: the source advances each rank's own triangles
+       *  (TemperatureSource::distribute()); else it runs on every rank on
+       *  the whole state, synchronised before each thermal step. */
+      bool heat_distributed = false;
+      /** The temperatures and thermal stretches of the other ranks are
+       *  current (gathered by synchronise() since the last thermal step). */
+      bool thermal_state_gathered = true;
       /** A source blind to cracks went on past a broken joint (accepted). */
       bool heat_across_cracks = false;
       /** Before a thermal step: stop (or warn once) if joints are broken and

@@ -116,6 +116,13 @@ namespace tmfdem
       {
         return joint_subset;
       }
+      /** Triangles per chunk: every rank owns whole chunks, so a sum per
+       *  chunk is computed by one rank (sum()). */
+      unsigned int
+      chunk_size() const
+      {
+        return chunk_elements;
+      }
       /** The rank that owns triangle @p e. */
       unsigned int
       owner(const unsigned int e) const;
@@ -140,6 +147,22 @@ namespace tmfdem
        *  and receives those of the ghosts (every explicit step). */
       void
       exchange_ghosts(DiscreteModel &model);
+
+      /**
+       * The same plan for one value per node (@p values: 3 per triangle,
+       * node 3e+k, e.g. the temperatures): sends the values of the owned
+       * nodes others need and receives those of the ghosts.
+       */
+      void
+      exchange_ghost_node_values(double *values);
+
+      /**
+       * Gives every rank the values of all triangles: @p values holds
+       * @p width values per triangle (triangle e at width e); each rank's
+       * block of its own triangles goes to every rank (MPI_Allgatherv).
+       */
+      void
+      gather_element_values(double *values, const unsigned int width);
 
       /**
        * After build_ghost_plan() following a search by bounding boxes
@@ -240,6 +263,10 @@ namespace tmfdem
       void
       sum(std::vector<double> &values) const;
 
+      /** The largest @p value over the ranks (exact). */
+      double
+      max(const double value) const;
+
       /** Bytes sent by this rank in ghost exchanges, all steps so far. */
       std::uint64_t
       ghost_bytes_sent() const
@@ -275,6 +302,8 @@ namespace tmfdem
     private:
       MPI_Comm     communicator = MPI_COMM_SELF;
       unsigned int this_rank = 0, n_ranks = 1;
+      /** Triangles per chunk (setup()). */
+      unsigned int chunk_elements = 1;
       /** First triangle of every rank, and n_elements at the end. */
       std::vector<unsigned int> element_begin;
       /** First joint of every rank (joints are numbered by their first
@@ -288,6 +317,8 @@ namespace tmfdem
         unsigned int              rank = 0;
         std::vector<unsigned int> send_elements, receive_elements;
         std::vector<double>       send_buffer, receive_buffer;
+        /** Buffers of exchange_ghost_node_values(). */
+        std::vector<double> send_values, receive_values;
       };
       std::vector<Neighbour> neighbours;
       /** The neighbours of the previous plan (exchange_new_ghosts()). */

@@ -30,6 +30,7 @@ namespace tmfdem
   namespace discrete
   {
     struct ContactPair;
+    class ElementPartition;
 
     struct DiscreteModel;
 
@@ -104,6 +105,22 @@ namespace tmfdem
       share_contact_candidates(const std::vector<ContactPair> *candidates)
       {
         (void)candidates;
+      }
+
+      /**
+       * Runs the source on the ranks of @p partition: each rank advances
+       * the nodes of its own triangles and keeps its ghosts' temperatures
+       * current (the ghost plan of @p partition), and the reductions are
+       * exact, so the temperatures are bitwise those of one rank. Call
+       * before initialise(). Returns false for a source that runs only
+       * replicated (every rank the whole field from the whole state): the
+       * caller then synchronises the state before every step().
+       */
+      virtual bool
+      distribute(ElementPartition &partition)
+      {
+        (void)partition;
+        return false;
       }
 
       /** Advances from @p time by @p time_step [s]. */
