@@ -107,10 +107,11 @@ def main():
                     raise RuntimeError(f"np {n}: summary.json says heat_distributed = "
                                        f"{s.get('heat_distributed')}, not true")
                 print(f"{case:24s} np {n}: {s['steps']} steps, broken joints "
-                      f"{s['broken_joints']}, contact searches {s['contact_searches']}, "
-                      f"ghost triangles {s['ghost_elements']:.0f}, ghost bytes "
-                      f"{s['ghost_exchange_bytes']:.3g}, synchronisations "
-                      f"{s['synchronisations']}"
+                      f"{s.get('broken_joints', '-')}, contact searches "
+                      f"{s.get('contact_searches', '-')}, "
+                      f"ghost triangles {s.get('ghost_elements', 0):.0f}, ghost bytes "
+                      f"{s.get('ghost_exchange_bytes', 0):.3g}, synchronisations "
+                      f"{s.get('synchronisations', '-')}"
                       + (f", heat distributed {s['heat_distributed']}"
                          if "heat_distributed" in s else ""), flush=True)
         except RuntimeError as e:

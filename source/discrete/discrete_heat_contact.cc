@@ -80,9 +80,26 @@ namespace tmfdem
                             overlap.contact_length > 0.;
             }
         });
+      // on several ranks the pairs with a triangle of this rank
+      const auto here = [&](const unsigned int e) {
+        return e >= first_element && e < end_element;
+      };
       for (std::size_t p = 0; p < candidates.size(); ++p)
-        if (touching[p])
+        if (touching[p] &&
+            (here(candidates[p].first) || here(candidates[p].second)))
           contact_pairs.emplace_back(candidates[p].first, candidates[p].second);
+    }
+
+    std::vector<ContactPair>
+    DiscreteHeat::contact_pair_list() const
+    {
+      std::vector<ContactPair> list(contact_pairs.size());
+      for (std::size_t p = 0; p < contact_pairs.size(); ++p)
+        {
+          list[p].first  = contact_pairs[p].first;
+          list[p].second = contact_pairs[p].second;
+        }
+      return list;
     }
 
     void

@@ -60,11 +60,6 @@ namespace tmfdem
           " applies to Model = discrete thermo-mechanics; Model = discrete "
           "heat is the discrete heat itself (for the continuum heat alone use "
           "Model = continuum heat); allowed here is discrete heat.");
-      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
-        throw InputError(
-          "Model = discrete heat runs on one MPI process with threads "
-          "(Discrete mechanics/Threads); run it without mpirun -np > 1, or "
-          "as Model = discrete thermo-mechanics, which runs on several.");
       build_discrete_mesh(parameters,
                           communicator,
                           triangulation,
@@ -85,7 +80,12 @@ namespace tmfdem
           set_thread_limit(threads);
         heat->set_threads(threads);
       }
+      // each rank its own triangles (whole chunks); the ghosts: triangles
+      // joined to or in contact with them (the geometry never changes)
+      partition.setup(communicator, model, chunk_size);
+      heat->distribute(partition);
       heat->initialise(parameters.time.start_time); // T0, contact pairs
+      partition.build_ghost_plan(model, heat->contact_pair_list());
       locate_monitors(parameters.monitors, model, probe_samples, line_samples);
       const auto &ts = parameters.time;
       if (ts.mode != TimeSteppingParameters::Mode::transient)
@@ -139,12 +139,44 @@ namespace tmfdem
                        0.5 * time_step)
           .times();
 
-      auto write_output = [&]() {
+      const bool distributed  = partition.distributed();
+      auto       write_output = [&]() {
+        // every rank the whole field (probes, lines); each its vtu piece
+        partition.gather_element_values(heat->temperature().begin(), 3);
         if (parameters.output.write_vtu)
           {
             std::vector<double> T(heat->temperature().begin(),
                                   heat->temperature().end());
-            series.write(time, discrete_solution_vtu(model, {{"T", &T}}));
+            if (!distributed)
+              series.write(time, discrete_solution_vtu(model, {{"T", &T}}));
+            else
+              {
+                const std::string piece =
+                  discrete_solution_vtu(model,
+                                        {{"T", &T}},
+                                        partition.begin(),
+                                        partition.end());
+                std::string failure;
+                try
+                  {
+                    series.write_piece(partition.rank(), piece);
+                  }
+                catch (const std::exception &e)
+                  {
+                    failure = e.what();
+                  }
+                for (const std::string &message :
+                     Utilities::MPI::all_gather(communicator, failure))
+                  if (!message.empty())
+                    throw RunError(message);
+                on_rank_zero([&]() {
+                  series.write_parallel_record(time,
+                                               partition.n_processes(),
+                                               piece);
+                });
+                if (partition.rank() != 0)
+                  series.add_parallel_record(time);
+              }
           }
         auto rows = [&](const std::vector<ReferenceSample> &samples) {
           std::ostringstream out;
@@ -170,7 +202,7 @@ namespace tmfdem
       ProgressReporter progress(parameters.output.progress_interval,
                                 time,
                                 end,
-                                true);
+                                partition.rank() == 0);
       unsigned long    steps         = 0;
       unsigned long    cg_iterations = 0;
       unsigned int     next_output   = 0;
@@ -198,6 +230,11 @@ namespace tmfdem
         const std::size_t bytes = write_checkpoint(parameters, steps, out);
         std::cerr << "[tmfdem] checkpoint at step " << steps << ", t = " << time
                   << " s: " << bytes << " bytes\n";
+      };
+      // the whole field on every rank, rank 0 writes (any rank count resumes)
+      const auto save_checkpoint = [&]() {
+        partition.gather_element_values(heat->temperature().begin(), 3);
+        on_rank_zero(save);
       };
       if (parameters.resume)
         {
@@ -250,8 +287,9 @@ namespace tmfdem
             truncate_file(folder + "/probes.csv", csv_bytes[0]);
           if (!line_samples.empty())
             truncate_file(folder + "/lines.csv", csv_bytes[1]);
-          std::cerr << "[tmfdem] resumed from " << file << ": step " << steps
-                    << ", t = " << time << " s\n";
+          if (partition.rank() == 0)
+            std::cerr << "[tmfdem] resumed from " << file << ": step " << steps
+                      << ", t = " << time << " s\n";
         }
       CheckpointSchedule checkpoints(parameters.checkpoint);
       checkpoints.written(steps);
@@ -275,8 +313,9 @@ namespace tmfdem
               ++next_output;
             }
           progress.update(steps, time);
-          // guard: temperatures finite (one pass over the nodes)
-          for (unsigned int n = 0; n < model.n_nodes; ++n)
+          // guard: temperatures finite (one pass over this rank's nodes)
+          for (unsigned int n = 3 * partition.begin(); n < 3 * partition.end();
+               ++n)
             if (!std::isfinite(heat->temperature()[n]))
               throw RunError(
                 "guard: non-finite temperature at node " + std::to_string(n) +
@@ -287,17 +326,26 @@ namespace tmfdem
                 "one, a contact conductance or Robin coefficient too high, or "
                 "a boundary or source function that is not finite. The "
                 "outputs up to the last output time are intact.");
-          if (checkpoints.active() && checkpoints.due(steps))
+          // checkpoints due (wall clock) and signals: decided together
+          bool due  = checkpoints.active() && checkpoints.due(steps);
+          bool stop = stop_requested();
+          if (distributed)
             {
-              save();
+              due  = Utilities::MPI::max(due ? 1 : 0, communicator) != 0;
+              stop = stop_requested_on_any_rank(communicator);
+            }
+          if (due)
+            {
+              save_checkpoint();
               checkpoints.written(steps);
             }
-          if (stop_requested())
+          if (stop)
             {
-              std::cerr << "[tmfdem] " << stop_signal_name()
-                        << ": finishing the step, writing a checkpoint and "
-                           "the outputs\n";
-              save();
+              if (partition.rank() == 0)
+                std::cerr << "[tmfdem] " << stop_signal_name()
+                          << ": finishing the step, writing a checkpoint and "
+                             "the outputs\n";
+              save_checkpoint();
               stop_reason = "stopped by " + stop_signal_name();
               break;
             }
@@ -321,7 +369,11 @@ namespace tmfdem
         .add("time_step", time_step)
         .add("stable_explicit_time_step", heat->stable_time_step())
         .add("cg_iterations", static_cast<long long>(cg_iterations))
-        .add("contact_pairs", heat->n_contact_pairs())
+        .add("contact_pairs",
+             Utilities::MPI::sum(heat->n_contact_pairs(), communicator))
+        .add("mpi_processes", partition.n_processes())
+        .add("heat_distributed", partition.distributed())
+        .add("ghost_elements", partition.n_ghosts())
         .add("wall_time", progress.elapsed())
         .add("element_steps_per_second",
              progress.elapsed() > 0. ?
@@ -330,16 +382,45 @@ namespace tmfdem
         .add("heat_balance", balance);
       if (!stop_reason.empty())
         summary.add("stop_reason", stop_reason);
-      write_file_atomically(folder + "/summary.json", summary.str() + "\n");
+      const std::string summary_text = summary.str() + "\n";
+      on_rank_zero([&]() {
+        write_file_atomically(folder + "/summary.json", summary_text);
+      });
       if (!stop_reason.empty())
         throw StopRequested(
           stop_reason + " at t = " + Utilities::to_string(time) +
           " s after step " + std::to_string(steps) + "; checkpoint in " +
           checkpoint_folder(parameters) + ". Continue with: tmfdem " +
           parameters.prm_file + " --resume (and the same --set options).");
-      std::cerr << "[tmfdem] discrete heat: " << steps
-                << " steps to t = " << time << " s, heat imbalance "
-                << std::abs(b.imbalance()) / b.scale() << " (relative)\n";
+      if (partition.rank() == 0)
+        std::cerr << "[tmfdem] discrete heat: " << steps
+                  << " steps to t = " << time << " s, heat imbalance "
+                  << std::abs(b.imbalance()) / b.scale() << " (relative)\n";
+    }
+
+    void
+    DiscreteHeatSolver::on_rank_zero(const std::function<void()> &write) const
+    {
+      if (!partition.distributed())
+        {
+          write();
+          return;
+        }
+      std::string failure;
+      if (partition.rank() == 0)
+        try
+          {
+            write();
+          }
+        catch (const std::exception &e)
+          {
+            failure = e.what();
+            if (failure.empty())
+              failure = "writing an output failed on rank 0";
+          }
+      failure = Utilities::MPI::broadcast(communicator, failure, 0);
+      if (!failure.empty())
+        throw RunError(failure);
     }
   } // namespace discrete
 } // namespace tmfdem

@@ -160,6 +160,11 @@ namespace tmfdem
         shared_candidates = candidates;
       }
 
+      /** The conducting pairs (with a triangle of this rank), for the
+       *  ghost plan of ElementPartition::build_ghost_plan(). */
+      std::vector<ContactPair>
+      contact_pair_list() const;
+
       /** Number of overlapping (conducting) contact pairs (of this rank's
        *  first triangles on several ranks). */
       unsigned int

@@ -6,6 +6,12 @@
  * the paper's 50 s of conduction (Sec. 5.1) take a thousand steps, not
  * 5e8. Outputs: solution.pvd (exploded mesh with T), probes.csv and
  * lines.csv (time,name,x,y,T), summary.json with the heat balance.
+ *
+ * On several MPI ranks each rank advances the nodes of its own triangles
+ * (ElementPartition, DiscreteHeat::distribute()): its ghosts are the
+ * triangles joined to or in contact with its own, the results bitwise those
+ * of one rank; each rank writes its piece of the vtu files, rank 0 the
+ * rest and the checkpoints (the temperatures gathered first).
  */
 #ifndef tmfdem_discrete_discrete_heat_solver_h
 #define tmfdem_discrete_discrete_heat_solver_h
@@ -20,6 +26,7 @@
 #include <tmfdem/discrete/discrete_heat.h>
 #include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/partition.h>
 
 namespace tmfdem
 {
@@ -68,6 +75,15 @@ namespace tmfdem
       std::unique_ptr<DiscreteHeat> heat;
       std::vector<ReferenceSample>  probe_samples, line_samples;
       double                        time_step = 0.;
+      /** Triangles of each rank (one rank: all). */
+      ElementPartition partition;
+      /** Triangles per chunk of the partition and of the sums. */
+      static constexpr unsigned int chunk_size = 512;
+
+      /** Rank 0 runs @p write; a failure there stops every rank with its
+       *  message (RunError). */
+      void
+      on_rank_zero(const std::function<void()> &write) const;
     };
   } // namespace discrete
 } // namespace tmfdem
