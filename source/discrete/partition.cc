@@ -43,6 +43,20 @@ namespace tmfdem
       /** Doubles per joint in synchronise(): status, damage at both Gauss
        *  points, break time and the eight forces (geometry only: status). */
       constexpr unsigned int joint_width = 12;
+      /** Bits of a joint's status in synchronise_joint_status()'s words
+       *  (JointStatus: 0 to 3); the joint's index takes the others. */
+      constexpr unsigned int joint_status_bits = 2;
+
+      /** Joint @p j and its status @p s as one 32-bit word. */
+      inline std::uint32_t
+      pack_joint_status(const unsigned int j, const JointStatus s)
+      {
+        static_assert(static_cast<unsigned int>(JointStatus::mixed) <
+                        (1u << joint_status_bits),
+                      "every JointStatus fits in joint_status_bits");
+        return (static_cast<std::uint32_t>(j) << joint_status_bits) |
+               static_cast<std::uint32_t>(s);
+      }
 
       /** Writes x, y, vx, vy of the three nodes of triangle @p e to @p b
        *  and returns the position after them. */
@@ -128,6 +142,15 @@ namespace tmfdem
       for (unsigned int k = 0; k + 1 < model.n_joints; ++k)
         Assert(model.joint_elements[2 * k] <= model.joint_elements[2 * k + 2],
                ExcInternalError());
+      // every rank built the same model: the status of my joints is what
+      // every rank holds (synchronise_joint_status() sends what changes)
+      AssertThrow(model.n_joints <=
+                    (std::uint64_t(1) << (32 - joint_status_bits)),
+                  ExcMessage("more than 2^30 joints: the exchange of the "
+                             "joints' status numbers them in 30 bits."));
+      sent_status.assign(model.joint_status.begin() + joint_begin[this_rank],
+                         model.joint_status.begin() +
+                           joint_begin[this_rank + 1]);
       // this rank's joints, and the earlier ranks' joints to its triangles
       joint_subset.begin = joint_begin[this_rank];
       joint_subset.end   = joint_begin[this_rank + 1];
@@ -371,6 +394,8 @@ namespace tmfdem
              ++j)
           {
             *b++ = static_cast<double>(m.joint_status[j]);
+            // every rank gets it: what synchronise_joint_status() compares
+            sent_status[j - joint_begin[this_rank]] = m.joint_status[j];
             if (geometry_only)
               continue;
             *b++ = m.joint_damage[2 * j];
@@ -415,21 +440,48 @@ namespace tmfdem
       if (!distributed())
         return;
       CommunicationTimer timer(communication_seconds);
+      // my joints whose status differs from what every rank holds (the
+      // status I last sent), one 32-bit word each: index and status
+      std::vector<std::uint32_t> changes;
+      for (unsigned int j = first_joint(); j < end_joint(); ++j)
+        {
+          JointStatus &sent = sent_status[j - first_joint()];
+          if (m.joint_status[j] != sent)
+            {
+              changes.push_back(pack_joint_status(j, m.joint_status[j]));
+              sent = m.joint_status[j];
+            }
+        }
+      const int n_changes = static_cast<int>(changes.size());
       counts.assign(n_ranks, 0);
-      for (unsigned int r = 0; r < n_ranks; ++r)
-        counts[r] = static_cast<int>(joint_begin[r + 1] - joint_begin[r]);
-      std::vector<std::uint8_t> status(block_layout());
-      for (unsigned int j = joint_begin[this_rank];
-           j < joint_begin[this_rank + 1];
-           ++j)
-        status[j - joint_begin[0]] =
-          static_cast<std::uint8_t>(m.joint_status[j]);
-      allgather_blocks(status, MPI_UINT8_T);
+      AssertThrowMPI(MPI_Allgather(&n_changes,
+                                   1,
+                                   MPI_INT,
+                                   counts.data(),
+                                   1,
+                                   MPI_INT,
+                                   communicator));
+      sync_bytes += sizeof(n_changes);
+      // every rank knows the total: none, no second message anywhere
+      const std::size_t n_all = block_layout();
+      if (n_all == 0)
+        return;
+      std::vector<std::uint32_t> all(n_all);
+      std::copy(changes.begin(),
+                changes.end(),
+                all.begin() + displacements[this_rank]);
+      allgather_blocks(all, MPI_UINT32_T);
       for (unsigned int r = 0; r < n_ranks; ++r)
         if (r != this_rank)
-          for (unsigned int j = joint_begin[r]; j < joint_begin[r + 1]; ++j)
-            m.joint_status[j] =
-              static_cast<JointStatus>(status[j - joint_begin[0]]);
+          for (int k = displacements[r]; k < displacements[r + 1]; ++k)
+            {
+              const unsigned int j = all[k] >> joint_status_bits;
+              // a rank sends the joints of its first triangles only
+              AssertThrow(j >= joint_begin[r] && j < joint_begin[r + 1],
+                          ExcInternalError());
+              m.joint_status[j] = static_cast<JointStatus>(
+                all[k] & ((1u << joint_status_bits) - 1));
+            }
     }
 
     void

@@ -23,17 +23,20 @@
  * (the pairs with a triangle of its own).
  *
  * A contact search needs no full synchronisation: the joints' status goes
- * to every rank (one byte per joint), so every rank knows the same active
- * triangles; then each rank receives, from the ranks whose region (the
- * hull of their active triangles' search boxes) meets its own, only the
- * triangles whose search box meets its region (exchange_search_candidates()),
- * makes the pairs of its own first triangles and sends those whose second
- * triangle is another rank's to that rank (exchange_pairs()): each rank
- * keeps the pairs with a triangle of its own, in the order of one rank's
- * list. The ghosts new to the plan then come from their owners
- * (exchange_new_ghosts()). The whole pair list goes to every rank only
- * before outputs and checkpoints and for the contact heat
- * (gather_pairs()).
+ * to every rank, so every rank knows the same active triangles, but only
+ * what changed (a rank sends, of the joints of its first triangles, those
+ * whose status differs from what it last sent, 4 B each; an intact body
+ * sends only the counts), so the search's exchanges grow with what breaks
+ * and what lies near another rank, not with the mesh. Then each rank
+ * receives, from the ranks whose region (the hull of their active
+ * triangles' search boxes) meets its own, only the triangles whose search
+ * box meets its region (exchange_search_candidates()), makes the pairs of
+ * its own first triangles and sends those whose second triangle is another
+ * rank's to that rank (exchange_pairs()): each rank keeps the pairs with a
+ * triangle of its own, in the order of one rank's list. The ghosts new to
+ * the plan then come from their owners (exchange_new_ghosts()). The whole
+ * pair list goes to every rank only before outputs and checkpoints and for
+ * the contact heat (gather_pairs()).
  */
 #ifndef tmfdem_discrete_partition_h
 #define tmfdem_discrete_partition_h
@@ -189,7 +192,18 @@ namespace tmfdem
 
       /**
        * What a contact search needs, in two steps: the status of every
-       * joint (one byte each) ...
+       * joint, on every rank as its owner has it ... A rank sends only the
+       * joints of its first triangles [first_joint(), end_joint()) whose
+       * status differs from the one it last sent (here or in
+       * synchronise(); at setup() every rank holds the same model), as one
+       * 32-bit word each (index and status; MPI_Allgather of the counts,
+       * then MPI_Allgatherv of the words where any rank has one), and every
+       * rank writes them into @p model. Every other joint a rank holds is
+       * then what its owner holds too: sent before and unchanged since, or
+       * computed by this rank as well (joints()), the same way. After
+       * --resume every rank holds the checkpoint's statuses; the joints
+       * that changed between setup() and the checkpoint then go once more
+       * with the next exchange, which changes nothing.
        */
       void
       synchronise_joint_status(DiscreteModel &model);
@@ -332,6 +346,10 @@ namespace tmfdem
       /** The other ranks whose region met this rank's in the last
        *  exchange_search_candidates(), ascending (exchange_pairs()). */
       std::vector<unsigned int> region_partners;
+      /** The status of this rank's joints [first_joint(), end_joint())
+       *  as every rank holds it: as set up, or as last sent by
+       *  synchronise() or synchronise_joint_status(). */
+      std::vector<JointStatus> sent_status;
       /** Scratch of synchronise(). */
       std::vector<double> scratch;
       /** Entries per rank of a gathered array, and where each rank's block
