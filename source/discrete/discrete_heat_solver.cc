@@ -374,6 +374,12 @@ namespace tmfdem
         .add("mpi_processes", partition.n_processes())
         .add("heat_distributed", partition.distributed())
         .add("ghost_elements", partition.n_ghosts())
+        .add("ghost_exchange_bytes",
+             Utilities::MPI::sum(static_cast<double>(
+                                   partition.ghost_bytes_sent()),
+                                 communicator))
+        .add("communication_time_s",
+             Utilities::MPI::max(partition.communication_time(), communicator))
         .add("wall_time", progress.elapsed())
         .add("element_steps_per_second",
              progress.elapsed() > 0. ?
