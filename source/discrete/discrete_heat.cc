@@ -417,21 +417,14 @@ namespace tmfdem
           }
       });
       set_function_time(0.);
-      for (std::size_t i = first_edge; i < end_edge; ++i)
-        {
-          const BoundaryEdge &b = boundary_edges[i];
-          if (conditions[b.condition].type !=
-              ThermalBoundaryCondition::Type::robin)
-            continue;
-          const unsigned int n0 = 3 * b.element + b.edge;
-          const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
-          const double       L =
-            std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
-          for (const unsigned int n : {n0, n1})
-            row[n] += 0.5 * L *
-                      conditions[b.condition].coefficient->value(
-                        Point<2>(model.x_ref[n], model.y_ref[n]));
-        }
+      for_each_boundary_node(
+        [](const ThermalBoundaryCondition::Type type) {
+          return type == ThermalBoundaryCondition::Type::robin;
+        },
+        [&](const BoundaryEdge &b, const unsigned int n, const double half) {
+          row[n] += half * conditions[b.condition].coefficient->value(
+                             Point<2>(model.x_ref[n], model.y_ref[n]));
+        });
       double lambda = 0.;
       for (unsigned int n = 3 * first_element; n < 3 * end_element; ++n)
         if (!dirichlet_node[n])
@@ -520,29 +513,18 @@ namespace tmfdem
             }
         }
       // Neumann and Robin, lumped on the edge's two nodes
-      for (std::size_t i = first_edge; i < end_edge; ++i)
-        {
-          const BoundaryEdge &b = boundary_edges[i];
-          const auto         &f = conditions[b.condition];
-          if (f.type == ThermalBoundaryCondition::Type::dirichlet)
-            continue;
-          const unsigned int n0 = 3 * b.element + b.edge;
-          const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
-          const double       L =
-            std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
-          double *sums = &partials[chunk_of(b.element) * W];
-          for (const unsigned int n : {n0, n1})
-            {
-              const Point<2> p(model.x_ref[n], model.y_ref[n]);
-              const double   q =
-                f.type == ThermalBoundaryCondition::Type::neumann ?
-                    0.5 * L * f.flux->value(p) :
-                    0.5 * L * f.coefficient->value(p) *
-                    (f.ambient->value(p) - T[n]);
-              rate[n] += q;
-              sums[3 + balance_slot.at(b.id)] += q;
-            }
-        }
+      for_each_boundary_node(
+        flux_condition,
+        [&](const BoundaryEdge &b, const unsigned int n, const double half) {
+          const auto    &f = conditions[b.condition];
+          const Point<2> p(model.x_ref[n], model.y_ref[n]);
+          const double   q =
+            f.type == ThermalBoundaryCondition::Type::neumann ?
+                half * f.flux->value(p) :
+                half * f.coefficient->value(p) * (f.ambient->value(p) - T[n]);
+          rate[n] += q;
+          partials[chunk_of(b.element) * W + 3 + balance_slot.at(b.id)] += q;
+        });
     }
 
     void

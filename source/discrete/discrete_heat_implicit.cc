@@ -202,29 +202,20 @@ namespace tmfdem
           for (unsigned int a = 0; a < 3; ++a)
             rhs[3 * e + a] += s * model.reference_area[e] / 3.;
         }
-      for (std::size_t i = first_edge; i < end_edge; ++i)
-        {
-          const BoundaryEdge &b = boundary_edges[i];
-          const auto         &f = conditions[b.condition];
-          if (f.type == ThermalBoundaryCondition::Type::dirichlet)
-            continue;
-          const unsigned int n0 = 3 * b.element + b.edge;
-          const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
-          const double       L =
-            std::hypot(model.x[n1] - model.x[n0], model.y[n1] - model.y[n0]);
-          for (const unsigned int n : {n0, n1})
+      for_each_boundary_node(
+        flux_condition,
+        [&](const BoundaryEdge &b, const unsigned int n, const double half) {
+          const auto    &f = conditions[b.condition];
+          const Point<2> p(model.x_ref[n], model.y_ref[n]);
+          if (f.type == ThermalBoundaryCondition::Type::neumann)
+            rhs[n] += half * f.flux->value(p);
+          else
             {
-              const Point<2> p(model.x_ref[n], model.y_ref[n]);
-              if (f.type == ThermalBoundaryCondition::Type::neumann)
-                rhs[n] += 0.5 * L * f.flux->value(p);
-              else
-                {
-                  const double h = 0.5 * L * f.coefficient->value(p);
-                  rhs[n] += h * f.ambient->value(p);
-                  add_to_matrix(n, n, h);
-                }
+              const double h = half * f.coefficient->value(p);
+              rhs[n] += h * f.ambient->value(p);
+              add_to_matrix(n, n, h);
             }
-        }
+        });
       if (lagged_contact_heat.size() > 0)
         for (unsigned int n = first_row; n < last_row; ++n)
           rhs[n] += lagged_contact_heat[n];

@@ -169,7 +169,7 @@ namespace tmfdem
                      Utilities::MPI::all_gather(communicator, failure))
                   if (!message.empty())
                     throw RunError(message);
-                on_rank_zero([&]() {
+                tmfdem::on_rank_zero(communicator, [&]() {
                   series.write_parallel_record(time,
                                                partition.n_processes(),
                                                piece);
@@ -234,7 +234,7 @@ namespace tmfdem
       // the whole field on every rank, rank 0 writes (any rank count resumes)
       const auto save_checkpoint = [&]() {
         partition.gather_element_values(heat->temperature().begin(), 3);
-        on_rank_zero(save);
+        tmfdem::on_rank_zero(communicator, save);
       };
       if (parameters.resume)
         {
@@ -389,7 +389,7 @@ namespace tmfdem
       if (!stop_reason.empty())
         summary.add("stop_reason", stop_reason);
       const std::string summary_text = summary.str() + "\n";
-      on_rank_zero([&]() {
+      tmfdem::on_rank_zero(communicator, [&]() {
         write_file_atomically(folder + "/summary.json", summary_text);
       });
       if (!stop_reason.empty())
@@ -404,29 +404,5 @@ namespace tmfdem
                   << std::abs(b.imbalance()) / b.scale() << " (relative)\n";
     }
 
-    void
-    DiscreteHeatSolver::on_rank_zero(const std::function<void()> &write) const
-    {
-      if (!partition.distributed())
-        {
-          write();
-          return;
-        }
-      std::string failure;
-      if (partition.rank() == 0)
-        try
-          {
-            write();
-          }
-        catch (const std::exception &e)
-          {
-            failure = e.what();
-            if (failure.empty())
-              failure = "writing an output failed on rank 0";
-          }
-      failure = Utilities::MPI::broadcast(communicator, failure, 0);
-      if (!failure.empty())
-        throw RunError(failure);
-    }
   } // namespace discrete
 } // namespace tmfdem

@@ -89,27 +89,8 @@ namespace tmfdem
     void
     ExplicitSolver::on_rank_zero(const std::function<void()> &write) const
     {
-      if (!partition.distributed())
-        {
-          write();
-          return;
-        }
       // rank 0 writes; a failure there stops every rank with its message
-      std::string failure;
-      if (writes_files())
-        try
-          {
-            write();
-          }
-        catch (const std::exception &e)
-          {
-            failure = e.what();
-            if (failure.empty())
-              failure = "writing an output failed on rank 0";
-          }
-      failure = Utilities::MPI::broadcast(communicator, failure, 0);
-      if (!failure.empty())
-        throw RunError(failure);
+      tmfdem::on_rank_zero(communicator, write);
     }
 
     void

@@ -17,6 +17,31 @@
 namespace tmfdem
 {
   void
+  on_rank_zero(MPI_Comm communicator, const std::function<void()> &write)
+  {
+    if (Utilities::MPI::n_mpi_processes(communicator) == 1)
+      {
+        write();
+        return;
+      }
+    std::string failure;
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      try
+        {
+          write();
+        }
+      catch (const std::exception &e)
+        {
+          failure = e.what();
+          if (failure.empty())
+            failure = "writing an output failed on rank 0";
+        }
+    failure = Utilities::MPI::broadcast(communicator, failure, 0);
+    if (!failure.empty())
+      throw RunError(failure);
+  }
+
+  void
   write_file_atomically(const std::string &file_name,
                         const std::string &content)
   {

@@ -32,6 +32,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <tmfdem/base/parameters.h>
@@ -257,6 +258,34 @@ namespace tmfdem
         const std::vector<std::pair<const double *, const double *>> &vectors,
         std::vector<double> &results) const;
       ///@}
+      /** Calls @p f(edge, node, half_length) for the two nodes of every
+       *  boundary edge of this rank whose condition type passes @p use;
+       *  half_length is half the edge's current length [m] (the share
+       *  lumped on each node). */
+      template <typename Use, typename Function>
+      void
+      for_each_boundary_node(const Use &use, const Function &f) const
+      {
+        for (std::size_t i = first_edge; i < end_edge; ++i)
+          {
+            const BoundaryEdge &b = boundary_edges[i];
+            if (!use(conditions[b.condition].type))
+              continue;
+            const unsigned int n0 = 3 * b.element + b.edge;
+            const unsigned int n1 = 3 * b.element + (b.edge + 1) % 3;
+            const double half     = 0.5 * std::hypot(model.x[n1] - model.x[n0],
+                                                 model.y[n1] - model.y[n0]);
+            f(b, n0, half);
+            f(b, n1, half);
+          }
+      }
+      /** Neumann and Robin conditions (they add heat through the edge). */
+      static bool
+      flux_condition(const ThermalBoundaryCondition::Type type)
+      {
+        return type != ThermalBoundaryCondition::Type::dirichlet;
+      }
+
       /** True if node @p n is one of this rank's (its triangle's). */
       bool
       owns_node(const unsigned int n) const

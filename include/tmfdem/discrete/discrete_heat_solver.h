@@ -79,11 +79,6 @@ namespace tmfdem
       ElementPartition partition;
       /** Triangles per chunk of the partition and of the sums. */
       static constexpr unsigned int chunk_size = 512;
-
-      /** Rank 0 runs @p write; a failure there stops every rank with its
-       *  message (RunError). */
-      void
-      on_rank_zero(const std::function<void()> &write) const;
     };
   } // namespace discrete
 } // namespace tmfdem

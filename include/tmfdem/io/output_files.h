@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cstdint>
 #include <fstream>
+#include <functional>
 #include <mpi.h>
 #include <string>
 #include <utility>
@@ -29,6 +30,14 @@ namespace tmfdem
   void
   write_file_atomically(const std::string &file_name,
                         const std::string &content);
+
+  /**
+   * Runs @p write on rank 0 of @p communicator (on one rank: just runs it);
+   * a failure there stops every rank with rank 0's message (RunError), so
+   * no rank hangs in a later collective call.
+   */
+  void
+  on_rank_zero(MPI_Comm communicator, const std::function<void()> &write);
 
   /** Creates @p folder (and parents) on rank 0; RunError if impossible. */
   void
