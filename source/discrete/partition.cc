@@ -230,18 +230,23 @@ namespace tmfdem
       requests.resize(2 * neighbours.size());
     }
 
+    template <typename Pack, typename Unpack>
     void
-    ElementPartition::exchange_ghosts(DiscreteModel &m)
+    ElementPartition::exchange_with_neighbours(const unsigned int width,
+                                               const int          tag,
+                                               const Pack        &pack,
+                                               const Unpack      &unpack)
     {
-      if (!distributed())
-        return;
       CommunicationTimer timer(communication_seconds);
-      const int          tag = 4711;
       for (std::size_t i = 0; i < neighbours.size(); ++i)
         {
           Neighbour &n = neighbours[i];
+          const int  receive_count =
+            static_cast<int>(width * n.receive_elements.size());
+          const int send_count =
+            static_cast<int>(width * n.send_elements.size());
           AssertThrowMPI(MPI_Irecv(n.receive_buffer.data(),
-                                   static_cast<int>(n.receive_buffer.size()),
+                                   receive_count,
                                    MPI_DOUBLE,
                                    n.rank,
                                    tag,
@@ -249,15 +254,15 @@ namespace tmfdem
                                    &requests[2 * i]));
           double *b = n.send_buffer.data();
           for (const unsigned int e : n.send_elements)
-            b = pack_nodes(m, e, b);
+            b = pack(e, b);
           AssertThrowMPI(MPI_Isend(n.send_buffer.data(),
-                                   static_cast<int>(n.send_buffer.size()),
+                                   send_count,
                                    MPI_DOUBLE,
                                    n.rank,
                                    tag,
                                    communicator,
                                    &requests[2 * i + 1]));
-          ghost_bytes += sizeof(double) * n.send_buffer.size();
+          ghost_bytes += sizeof(double) * send_count;
         }
       AssertThrowMPI(MPI_Waitall(static_cast<int>(requests.size()),
                                  requests.data(),
@@ -266,8 +271,22 @@ namespace tmfdem
         {
           const double *b = n.receive_buffer.data();
           for (const unsigned int e : n.receive_elements)
-            b = unpack_nodes(m, e, b);
+            b = unpack(e, b);
         }
+    }
+
+    void
+    ElementPartition::exchange_ghosts(DiscreteModel &m)
+    {
+      if (!distributed())
+        return;
+      exchange_with_neighbours(
+        ghost_width,
+        4711,
+        [&](const unsigned int e, double *b) { return pack_nodes(m, e, b); },
+        [&](const unsigned int e, const double *b) {
+          return unpack_nodes(m, e, b);
+        });
     }
 
     void
@@ -275,43 +294,20 @@ namespace tmfdem
     {
       if (!distributed())
         return;
-      CommunicationTimer timer(communication_seconds);
-      const int          tag = 4713;
-      for (std::size_t i = 0; i < neighbours.size(); ++i)
-        {
-          Neighbour &n = neighbours[i];
-          n.receive_values.resize(3 * n.receive_elements.size());
-          n.send_values.resize(3 * n.send_elements.size());
-          AssertThrowMPI(MPI_Irecv(n.receive_values.data(),
-                                   static_cast<int>(n.receive_values.size()),
-                                   MPI_DOUBLE,
-                                   n.rank,
-                                   tag,
-                                   communicator,
-                                   &requests[2 * i]));
-          double *b = n.send_values.data();
-          for (const unsigned int e : n.send_elements)
-            for (unsigned int k = 0; k < 3; ++k)
-              *b++ = values[3 * e + k];
-          AssertThrowMPI(MPI_Isend(n.send_values.data(),
-                                   static_cast<int>(n.send_values.size()),
-                                   MPI_DOUBLE,
-                                   n.rank,
-                                   tag,
-                                   communicator,
-                                   &requests[2 * i + 1]));
-          ghost_bytes += sizeof(double) * n.send_values.size();
-        }
-      AssertThrowMPI(MPI_Waitall(static_cast<int>(requests.size()),
-                                 requests.data(),
-                                 MPI_STATUSES_IGNORE));
-      for (const Neighbour &n : neighbours)
-        {
-          const double *b = n.receive_values.data();
-          for (const unsigned int e : n.receive_elements)
-            for (unsigned int k = 0; k < 3; ++k)
-              values[3 * e + k] = *b++;
-        }
+      // the buffers hold ghost_width >= 3 values per triangle
+      exchange_with_neighbours(
+        3,
+        4713,
+        [&](const unsigned int e, double *b) {
+          for (unsigned int k = 0; k < 3; ++k)
+            *b++ = values[3 * e + k];
+          return b;
+        },
+        [&](const unsigned int e, const double *b) {
+          for (unsigned int k = 0; k < 3; ++k)
+            values[3 * e + k] = *b++;
+          return b;
+        });
     }
 
     void

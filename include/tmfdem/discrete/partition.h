@@ -331,8 +331,6 @@ namespace tmfdem
         unsigned int              rank = 0;
         std::vector<unsigned int> send_elements, receive_elements;
         std::vector<double>       send_buffer, receive_buffer;
-        /** Buffers of exchange_ghost_node_values(). */
-        std::vector<double> send_values, receive_values;
       };
       std::vector<Neighbour> neighbours;
       /** The neighbours of the previous plan (exchange_new_ghosts()). */
@@ -356,6 +354,16 @@ namespace tmfdem
        *  starts (block_layout()). */
       std::vector<int> counts, displacements;
 
+      /** One exchange of the ghost plan: @p width values per triangle,
+       *  written by @p pack(e, buffer) (returns the buffer advanced) for the
+       *  owned triangles others need and read by @p unpack(e, buffer) for
+       *  the ghosts (point-to-point, message tag @p tag). */
+      template <typename Pack, typename Unpack>
+      void
+      exchange_with_neighbours(const unsigned int width,
+                               const int          tag,
+                               const Pack        &pack,
+                               const Unpack      &unpack);
       /** Sets displacements from counts; returns the total count. */
       std::size_t
       block_layout();
