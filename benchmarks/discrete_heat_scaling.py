@@ -14,7 +14,9 @@ the nodes of its own triangles (DiscreteHeat::distribute()).
          steps, a thermal step every 140 of them, on np 1 and 2; with
          --against OLD, the same runs of another build (before the heat was
          distributed, every thermal step began with a full synchronisation);
-         each build's np 2 is compared with its own np 1.
+         each build's np 2 is compared with its own np 1;
+  serial: with --against, prm/plate_transient.prm (992 triangles, 1000
+         implicit steps) on one rank, the two builds alternating, 3 rounds.
 
 Per run: wall time of the time loop (summary.json wall_time), the wall time
 the busiest rank spent in exchanges and reductions (waits for the other rank
@@ -194,6 +196,20 @@ def main():
                   f"{s['wall_time']:>9.2f} {base_wall / s['wall_time']:>6.2f} "
                   f"{s.get('synchronisations', 0):>5} {sync:>12.1f} {ghost:>13.1f} "
                   f"{str(s.get('heat_distributed', False)):>11} {same:>13}", flush=True)
+    if args.against:
+        serial_against(args, work)
+
+
+def serial_against(args, work):
+    prm = os.path.join(root, "prm", "plate_transient.prm")
+    print("\nserial implicit heat (prm/plate_transient.prm, 1000 steps, np 1)")
+    print(f"{'round':>5} {'build':>6} {'loop [s]':>9} {'CG its':>7}")
+    for round_ in range(3):
+        for name, binary in (("old", args.against), ("new", args.binary)):
+            out = os.path.join(work, f"serial_{name}_{round_}")
+            s = run(binary, prm, 1, out, [])
+            print(f"{round_ + 1:>5} {name:>6} {s['wall_time']:>9.3f} "
+                  f"{s['cg_iterations']:>7}", flush=True)
 
 
 if __name__ == "__main__":
