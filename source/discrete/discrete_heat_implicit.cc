@@ -284,8 +284,19 @@ namespace tmfdem
       double       rz       = dots[1];
       double       residual = std::sqrt(dots[2]);
       unsigned int it       = 0;
-      while (residual > tolerance)
+      while (residual > tolerance || !std::isfinite(residual))
         {
+          // the same on every rank (reduced): all stop together
+          if (!std::isfinite(residual))
+            throw RunError(
+              "discrete heat: the implicit system at t = " +
+              Utilities::to_string(time + time_step) +
+              " s is not finite (CG residual " + std::to_string(residual) +
+              " after " + std::to_string(it) +
+              " iterations). Likely causes: a boundary, source or initial "
+              "temperature function that is not finite somewhere (e.g. an "
+              "expression outside its domain), or a material property that "
+              "is not. The outputs up to the last output time are intact.");
           if (it >= max_iterations)
             throw RunError(
               "discrete heat: CG did not converge in " + std::to_string(it) +

@@ -313,19 +313,28 @@ namespace tmfdem
               ++next_output;
             }
           progress.update(steps, time);
-          // guard: temperatures finite (one pass over this rank's nodes)
+          // guard: temperatures finite (one pass over this rank's nodes;
+          // the first bad node of all ranks, so every rank stops with the
+          // same message and none waits in a later exchange)
+          unsigned int bad = numbers::invalid_unsigned_int;
           for (unsigned int n = 3 * partition.begin(); n < 3 * partition.end();
                ++n)
             if (!std::isfinite(heat->temperature()[n]))
-              throw RunError(
-                "guard: non-finite temperature at node " + std::to_string(n) +
-                " (element " + std::to_string(n / 3) +
-                ") at t = " + Utilities::to_string(time) + " s (step " +
-                std::to_string(steps) +
-                "). Likely causes: an explicit time step above the stable "
-                "one, a contact conductance or Robin coefficient too high, or "
-                "a boundary or source function that is not finite. The "
-                "outputs up to the last output time are intact.");
+              {
+                bad = n;
+                break;
+              }
+          if (distributed)
+            bad = Utilities::MPI::min(bad, communicator);
+          if (bad != numbers::invalid_unsigned_int)
+            throw RunError(
+              "guard: non-finite temperature at node " + std::to_string(bad) +
+              " (element " + std::to_string(bad / 3) + ") at t = " +
+              Utilities::to_string(time) + " s (step " + std::to_string(steps) +
+              "). Likely causes: an explicit time step above the stable "
+              "one, a contact conductance or Robin coefficient too high, or "
+              "a boundary or source function that is not finite. The "
+              "outputs up to the last output time are intact.");
           // checkpoints due (wall clock) and signals: decided together
           bool due  = checkpoints.active() && checkpoints.due(steps);
           bool stop = stop_requested();
