@@ -10,6 +10,13 @@
  * product adds its entries in column order: the iterates, and so the
  * temperatures, are bitwise the same on any number of ranks and threads.
  */
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_vector.h>
+
 #include <algorithm>
 #include <cmath>
 #include <tmfdem/base/exceptions.h>
@@ -284,6 +291,14 @@ namespace tmfdem
       double       rz       = dots[1];
       double       residual = std::sqrt(dots[2]);
       unsigned int it       = 0;
+      if (parameters.get<DiscreteHeatParameters>().preconditioner ==
+            DiscreteHeatParameters::Preconditioner::amg &&
+          std::isfinite(residual) && std::isfinite(dots[0]))
+        {
+          it =
+            solve_with_amg(rhs, x, tolerance, max_iterations, time + time_step);
+          residual = 0.; // converged (or thrown)
+        }
       while (residual > tolerance || !std::isfinite(residual))
         {
           // the same on every rank (reduced): all stop together
@@ -327,6 +342,84 @@ namespace tmfdem
         T[n] = x[n];
       if (partition != nullptr)
         partition->exchange_ghost_node_values(T.begin());
+    }
+
+    unsigned int
+    DiscreteHeat::solve_with_amg(const std::vector<double> &rhs,
+                                 std::vector<double>       &x,
+                                 const double               tolerance,
+                                 const unsigned int         max_iterations,
+                                 const double               time) const
+    {
+      // this rank's rows of the assembled (Dirichlet-eliminated) matrix as
+      // a distributed Trilinos matrix; columns anywhere
+      const unsigned int first_row = 3 * first_element;
+      const unsigned int last_row  = 3 * end_element;
+      const MPI_Comm     communicator =
+        partition != nullptr ? partition->get_communicator() : MPI_COMM_SELF;
+      IndexSet owned(model.n_nodes);
+      owned.add_range(first_row, last_row);
+      owned.compress();
+      TrilinosWrappers::SparsityPattern    pattern(owned, communicator);
+      std::vector<types::global_dof_index> columns;
+      for (unsigned int i = first_row; i < last_row; ++i)
+        {
+          const std::size_t begin = row_start[i - first_row];
+          const std::size_t end   = row_start[i - first_row + 1];
+          columns.assign(row_column.begin() + begin, row_column.begin() + end);
+          pattern.add_entries(i, columns.begin(), columns.end(), true);
+        }
+      pattern.compress();
+      TrilinosWrappers::SparseMatrix matrix;
+      matrix.reinit(pattern);
+      for (unsigned int i = first_row; i < last_row; ++i)
+        {
+          const std::size_t begin = row_start[i - first_row];
+          const std::size_t end   = row_start[i - first_row + 1];
+          columns.assign(row_column.begin() + begin, row_column.begin() + end);
+          matrix.set(i,
+                     columns.size(),
+                     columns.data(),
+                     row_value.data() + begin,
+                     false);
+        }
+      matrix.compress(VectorOperation::insert);
+      TrilinosWrappers::MPI::Vector b(owned, communicator),
+        u(owned, communicator);
+      for (unsigned int i = first_row; i < last_row; ++i)
+        {
+          b[i] = rhs[i];
+          u[i] = x[i];
+        }
+      b.compress(VectorOperation::insert);
+      u.compress(VectorOperation::insert);
+
+      TrilinosWrappers::PreconditionAMG                 amg;
+      TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      data.elliptic              = true;
+      data.higher_order_elements = false;
+      data.smoother_sweeps       = 2;
+      data.aggregation_threshold = 0.02;
+      amg.initialize(matrix, data);
+      SolverControl control(max_iterations, tolerance);
+      SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+      try
+        {
+          cg.solve(matrix, u, b, amg);
+        }
+      catch (const SolverControl::NoConvergence &e)
+        {
+          throw RunError(
+            "discrete heat: CG with AMG did not converge in " +
+            std::to_string(e.last_step) +
+            " iterations at t = " + Utilities::to_string(time) +
+            " s (residual " + std::to_string(e.last_residual) +
+            "); Discrete heat/Linear solver tolerance may be too strict, or "
+            "try Preconditioner = jacobi.");
+        }
+      for (unsigned int i = first_row; i < last_row; ++i)
+        x[i] = u[i];
+      return control.last_step();
     }
   } // namespace discrete
 } // namespace tmfdem

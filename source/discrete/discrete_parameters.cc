@@ -338,6 +338,17 @@ namespace tmfdem
                       Patterns::Double(1e-16, 1e-2),
                       "Implicit: CG stops at this residual relative to the "
                       "right-hand side [-].");
+    prm.declare_entry(
+      "Preconditioner",
+      "jacobi",
+      Patterns::Selection("jacobi|amg"),
+      "Implicit: the preconditioner of the conjugate gradients. jacobi: "
+      "the diagonal of each row; every sum is taken in a fixed order, so "
+      "the temperatures are bitwise the same on any number of MPI ranks and "
+      "threads. amg: algebraic multigrid (Trilinos ML) on the distributed "
+      "matrix; far fewer iterations on large meshes and long steps, but the "
+      "hierarchy depends on the ranks, so results on different rank counts "
+      "agree to the Linear solver tolerance only.");
     prm.declare_entry("Mechanical steps per thermal step",
                       "0",
                       Patterns::Integer(0),
@@ -443,6 +454,9 @@ namespace tmfdem
     contact_conductance      = prm.get_double("Contact conductance");
     safety_factor            = prm.get_double("Safety factor");
     solver_tolerance         = prm.get_double("Linear solver tolerance");
+    preconditioner           = prm.get("Preconditioner") == "amg" ?
+                                 Preconditioner::amg :
+                                 Preconditioner::jacobi;
     mechanical_steps_per_thermal_step =
       prm.get_integer("Mechanical steps per thermal step");
     coupling = prm.get("Coupling") == "quasi-static" ? Coupling::quasi_static :

@@ -217,6 +217,18 @@ namespace tmfdem
                      const double          time_step,
                      const Vector<double> &T_old,
                      const Vector<double> &lagged_contact_heat);
+      /** Solves with this rank's rows (make_row_pattern(), values after
+       *  the Dirichlet elimination) as a distributed Trilinos matrix, CG
+       *  preconditioned by algebraic multigrid (Trilinos ML), from @p x to
+       *  @p tolerance (absolute, on the residual); writes this rank's rows
+       *  of @p x; returns the iterations. RunError naming the step's end
+       *  @p time [s] if it does not converge. */
+      unsigned int
+      solve_with_amg(const std::vector<double> &rhs,
+                     std::vector<double>       &x,
+                     const double               tolerance,
+                     const unsigned int         max_iterations,
+                     const double               time) const;
       /** The sparsity of this rank's rows (node 3 first_element on),
        *  columns sorted: every coupling of elements, joints and contacts. */
       void

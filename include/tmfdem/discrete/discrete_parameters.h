@@ -85,11 +85,18 @@ namespace tmfdem
       explicit_euler
     };
     TimeIntegration time_integration         = TimeIntegration::implicit;
-    double          joint_conductance_factor = 1000.;      ///< beta [-]
-    double          contact_conductance      = 1e4;        ///< h_c [W/(m^2 K)]
-    double          safety_factor            = 0.9;        ///< explicit [-]
-    double          solver_tolerance         = 1e-12;      ///< relative
-    unsigned int    mechanical_steps_per_thermal_step = 0; ///< 0: automatic
+    double          joint_conductance_factor = 1000.; ///< beta [-]
+    double          contact_conductance      = 1e4;   ///< h_c [W/(m^2 K)]
+    double          safety_factor            = 0.9;   ///< explicit [-]
+    double          solver_tolerance         = 1e-12; ///< relative
+    /** Preconditioner of the implicit step's conjugate gradients. */
+    enum class Preconditioner
+    {
+      jacobi, ///< the diagonal; bitwise the same on any rank count
+      amg     ///< algebraic multigrid (Trilinos ML), distributed matrix
+    };
+    Preconditioner preconditioner                    = Preconditioner::jacobi;
+    unsigned int   mechanical_steps_per_thermal_step = 0; ///< 0: automatic
     /** How heat and mechanics take turns (Coupling). */
     enum class Coupling
     {

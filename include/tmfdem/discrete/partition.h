@@ -66,6 +66,12 @@ namespace tmfdem
             const DiscreteModel &model,
             const unsigned int   chunk_size);
 
+      /** The ranks' communicator. */
+      MPI_Comm
+      get_communicator() const
+      {
+        return communicator;
+      }
       /** More than one rank. */
       bool
       distributed() const
