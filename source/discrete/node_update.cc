@@ -40,6 +40,10 @@ namespace tmfdem
         parameters.get<DiscreteMechanicsParameters>().mass_damping;
       const double damp_a = (1. - 0.5 * c_damp * dt) / (1. + 0.5 * c_damp * dt);
       const double damp_b = dt / (1. + 0.5 * c_damp * dt);
+      // the out-of-balance force, the internal force scale and the kinetic
+      // energy are read only with heat (quasi-static relaxation, the
+      // summary's last_relative_unbalanced_force): formed only there
+      const bool diagnostics = with_heat;
       for_each_chunk(
         arena_for(n_threads),
         partition.end() - first_element,
@@ -68,8 +72,10 @@ namespace tmfdem
                 element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2]) * Fi_inv;
               if (!(F.determinant() > 0.) && inverted < 0.)
                 inverted = e;
+              // 1 / s: no division where there is no thermal stretch (the
+              // mechanical models; F * 1 is F, bit for bit)
               const double  s     = m.thermal_stretch[e];
-              const double  inv_s = 1. / s;
+              const double  inv_s = s == 1. ? 1. : 1. / s;
               const Matrix2 Fe    = F * inv_s;
               const Stress2 sigma = elastic_stress(Fe, element_lame[e]);
               // viscous stress 2 eta sym(dF/dt F^-1), only where eta > 0
@@ -99,6 +105,17 @@ namespace tmfdem
               m.stress[3 * e + 1] = sigma.yy + sigma_v.yy;
               m.stress[3 * e + 2] = sigma.xy + sigma_v.xy;
 
+              // dt / ((1 + c dt / 2) m) per node: one division per element
+              // where its three nodes have the same mass (the lumped mass of
+              // setup_materials()), the same quotient otherwise
+              const double *node_mass = &m.mass[n0];
+              double        b_m[3];
+              b_m[0] = damp_b / node_mass[0];
+              b_m[1] =
+                node_mass[1] == node_mass[0] ? b_m[0] : damp_b / node_mass[1];
+              b_m[2] =
+                node_mass[2] == node_mass[0] ? b_m[0] : damp_b / node_mass[2];
+
               double f_contact[6] = {0., 0., 0., 0., 0., 0.};
               if (have_contact)
                 contact.add_forces(e, f_contact);
@@ -107,25 +124,27 @@ namespace tmfdem
                   const unsigned int node = n0 + k;
                   // joints: node k starts edge k and ends edge k+2
                   double    fjx = 0., fjy = 0.;
+                  // (codes 2 j + side, -1 without joint: halved and tested
+                  // unsigned)
                   const int start_code = m.edge_joint[n0 + k];
                   if (start_code >= 0)
                     {
-                      const double *jf = &m.joint_force[8 * (start_code / 2)];
-                      const unsigned int slot = start_code % 2 == 0 ? 0 : 3;
+                      const unsigned int code = start_code;
+                      const double      *jf   = &m.joint_force[8 * (code >> 1)];
+                      const unsigned int slot = (code & 1) == 0 ? 0 : 3;
                       fjx += jf[2 * slot];
                       fjy += jf[2 * slot + 1];
                     }
                   const int end_code = m.edge_joint[n0 + (k + 2) % 3];
                   if (end_code >= 0)
                     {
-                      const double *jf = &m.joint_force[8 * (end_code / 2)];
-                      const unsigned int slot = end_code % 2 == 0 ? 1 : 2;
+                      const unsigned int code = end_code;
+                      const double      *jf   = &m.joint_force[8 * (code >> 1)];
+                      const unsigned int slot = (code & 1) == 0 ? 1 : 2;
                       fjx += jf[2 * slot];
                       fjy += jf[2 * slot + 1];
                     }
-                  const double mass = m.mass[node];
-                  // dt / ((1 + c dt / 2) m): one division per node
-                  const double b_m = damp_b / mass;
+                  const double mass = node_mass[k];
                   const double fgx = mass * d.gravity[0],
                                fgy = mass * d.gravity[1];
                   const double fx =
@@ -143,11 +162,11 @@ namespace tmfdem
                         d.node_conditions[slot];
                       const double tx = nc.force[0], ty = nc.force[1];
                       double       gx = fx + tx, gy = fy + ty;
-                      vx_new = damp_a * vx_old + b_m * gx;
-                      vy_new = damp_a * vy_old + b_m * gy;
-                      if (!nc.prescribed[0])
+                      vx_new = damp_a * vx_old + b_m[k] * gx;
+                      vy_new = damp_a * vy_old + b_m[k] * gy;
+                      if (diagnostics && !nc.prescribed[0])
                         unbalanced += (gx - f_v[2 * k]) * (gx - f_v[2 * k]);
-                      if (!nc.prescribed[1])
+                      if (diagnostics && !nc.prescribed[1])
                         unbalanced +=
                           (gy - f_v[2 * k + 1]) * (gy - f_v[2 * k + 1]);
                       double rx = 0., ry = 0.;
@@ -172,11 +191,14 @@ namespace tmfdem
                   else if (b == no_body ||
                            d.body_motion[b] == DiscreteBody::Motion::free)
                     {
-                      vx_new          = damp_a * vx_old + b_m * fx;
-                      vy_new          = damp_a * vy_old + b_m * fy;
-                      const double ux = fx - f_v[2 * k],
-                                   uy = fy - f_v[2 * k + 1];
-                      unbalanced += ux * ux + uy * uy;
+                      vx_new          = damp_a * vx_old + b_m[k] * fx;
+                      vy_new          = damp_a * vy_old + b_m[k] * fy;
+                      if (diagnostics)
+                        {
+                          const double ux = fx - f_v[2 * k],
+                                       uy = fy - f_v[2 * k + 1];
+                          unbalanced += ux * ux + uy * uy;
+                        }
                     }
                   else
                     {
@@ -199,8 +221,9 @@ namespace tmfdem
                   const double ax = 0.5 * dt * (vx_old + vx_new);
                   const double ay = 0.5 * dt * (vy_old + vy_new);
                   w_elastic += f_el[2 * k] * ax + f_el[2 * k + 1] * ay;
-                  internal += f_el[2 * k] * f_el[2 * k] +
-                              f_el[2 * k + 1] * f_el[2 * k + 1];
+                  if (diagnostics)
+                    internal += f_el[2 * k] * f_el[2 * k] +
+                                f_el[2 * k + 1] * f_el[2 * k + 1];
                   w_viscous += f_v[2 * k] * ax + f_v[2 * k + 1] * ay;
                   if (c_damp > 0. &&
                       (b == no_body ||
@@ -222,7 +245,8 @@ namespace tmfdem
                   m.y[node] += dt * vy_new;
                   const double v2 = vx_new * vx_new + vy_new * vy_new;
                   max_speed       = std::max(max_speed, v2);
-                  kinetic += 0.5 * mass * v2;
+                  if (diagnostics)
+                    kinetic += 0.5 * mass * v2;
                   if (!(v2 < 1e300) && bad_node < 0.)
                     bad_node = node;
                 }
