@@ -123,7 +123,7 @@ namespace tmfdem
                 {
                   const unsigned int node = n0 + k;
                   // joints: node k starts edge k and ends edge k+2
-                  double    fjx = 0., fjy = 0.;
+                  double fjx = 0., fjy = 0.;
                   // (codes 2 j + side, -1 without joint: halved and tested
                   // unsigned)
                   const int start_code = m.edge_joint[n0 + k];
@@ -145,8 +145,8 @@ namespace tmfdem
                       fjy += jf[2 * slot + 1];
                     }
                   const double mass = node_mass[k];
-                  const double fgx = mass * d.gravity[0],
-                               fgy = mass * d.gravity[1];
+                  const double fgx  = mass * d.gravity[0],
+                               fgy  = mass * d.gravity[1];
                   const double fx =
                     f_el[2 * k] + f_v[2 * k] + fjx + f_contact[2 * k] + fgx;
                   const double fy = f_el[2 * k + 1] + f_v[2 * k + 1] + fjy +
@@ -191,8 +191,8 @@ namespace tmfdem
                   else if (b == no_body ||
                            d.body_motion[b] == DiscreteBody::Motion::free)
                     {
-                      vx_new          = damp_a * vx_old + b_m[k] * fx;
-                      vy_new          = damp_a * vy_old + b_m[k] * fy;
+                      vx_new = damp_a * vx_old + b_m[k] * fx;
+                      vy_new = damp_a * vy_old + b_m[k] * fy;
                       if (diagnostics)
                         {
                           const double ux = fx - f_v[2 * k],
