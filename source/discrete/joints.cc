@@ -21,6 +21,13 @@ namespace tmfdem
       constexpr unsigned int joint_chunk_size = 512;
 
       /**
+       * Joints whose frames (a square root and a division each) are formed
+       * ahead of their tractions: independent of each other, the long
+       * latencies of a block overlap instead of stalling every joint.
+       */
+      constexpr unsigned int frame_block_size = 32;
+
+      /**
        * The frame of joint @p j at the current state: the gaps d0, d1 of
        * its two node pairs (B - A) and the unit tangent and normal of the
        * mean edge (normal outward of element A).
@@ -70,14 +77,30 @@ namespace tmfdem
           [&](const std::size_t begin,
               const std::size_t end,
               const std::size_t c) {
+            JointFrame frames[frame_block_size];
             for (std::size_t i = begin; i < end; ++i)
               {
+                const std::size_t block = (i - begin) % frame_block_size;
+                if (block == 0)
+                  {
+                    // the frames of the next block of intact joints
+                    const std::size_t block_end =
+                      std::min<std::size_t>(end, i + frame_block_size);
+                    for (std::size_t b = i; b < block_end; ++b)
+                      {
+                        const std::size_t jb = b < n_range ?
+                                                 subset.begin + b :
+                                                 subset.others[b - n_range];
+                        if (m.joint_status[jb] == JointStatus::intact)
+                          frames[b - i] = joint_frame(m, jb);
+                      }
+                  }
                 const std::size_t j =
                   i < n_range ? subset.begin + i : subset.others[i - n_range];
                 double *f = &m.joint_force[8 * j];
                 if (m.joint_status[j] != JointStatus::intact)
                   continue;
-                const JointFrame      g    = joint_frame(m, j);
+                const JointFrame     &g    = frames[block];
                 const JointConstants &k    = m.joint_constants[j];
                 double                fa0x = 0, fa0y = 0, fa1x = 0, fa1y = 0;
                 double                last_do = 0., last_ds = 0.;

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <tmfdem/discrete/explicit_solver.h>
+#include <type_traits>
 
 namespace tmfdem
 {
@@ -40,209 +41,242 @@ namespace tmfdem
         parameters.get<DiscreteMechanicsParameters>().mass_damping;
       const double damp_a = (1. - 0.5 * c_damp * dt) / (1. + 0.5 * c_damp * dt);
       const double damp_b = dt / (1. + 0.5 * c_damp * dt);
-      for_each_chunk(
-        arena_for(n_threads),
-        partition.end() - first_element,
-        chunk_size,
-        [&](const std::size_t local_begin,
-            const std::size_t local_end,
-            const std::size_t local_chunk) {
-          const std::size_t begin = first_element + local_begin;
-          const std::size_t end   = first_element + local_end;
-          double *sums      = &chunk_sums[(first_chunk + local_chunk) * stride];
-          double  w_elastic = 0., w_viscous = 0., w_joint = 0., w_contact = 0.,
-                 w_external = 0., max_speed = 0.;
-          // out-of-balance force (free components, no viscous part) and the
-          // scale of the internal forces, both squared
-          double unbalanced = 0., internal = 0., kinetic = 0.;
-          // guards: first non-finite node and first inverted element
-          double bad_node = -1., inverted = -1.;
-          for (std::size_t e = begin; e < end; ++e)
-            {
-              const unsigned int n0 = 3 * e;
-              const double      *X = &m.x[n0], *Y = &m.y[n0];
-              const double      *VX = &m.vx[n0], *VY = &m.vy[n0];
-              const double      *ib     = &m.inverse_basis[4 * e];
-              const Matrix2      Fi_inv = matrix2(ib[0], ib[1], ib[2], ib[3]);
-              const Matrix2      F =
-                element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2]) * Fi_inv;
-              if (!(F.determinant() > 0.) && inverted < 0.)
-                inverted = e;
-              const double  s     = m.thermal_stretch[e];
-              const double  inv_s = 1. / s;
-              const Matrix2 Fe    = F * inv_s;
-              const Stress2 sigma = elastic_stress(Fe, element_lame[e]);
-              // viscous stress 2 eta sym(dF/dt F^-1), only where eta > 0
-              const double eta = viscosity[e];
-              Stress2      sigma_v;
-              double       f_el[6], f_v[6] = {0., 0., 0., 0., 0., 0.};
-              nodal_forces(sigma, X[0], Y[0], X[1], Y[1], X[2], Y[2], f_el);
-              if (eta > 0.)
-                {
-                  const Matrix2 Fdot =
-                    element_basis(VX[0], VY[0], VX[1], VY[1], VX[2], VY[2]) *
-                    Fi_inv;
-                  const Matrix2 L = Fdot * F.inverse();
-                  sigma_v         = {2. * eta * L(0, 0),
-                                     2. * eta * L(1, 1),
-                                     eta * (L(0, 1) + L(1, 0))};
-                  nodal_forces(sigma_v,
-                               X[0],
-                               Y[0],
-                               X[1],
-                               Y[1],
-                               X[2],
-                               Y[2],
-                               f_v);
-                }
-              m.stress[3 * e]     = sigma.xx + sigma_v.xx;
-              m.stress[3 * e + 1] = sigma.yy + sigma_v.yy;
-              m.stress[3 * e + 2] = sigma.xy + sigma_v.xy;
+      // the out-of-balance force, the internal force scale and the kinetic
+      // energy are read only with heat (quasi-static relaxation, the
+      // summary's last_relative_unbalanced_force): formed only there
+      // (a compile-time flag, so that the loop without them keeps no
+      // accumulators for them)
+      const auto chunk_update = [&](const auto        diagnostics_flag,
+                                    const std::size_t local_begin,
+                                    const std::size_t local_end,
+                                    const std::size_t local_chunk) {
+        constexpr bool    diagnostics = decltype(diagnostics_flag)::value;
+        const std::size_t begin       = first_element + local_begin;
+        const std::size_t end         = first_element + local_end;
+        double *sums      = &chunk_sums[(first_chunk + local_chunk) * stride];
+        double  w_elastic = 0., w_viscous = 0., w_joint = 0., w_contact = 0.,
+               w_external = 0., max_speed = 0.;
+        // out-of-balance force (free components, no viscous part) and the
+        // scale of the internal forces, both squared
+        double unbalanced = 0., internal = 0., kinetic = 0.;
+        // guards: first non-finite node and first inverted element
+        double bad_node = -1., inverted = -1.;
+        for (std::size_t e = begin; e < end; ++e)
+          {
+            const unsigned int n0 = 3 * e;
+            const double      *X = &m.x[n0], *Y = &m.y[n0];
+            const double      *VX = &m.vx[n0], *VY = &m.vy[n0];
+            const double      *ib     = &m.inverse_basis[4 * e];
+            const Matrix2      Fi_inv = matrix2(ib[0], ib[1], ib[2], ib[3]);
+            const Matrix2      F =
+              element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2]) * Fi_inv;
+            if (!(F.determinant() > 0.) && inverted < 0.)
+              inverted = e;
+            // 1 / s: no division where there is no thermal stretch (the
+            // mechanical models; F * 1 is F, bit for bit)
+            const double  s     = m.thermal_stretch[e];
+            const double  inv_s = s == 1. ? 1. : 1. / s;
+            const Matrix2 Fe    = F * inv_s;
+            const Stress2 sigma = elastic_stress(Fe, element_lame[e]);
+            // viscous stress 2 eta sym(dF/dt F^-1), only where eta > 0
+            const double eta = viscosity[e];
+            Stress2      sigma_v;
+            double       f_el[6], f_v[6] = {0., 0., 0., 0., 0., 0.};
+            nodal_forces(sigma, X[0], Y[0], X[1], Y[1], X[2], Y[2], f_el);
+            if (eta > 0.)
+              {
+                const Matrix2 Fdot =
+                  element_basis(VX[0], VY[0], VX[1], VY[1], VX[2], VY[2]) *
+                  Fi_inv;
+                const Matrix2 L = Fdot * F.inverse();
+                sigma_v         = {2. * eta * L(0, 0),
+                                   2. * eta * L(1, 1),
+                                   eta * (L(0, 1) + L(1, 0))};
+                nodal_forces(sigma_v, X[0], Y[0], X[1], Y[1], X[2], Y[2], f_v);
+              }
+            m.stress[3 * e]     = sigma.xx + sigma_v.xx;
+            m.stress[3 * e + 1] = sigma.yy + sigma_v.yy;
+            m.stress[3 * e + 2] = sigma.xy + sigma_v.xy;
 
-              double f_contact[6] = {0., 0., 0., 0., 0., 0.};
-              if (have_contact)
-                contact.add_forces(e, f_contact);
-              for (unsigned int k = 0; k < 3; ++k)
-                {
-                  const unsigned int node = n0 + k;
-                  // joints: node k starts edge k and ends edge k+2
-                  double    fjx = 0., fjy = 0.;
-                  const int start_code = m.edge_joint[n0 + k];
-                  if (start_code >= 0)
-                    {
-                      const double *jf = &m.joint_force[8 * (start_code / 2)];
-                      const unsigned int slot = start_code % 2 == 0 ? 0 : 3;
-                      fjx += jf[2 * slot];
-                      fjy += jf[2 * slot + 1];
-                    }
-                  const int end_code = m.edge_joint[n0 + (k + 2) % 3];
-                  if (end_code >= 0)
-                    {
-                      const double *jf = &m.joint_force[8 * (end_code / 2)];
-                      const unsigned int slot = end_code % 2 == 0 ? 1 : 2;
-                      fjx += jf[2 * slot];
-                      fjy += jf[2 * slot + 1];
-                    }
-                  const double mass = m.mass[node];
-                  // dt / ((1 + c dt / 2) m): one division per node
-                  const double b_m = damp_b / mass;
-                  const double fgx = mass * d.gravity[0],
-                               fgy = mass * d.gravity[1];
-                  const double fx =
-                    f_el[2 * k] + f_v[2 * k] + fjx + f_contact[2 * k] + fgx;
-                  const double fy = f_el[2 * k + 1] + f_v[2 * k + 1] + fjy +
-                                    f_contact[2 * k + 1] + fgy;
-                  const double        vx_old = m.vx[node], vy_old = m.vy[node];
-                  double              vx_new, vy_new;
-                  const unsigned char b    = d.node_body[node];
-                  const int           slot = d.node_condition_slot[node];
-                  if (slot >= 0)
-                    {
-                      // boundary conditions of boundary ids
-                      const Drivers::NodeCondition &nc =
-                        d.node_conditions[slot];
-                      const double tx = nc.force[0], ty = nc.force[1];
-                      double       gx = fx + tx, gy = fy + ty;
-                      vx_new = damp_a * vx_old + b_m * gx;
-                      vy_new = damp_a * vy_old + b_m * gy;
-                      if (!nc.prescribed[0])
-                        unbalanced += (gx - f_v[2 * k]) * (gx - f_v[2 * k]);
-                      if (!nc.prescribed[1])
-                        unbalanced +=
-                          (gy - f_v[2 * k + 1]) * (gy - f_v[2 * k + 1]);
-                      double rx = 0., ry = 0.;
-                      if (nc.prescribed[0])
-                        {
-                          vx_new = nc.velocity[0];
-                          rx     = mass * (vx_new - vx_old) / dt - gx;
-                        }
-                      if (nc.prescribed[1])
-                        {
-                          vy_new = nc.velocity[1];
-                          ry     = mass * (vy_new - vy_old) / dt - gy;
-                        }
-                      w_external += 0.5 * dt *
-                                    ((tx + rx) * (vx_old + vx_new) +
-                                     (ty + ry) * (vy_old + vy_new));
-                      double *r =
-                        sums + n_sums + 2 * n_bodies + 2 * nc.condition;
-                      r[0] += rx;
-                      r[1] += ry;
-                    }
-                  else if (b == no_body ||
-                           d.body_motion[b] == DiscreteBody::Motion::free)
-                    {
-                      vx_new          = damp_a * vx_old + b_m * fx;
-                      vy_new          = damp_a * vy_old + b_m * fy;
-                      const double ux = fx - f_v[2 * k],
-                                   uy = fy - f_v[2 * k + 1];
-                      unbalanced += ux * ux + uy * uy;
-                    }
-                  else
-                    {
-                      if (d.body_motion[b] == DiscreteBody::Motion::fixed)
-                        vx_new = vy_new = 0.;
-                      else
-                        {
-                          vx_new = d.body_velocity_now[b][0];
-                          vy_new = d.body_velocity_now[b][1];
-                        }
-                      // reaction of the support or driver
-                      const double rx = mass * (vx_new - vx_old) / dt - fx;
-                      const double ry = mass * (vy_new - vy_old) / dt - fy;
-                      w_external +=
-                        0.5 * dt *
-                        (rx * (vx_old + vx_new) + ry * (vy_old + vy_new));
-                      sums[n_sums + 2 * b] += rx;
-                      sums[n_sums + 2 * b + 1] += ry;
-                    }
-                  const double ax = 0.5 * dt * (vx_old + vx_new);
-                  const double ay = 0.5 * dt * (vy_old + vy_new);
-                  w_elastic += f_el[2 * k] * ax + f_el[2 * k + 1] * ay;
+            // dt / ((1 + c dt / 2) m) per node: one division per element
+            // where its three nodes have the same mass (the lumped mass of
+            // setup_materials()), the same quotient otherwise
+            const double *node_mass = &m.mass[n0];
+            double        b_m[3];
+            b_m[0] = damp_b / node_mass[0];
+            b_m[1] =
+              node_mass[1] == node_mass[0] ? b_m[0] : damp_b / node_mass[1];
+            b_m[2] =
+              node_mass[2] == node_mass[0] ? b_m[0] : damp_b / node_mass[2];
+
+            double f_contact[6] = {0., 0., 0., 0., 0., 0.};
+            if (have_contact)
+              contact.add_forces(e, f_contact);
+            for (unsigned int k = 0; k < 3; ++k)
+              {
+                const unsigned int node = n0 + k;
+                // joints: node k starts edge k and ends edge k+2
+                double fjx = 0., fjy = 0.;
+                // (codes 2 j + side, -1 without joint: halved and tested
+                // unsigned)
+                const int start_code = m.edge_joint[n0 + k];
+                if (start_code >= 0)
+                  {
+                    const unsigned int code = start_code;
+                    const double      *jf   = &m.joint_force[8 * (code >> 1)];
+                    const unsigned int slot = (code & 1) == 0 ? 0 : 3;
+                    fjx += jf[2 * slot];
+                    fjy += jf[2 * slot + 1];
+                  }
+                const int end_code = m.edge_joint[n0 + (k + 2) % 3];
+                if (end_code >= 0)
+                  {
+                    const unsigned int code = end_code;
+                    const double      *jf   = &m.joint_force[8 * (code >> 1)];
+                    const unsigned int slot = (code & 1) == 0 ? 1 : 2;
+                    fjx += jf[2 * slot];
+                    fjy += jf[2 * slot + 1];
+                  }
+                const double mass = node_mass[k];
+                const double fgx  = mass * d.gravity[0],
+                             fgy  = mass * d.gravity[1];
+                const double fx =
+                  f_el[2 * k] + f_v[2 * k] + fjx + f_contact[2 * k] + fgx;
+                const double fy = f_el[2 * k + 1] + f_v[2 * k + 1] + fjy +
+                                  f_contact[2 * k + 1] + fgy;
+                const double        vx_old = m.vx[node], vy_old = m.vy[node];
+                double              vx_new, vy_new;
+                const unsigned char b    = d.node_body[node];
+                const int           slot = d.node_condition_slot[node];
+                if (slot >= 0)
+                  {
+                    // boundary conditions of boundary ids
+                    const Drivers::NodeCondition &nc = d.node_conditions[slot];
+                    const double tx = nc.force[0], ty = nc.force[1];
+                    double       gx = fx + tx, gy = fy + ty;
+                    vx_new = damp_a * vx_old + b_m[k] * gx;
+                    vy_new = damp_a * vy_old + b_m[k] * gy;
+                    if constexpr (diagnostics)
+                      {
+                        if (!nc.prescribed[0])
+                          unbalanced += (gx - f_v[2 * k]) * (gx - f_v[2 * k]);
+                        if (!nc.prescribed[1])
+                          unbalanced +=
+                            (gy - f_v[2 * k + 1]) * (gy - f_v[2 * k + 1]);
+                      }
+                    double rx = 0., ry = 0.;
+                    if (nc.prescribed[0])
+                      {
+                        vx_new = nc.velocity[0];
+                        rx     = mass * (vx_new - vx_old) / dt - gx;
+                      }
+                    if (nc.prescribed[1])
+                      {
+                        vy_new = nc.velocity[1];
+                        ry     = mass * (vy_new - vy_old) / dt - gy;
+                      }
+                    w_external += 0.5 * dt *
+                                  ((tx + rx) * (vx_old + vx_new) +
+                                   (ty + ry) * (vy_old + vy_new));
+                    double *r = sums + n_sums + 2 * n_bodies + 2 * nc.condition;
+                    r[0] += rx;
+                    r[1] += ry;
+                  }
+                else if (b == no_body ||
+                         d.body_motion[b] == DiscreteBody::Motion::free)
+                  {
+                    vx_new = damp_a * vx_old + b_m[k] * fx;
+                    vy_new = damp_a * vy_old + b_m[k] * fy;
+                    if constexpr (diagnostics)
+                      {
+                        const double ux = fx - f_v[2 * k],
+                                     uy = fy - f_v[2 * k + 1];
+                        unbalanced += ux * ux + uy * uy;
+                      }
+                  }
+                else
+                  {
+                    if (d.body_motion[b] == DiscreteBody::Motion::fixed)
+                      vx_new = vy_new = 0.;
+                    else
+                      {
+                        vx_new = d.body_velocity_now[b][0];
+                        vy_new = d.body_velocity_now[b][1];
+                      }
+                    // reaction of the support or driver
+                    const double rx = mass * (vx_new - vx_old) / dt - fx;
+                    const double ry = mass * (vy_new - vy_old) / dt - fy;
+                    w_external +=
+                      0.5 * dt *
+                      (rx * (vx_old + vx_new) + ry * (vy_old + vy_new));
+                    sums[n_sums + 2 * b] += rx;
+                    sums[n_sums + 2 * b + 1] += ry;
+                  }
+                const double ax = 0.5 * dt * (vx_old + vx_new);
+                const double ay = 0.5 * dt * (vy_old + vy_new);
+                w_elastic += f_el[2 * k] * ax + f_el[2 * k + 1] * ay;
+                if constexpr (diagnostics)
                   internal += f_el[2 * k] * f_el[2 * k] +
                               f_el[2 * k + 1] * f_el[2 * k + 1];
-                  w_viscous += f_v[2 * k] * ax + f_v[2 * k + 1] * ay;
-                  if (c_damp > 0. &&
-                      (b == no_body ||
-                       d.body_motion[b] == DiscreteBody::Motion::free))
-                    {
-                      // work of -c m v_avg on the components not prescribed
-                      const bool px = d.prescribed(node, 0);
-                      const bool py = d.prescribed(node, 1);
-                      w_viscous -= c_damp * mass / dt *
-                                   ((px ? 0. : ax * ax) + (py ? 0. : ay * ay));
-                    }
-                  w_joint += fjx * ax + fjy * ay;
-                  w_contact +=
-                    f_contact[2 * k] * ax + f_contact[2 * k + 1] * ay;
-                  w_external += fgx * ax + fgy * ay;
-                  m.vx[node] = vx_new;
-                  m.vy[node] = vy_new;
-                  m.x[node] += dt * vx_new;
-                  m.y[node] += dt * vy_new;
-                  const double v2 = vx_new * vx_new + vy_new * vy_new;
-                  max_speed       = std::max(max_speed, v2);
+                w_viscous += f_v[2 * k] * ax + f_v[2 * k + 1] * ay;
+                if (c_damp > 0. &&
+                    (b == no_body ||
+                     d.body_motion[b] == DiscreteBody::Motion::free))
+                  {
+                    // work of -c m v_avg on the components not prescribed
+                    const bool px = d.prescribed(node, 0);
+                    const bool py = d.prescribed(node, 1);
+                    w_viscous -= c_damp * mass / dt *
+                                 ((px ? 0. : ax * ax) + (py ? 0. : ay * ay));
+                  }
+                w_joint += fjx * ax + fjy * ay;
+                w_contact += f_contact[2 * k] * ax + f_contact[2 * k + 1] * ay;
+                w_external += fgx * ax + fgy * ay;
+                m.vx[node] = vx_new;
+                m.vy[node] = vy_new;
+                m.x[node] += dt * vx_new;
+                m.y[node] += dt * vy_new;
+                const double v2 = vx_new * vx_new + vy_new * vy_new;
+                max_speed       = std::max(max_speed, v2);
+                if constexpr (diagnostics)
                   kinetic += 0.5 * mass * v2;
-                  if (!(v2 < 1e300) && bad_node < 0.)
-                    bad_node = node;
-                }
-            }
-          // friction dissipated by the pairs whose first triangle is in
-          // this chunk, in pair order
-          sums[11] =
-            have_contact ? contact.friction_of_elements(begin, end) : 0.;
-          sums[8]  = unbalanced;
-          sums[9]  = internal;
-          sums[10] = kinetic;
-          sums[0]  = w_elastic;
-          sums[1]  = w_viscous;
-          sums[2]  = w_joint;
-          sums[3]  = w_contact;
-          sums[4]  = w_external;
-          sums[5]  = max_speed;
-          sums[6]  = bad_node;
-          sums[7]  = inverted;
-        });
+                if (!(v2 < 1e300) && bad_node < 0.)
+                  bad_node = node;
+              }
+          }
+        // friction dissipated by the pairs whose first triangle is in
+        // this chunk, in pair order
+        sums[11] = have_contact ? contact.friction_of_elements(begin, end) : 0.;
+        sums[8]  = unbalanced;
+        sums[9]  = internal;
+        sums[10] = kinetic;
+        sums[0]  = w_elastic;
+        sums[1]  = w_viscous;
+        sums[2]  = w_joint;
+        sums[3]  = w_contact;
+        sums[4]  = w_external;
+        sums[5]  = max_speed;
+        sums[6]  = bad_node;
+        sums[7]  = inverted;
+      };
+      const bool diagnostics = with_heat;
+      for_each_chunk(arena_for(n_threads),
+                     partition.end() - first_element,
+                     chunk_size,
+                     [&](const std::size_t local_begin,
+                         const std::size_t local_end,
+                         const std::size_t local_chunk) {
+                       if (diagnostics)
+                         chunk_update(std::true_type(),
+                                      local_begin,
+                                      local_end,
+                                      local_chunk);
+                       else
+                         chunk_update(std::false_type(),
+                                      local_begin,
+                                      local_end,
+                                      local_chunk);
+                     });
       // on several ranks: every chunk's sums from its one owner (exact), and
       // the joint-break flag; then each rank's ghosts
       if (partition.distributed())
