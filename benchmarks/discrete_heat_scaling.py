@@ -8,7 +8,9 @@ the nodes of its own triangles (DiscreteHeat::distribute()).
          225 792 triangles), bottom 0 C, top 100 C, initial 0 C, the
          material and joints of paper 5.1 (prm/plate_transient.prm: k = 10,
          kappa = 0.005 m^2/s, joint conductance factor 1000), implicit (CG,
-         Jacobi), STEPS thermal steps of 0.05 s, on np 1 and 2;
+         Jacobi), STEPS thermal steps of 0.05 s, on np 1 and 2; then with
+         Preconditioner = amg (Trilinos ML) on np 1 and 2, whose midline
+         temperatures are compared with Jacobi's np 1 (largest difference);
   multi: Model = discrete thermo-mechanics, prm/thermal_shock_disc.prm with
          explicit heat and dynamic (multi-rate) coupling, 4000 mechanical
          steps, a thermal step every 140 of them, on np 1 and 2; with
@@ -146,21 +148,32 @@ def main():
                                 end=0.05 * args.steps))
     sets = []
     print("\nheat (Model = discrete heat, implicit)")
-    print(f"{'np':>3} {'triangles':>9} {'steps':>5} {'loop [s]':>9} {'comm [s]':>8} "
+    print(f"{'precon':>6} {'np':>3} {'triangles':>9} {'steps':>5} {'loop [s]':>9} {'comm [s]':>8} "
           f"{'process [s]':>11} {'CG its':>7} {'tri-steps/s':>11} {'vs np1':>6} "
           f"{'ghosts':>7} {'ghost kB/it':>11} {'outputs = np1':>13}")
     base = None
-    for ranks in (1, 2):
-        out = os.path.join(work, f"heat_np{ranks}")
-        s = run(args.binary, prm, ranks, out, sets)
+    for ranks, preconditioner in ((1, "jacobi"), (2, "jacobi"), (1, "amg"), (2, "amg")):
+        out = os.path.join(work, f"heat_{preconditioner}_np{ranks}")
+        s = run(args.binary, prm, ranks, out,
+                sets + [f"Discrete heat/Preconditioner={preconditioner}"])
+        if preconditioner == "amg":
+            # not bitwise (the hierarchy depends on the ranks): the largest
+            # difference of the midline temperatures from Jacobi's np 1
+            ref = [float(r.split(",")[4]) for r in
+                   open(os.path.join(base[0], "lines.csv")).read().split("\n")[1:] if r]
+            new = [float(r.split(",")[4]) for r in
+                   open(os.path.join(out, "lines.csv")).read().split("\n")[1:] if r]
+            s["same"] = f"dT {max(abs(a - b) for a, b in zip(ref, new)):.1e} C"
         rate = s["elements"] * s["steps"] / s["wall_time"]
         if base is None:
             base = (out, s["wall_time"])
             same = "-"
+        elif "same" in s:
+            same = s["same"]
         else:
             same = same_as(base[0], out, ranks)
         ghost = s.get("ghost_exchange_bytes", 0) / max(1, s["cg_iterations"]) / 1e3
-        print(f"{ranks:>3} {s['elements']:>9} {s['steps']:>5} {s['wall_time']:>9.2f} "
+        print(f"{preconditioner:>6} {ranks:>3} {s['elements']:>9} {s['steps']:>5} {s['wall_time']:>9.2f} "
               f"{s.get('communication_time_s', 0):>8.2f} "
               f"{s['process_wall']:>11.2f} {s['cg_iterations']:>7} {rate:>11.3g} "
               f"{base[1] / s['wall_time']:>6.2f} {s.get('ghost_elements', 0):>7} "
