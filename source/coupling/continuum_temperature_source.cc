@@ -216,8 +216,11 @@ namespace tmfdem
     void
     ContinuumTemperatureSource::transfer()
     {
-      const auto        &u = heat_solver->get_temperature();
-      const unsigned int n = projection.n();
+      // the field on every rank: each rank projects all triangles (the
+      // discrete layer reads this source replicated, partition.h)
+      all_temperatures        = Vector<double>(heat_solver->get_temperature());
+      const Vector<double> &u = all_temperatures;
+      const unsigned int    n = projection.n();
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
           const types::global_dof_index *dofs =
@@ -247,10 +250,9 @@ namespace tmfdem
     void
     ContinuumTemperatureSource::save(CheckpointWriter &out) const
     {
-      const auto         &u = heat_solver->get_temperature();
-      std::vector<double> values(heat_solver->get_dof_handler().n_dofs());
-      for (types::global_dof_index i = 0; i < values.size(); ++i)
-        values[i] = u(i);
+      // (rank 0 alone writes checkpoints: the copy of the last transfer())
+      std::vector<double> values(all_temperatures.begin(),
+                                 all_temperatures.end());
       out.put(heat_solver->current_time());
       out.put<std::uint64_t>(heat_solver->steps_taken());
       out.put(values);

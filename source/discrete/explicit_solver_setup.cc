@@ -65,16 +65,6 @@ namespace tmfdem
       time = parameters.time.start_time;
       if (with_heat)
         {
-          if (partition.distributed() &&
-              parameters.get<DiscreteHeatParameters>().temperature_source !=
-                "discrete heat")
-            throw InputError(
-              "Discrete heat/Temperature source = " +
-              parameters.get<DiscreteHeatParameters>().temperature_source +
-              " runs on one MPI process; on " +
-              std::to_string(partition.n_processes()) +
-              " processes allowed is Temperature source = discrete heat "
-              "(or run without mpirun -np > 1).");
           heat = create_temperature_source(
             parameters.get<DiscreteHeatParameters>().temperature_source,
             parameters,

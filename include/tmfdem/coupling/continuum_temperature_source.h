@@ -122,18 +122,21 @@ namespace tmfdem
       projection_to_linear(const unsigned int degree);
 
     private:
-      /** Writes the continuum field into nodal_temperature. */
+      /** Copies the continuum field to every rank (all_temperatures; on
+       *  several ranks collective) and writes it into nodal_temperature. */
       void
       transfer();
       /** heat_balance from the solver's balance. */
       void
       copy_balance();
 
-      const Parameters                     heat_parameters;
-      discrete::DiscreteModel             &model;
-      MPI_Comm                             communicator;
-      std::unique_ptr<HeatSolver>          heat_solver;
-      Vector<double>                       nodal_temperature;
+      const Parameters            heat_parameters;
+      discrete::DiscreteModel    &model;
+      MPI_Comm                    communicator;
+      std::unique_ptr<HeatSolver> heat_solver;
+      Vector<double>              nodal_temperature;
+      /** The continuum field, every DoF, on every rank [C] (transfer()). */
+      Vector<double>                       all_temperatures;
       discrete::HeatBalance                heat_balance;
       std::map<types::boundary_id, double> last_rate;
 
