@@ -7,6 +7,7 @@
 #include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/io/output_files.h>
+#include <tmfdem/mesh/cell_order.h>
 #include <tmfdem/mesh/mesh_checks.h>
 #include <tmfdem/mesh/mesh_generator.h>
 
@@ -42,13 +43,18 @@ namespace tmfdem
                          " has quadrilaterals; the discrete layer needs "
                          "triangles (Mesh/Element type = triangles).");
       triangulation.refine_global(parameters.mesh.global_refinements);
+      const auto &dm = parameters.get<DiscreteMechanicsParameters>();
+      std::vector<unsigned int> mesh_index;
+      if (dm.hilbert_curve_numbering)
+        mesh_index = order_cells_along_hilbert_curve(triangulation);
       dof_handler.reinit(triangulation);
       dof_handler.distribute_dofs(fe);
       model.build(dof_handler);
+      if (!mesh_index.empty())
+        model.mesh_index = mesh_index;
 
       // pre-existing fractures: joints on the given segments start broken
-      const auto &cracks =
-        parameters.get<DiscreteMechanicsParameters>().initial_cracks;
+      const auto &cracks = dm.initial_cracks;
       for (unsigned int c = 0; c < cracks.size(); ++c)
         {
           const auto  &s  = cracks[c];
@@ -100,8 +106,13 @@ namespace tmfdem
         sample.name = name;
         sample.x    = p[0];
         sample.y    = p[1];
+        // of the elements that hold the point (on an edge or vertex,
+        // several), the first in the mesh's order (DiscreteModel::mesh_index)
+        bool found = false;
         for (unsigned int e = 0; e < model.n_elements; ++e)
           {
+            if (found && model.mesh_index[e] > model.mesh_index[sample.element])
+              continue;
             const double *xr = &model.x_ref[3 * e], *yr = &model.y_ref[3 * e];
             const double  det = (yr[1] - yr[2]) * (xr[0] - xr[2]) +
                                (xr[2] - xr[1]) * (yr[0] - yr[2]);
@@ -115,13 +126,15 @@ namespace tmfdem
             const double tol = -1e-10;
             if (l0 >= tol && l1 >= tol && l2 >= tol)
               {
+                found            = true;
                 sample.element   = e;
                 sample.lambda[0] = l0;
                 sample.lambda[1] = l1;
                 sample.lambda[2] = l2;
-                return sample;
               }
           }
+        if (found)
+          return sample;
         if (monitors.snap_to_nearest && model.n_elements > 0)
           {
             // the nearest point of the nearest element (reference mesh)
@@ -139,7 +152,9 @@ namespace tmfdem
                                               1.);
                   const double d = std::hypot(model.x_ref[a] + t * ex - p[0],
                                               model.y_ref[a] + t * ey - p[1]);
-                  if (d < best)
+                  if (d < best ||
+                      (d == best &&
+                       model.mesh_index[e] < model.mesh_index[sample.element]))
                     {
                       best             = d;
                       sample.element   = e;

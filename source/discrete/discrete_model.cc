@@ -28,6 +28,8 @@ namespace tmfdem
       x_ref.assign(n_nodes, 0.);
       y_ref.assign(n_nodes, 0.);
       node_vertex.assign(n_nodes, 0);
+      mesh_index.resize(n_elements);
+      std::iota(mesh_index.begin(), mesh_index.end(), 0u);
       mass.assign(n_nodes, 0.);
       vx.assign(n_nodes, 0.);
       vy.assign(n_nodes, 0.);

@@ -147,6 +147,18 @@ namespace tmfdem
                       "the node). More than that is capped to it unless "
                       "Allow oversubscription is true. Results do not "
                       "depend on it.");
+    prm.declare_entry(
+      "Triangle numbering",
+      "Hilbert curve",
+      Patterns::Selection("Hilbert curve|mesh"),
+      "Order in which the discrete layer numbers its triangles: Hilbert "
+      "curve (along a Hilbert curve through the centroids, so that each MPI "
+      "rank, which owns a range of triangles, owns a compact region with a "
+      "small halo, and neighbours lie near in memory) or mesh (the order of "
+      "the mesh file or generator, after global refinement). Changes results "
+      "only at round-off (sums in another order); the random joint "
+      "strengths (Heterogeneity) and the monitors' elements do not depend "
+      "on it.");
     prm.declare_entry("Allow oversubscription",
                       "false",
                       Patterns::Bool(),
@@ -206,10 +218,11 @@ namespace tmfdem
     mass_damping  = prm.get_double("Mass damping");
     gravity       = Utilities::string_to_double(
       Utilities::split_string_list(prm.get("Gravity"), ','));
-    contact_buffer         = prm.get_double("Contact buffer");
-    contact                = prm.get_bool("Contact");
-    threads                = prm.get_integer("Threads");
-    allow_oversubscription = prm.get_bool("Allow oversubscription");
+    contact_buffer          = prm.get_double("Contact buffer");
+    contact                 = prm.get_bool("Contact");
+    threads                 = prm.get_integer("Threads");
+    allow_oversubscription  = prm.get_bool("Allow oversubscription");
+    hilbert_curve_numbering = prm.get("Triangle numbering") == "Hilbert curve";
     {
       const std::string name = prm.get("Heterogeneity");
       heterogeneity          = name == "Weibull" ? Heterogeneity::weibull :

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/discrete/discrete_parameters.h>
@@ -159,13 +160,73 @@ namespace tmfdem
       }
     } // namespace
 
+    namespace
+    {
+      /**
+       * The random factor of each joint's tensile strength and cohesion
+       * (Heterogeneity; 1 for none), drawn from one mt19937_64 sequence
+       * seeded by Random seed in the mesh's order of the joints: by the
+       * mesh index of the joint's first element in the mesh and its edge
+       * there. So the same seed gives the same field whatever the numbering
+       * of the triangles (Triangle numbering).
+       */
+      std::vector<double>
+      random_strength_factors(const DiscreteMechanicsParameters &dm,
+                              const DiscreteModel               &model)
+      {
+        std::vector<double> factor(model.n_joints, 1.);
+        if (dm.heterogeneity ==
+            DiscreteMechanicsParameters::Heterogeneity::none)
+          return factor;
+        // (mesh index of the element, its edge) of each joint's first side
+        std::vector<std::pair<std::uint64_t, unsigned int>> order(
+          model.n_joints);
+        for (unsigned int e = 0; e < model.n_elements; ++e)
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              const int code = model.edge_joint[3 * e + k];
+              if (code < 0)
+                continue;
+              const unsigned int  j = code / 2;
+              const std::uint64_t key =
+                3 * std::uint64_t(model.mesh_index[e]) + k;
+              const unsigned int other =
+                model.joint_elements[2 * j + 1 - code % 2];
+              if (model.mesh_index[e] < model.mesh_index[other])
+                order[j] = {key, j};
+            }
+        std::sort(order.begin(), order.end());
+        std::mt19937_64 generator(dm.random_seed);
+        const double    m = dm.weibull_modulus;
+        for (const auto &[key, j] : order)
+          if (dm.heterogeneity ==
+              DiscreteMechanicsParameters::Heterogeneity::weibull)
+            {
+              // Weibull with mean 1: scale = 1 / Gamma(1 + 1/m)
+              std::weibull_distribution<double> weibull(m,
+                                                        1. / std::tgamma(
+                                                               1. + 1. / m));
+              factor[j] = weibull(generator);
+            }
+          else
+            {
+              std::normal_distribution<double> normal(
+                1.,
+                dm.coefficient_of_variation);
+              factor[j] = std::max(0.01, normal(generator));
+            }
+        return factor;
+      }
+    } // namespace
+
     void
     setup_joint_constants(const Parameters  &parameters,
                           const SofteningLaw softening_law,
                           DiscreteModel     &model)
     {
-      const auto     &dm = parameters.get<DiscreteMechanicsParameters>();
-      std::mt19937_64 generator(dm.random_seed);
+      const auto &dm = parameters.get<DiscreteMechanicsParameters>();
+      const std::vector<double> strength_factor =
+        random_strength_factors(dm, model);
       for (unsigned int j = 0; j < model.n_joints; ++j)
         {
           const unsigned int        ea = model.joint_elements[2 * j];
@@ -183,30 +244,8 @@ namespace tmfdem
           const double GII =
             std::min(ma.fracture_energy_II, mb.fracture_energy_II);
           const double E = std::max(ma.youngs_modulus, mb.youngs_modulus);
-          if (dm.heterogeneity !=
-              DiscreteMechanicsParameters::Heterogeneity::none)
-            {
-              double factor = 1.;
-              if (dm.heterogeneity ==
-                  DiscreteMechanicsParameters::Heterogeneity::weibull)
-                {
-                  // Weibull with mean 1: scale = 1 / Gamma(1 + 1/m)
-                  const double                      m = dm.weibull_modulus;
-                  std::weibull_distribution<double> weibull(
-                    m,
-                    1. / std::tgamma(1. + 1. / m));
-                  factor = weibull(generator);
-                }
-              else
-                {
-                  std::normal_distribution<double> normal(
-                    1.,
-                    dm.coefficient_of_variation);
-                  factor = std::max(0.01, normal(generator));
-                }
-              ft *= factor;
-              coh *= factor;
-            }
+          ft *= strength_factor[j];
+          coh *= strength_factor[j];
           const bool ok =
             make_joint_constants(ft,
                                  coh,

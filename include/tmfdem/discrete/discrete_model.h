@@ -8,7 +8,8 @@
  *
  * Node numbering equals the DoF numbering of FE_SimplexDGP(1) on the same
  * triangulation (checked when built), so a nodal field of the discrete layer
- * is a deal.II Vector on that DoFHandler.
+ * is a deal.II Vector on that DoFHandler. The discrete solvers build that
+ * triangulation with its cells along a Hilbert curve (mesh/cell_order.h).
  */
 #ifndef tmfdem_discrete_discrete_model_h
 #define tmfdem_discrete_discrete_model_h
@@ -53,6 +54,12 @@ namespace tmfdem
       std::vector<double> mass;         ///< lumped mass [kg/m]
       /** Vertex of the original (unexploded) mesh the node sits on. */
       std::vector<unsigned int> node_vertex;
+
+      /** Index of each element in the mesh's own order (after global
+       *  refinement, before the triangles were renumbered along a Hilbert
+       *  curve; the identity otherwise). What must not depend on the
+       *  numbering (random joint strengths, monitor elements) goes by it. */
+      std::vector<unsigned int> mesh_index;
 
       // --------------------------------------------------------- elements
       /** Inverse initial basis F_i^-1 (row-major 2x2) per element. */

@@ -48,6 +48,9 @@ namespace tmfdem
     double              contact_buffer = 0.;    ///< [m]; 0: 0.25 x smallest h
     unsigned int        threads        = 0;     ///< 0: all cores
     bool allow_oversubscription        = false; ///< threads beyond the cores
+    /** Number the triangles along a Hilbert curve (cell_order.h); false:
+     *  in the mesh's order. */
+    bool hilbert_curve_numbering = true;
     /** How joint strengths scatter (Heterogeneity). */
     enum class Heterogeneity
     {

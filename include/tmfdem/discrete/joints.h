@@ -31,7 +31,8 @@ namespace tmfdem
      * two sides (interfaces take the weaker strength and fracture energy,
      * the stiffer E for the penalties), with the strengths scaled by the
      * heterogeneity of Discrete mechanics (Weibull or normal factors drawn
-     * in joint order from Random seed). Throws InputError naming the joint
+     * from Random seed in the mesh's order of the joints, by
+     * DiscreteModel::mesh_index: the same field whatever the numbering). Throws InputError naming the joint
      * if a fracture energy is below the work stored before the peak.
      */
     void
