@@ -378,6 +378,7 @@ namespace tmfdem
         .add("time_step", time_step)
         .add("stable_explicit_time_step", heat->stable_time_step())
         .add("cg_iterations", static_cast<long long>(cg_iterations))
+        .add("amg_setups", static_cast<long long>(heat->amg_setups()))
         .add("contact_pairs",
              Utilities::MPI::sum(heat->n_contact_pairs(), communicator))
         .add("mpi_processes", partition.n_processes())

@@ -361,7 +361,9 @@ namespace tmfdem
       "threads. amg: algebraic multigrid (Trilinos ML) on the distributed "
       "matrix; far fewer iterations on large meshes and long steps, but the "
       "hierarchy depends on the ranks, so results on different rank counts "
-      "agree to the Linear solver tolerance only.");
+      "agree to the Linear solver tolerance only. The matrix and its "
+      "hierarchy are built again only when the matrix changes (a new "
+      "step size, contacts, broken joints; summary.json amg_setups).");
     prm.declare_entry("Mechanical steps per thermal step",
                       "0",
                       Patterns::Integer(0),

@@ -144,6 +144,15 @@ namespace tmfdem
         return iterations;
       }
 
+      /** Preconditioner = amg: how often this process built the Trilinos
+       *  matrix and its multigrid hierarchy (a step whose rows equal the
+       *  last step's reuses both). */
+      unsigned int
+      amg_setups() const
+      {
+        return n_amg_setups;
+      }
+
       /**
        * Finds the pairs of triangles that overlap (candidates from a
        * linked-cell search over triangles with a free edge and their
@@ -373,6 +382,17 @@ namespace tmfdem
       std::vector<double>       row_value;
       std::vector<double>       diagonal;
       unsigned int              iterations = 0;
+      /** Preconditioner = amg: the rows, Trilinos matrix and AMG hierarchy
+       *  of the last solve, reused while the rows stay the same. */
+      struct AmgCache;
+      /** Deletes an AmgCache where its type is complete. */
+      struct AmgCacheDeleter
+      {
+        void
+        operator()(AmgCache *cache) const;
+      };
+      mutable std::unique_ptr<AmgCache, AmgCacheDeleter> amg_cache;
+      mutable unsigned int                               n_amg_setups = 0;
       ///@}
 
       /** Conducting pairs: (contactor, target) triangles. */

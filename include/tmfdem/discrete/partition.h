@@ -13,7 +13,10 @@
  * node update (ExplicitSolver::chunk_size triangles each), so that every
  * per-chunk sum (works, reactions, guards) is computed by one rank in the
  * serial order and the reductions are exact: results on any number of
- * ranks are bitwise those of one rank (doc/theory.md, "MPI").
+ * ranks are bitwise those of one rank (doc/theory.md, "MPI"). The
+ * triangles are numbered along a Hilbert curve when the model is built
+ * (mesh/cell_order.h), so a range is a compact region and the halo grows
+ * with its perimeter.
  *
  * Per step a rank needs, besides its own nodes, the nodes of the triangles
  * joined to its triangles (joints) and of the contact partners of its
