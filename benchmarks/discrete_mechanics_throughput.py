@@ -28,8 +28,13 @@ cases, alternating, and prints each run's rate, the candidate / reference
 ratio of the median rates and of the median loop CPU times, and whether the
 two builds' history.csv are identical (if not, the three columns that differ
 most in the first round, relative to each column's largest value).
+With --reference-set "Subsection/Entry=value" (repeatable) the reference
+runs get that setting too: --against the same binary compares a setting's
+cost, e.g. --reference-set "Discrete mechanics/Anisotropic joint compliance
+compensation=false".
 usage: benchmarks/discrete_mechanics_throughput.py [path/to/tmfdem [REPEATS]]
-       benchmarks/discrete_mechanics_throughput.py --against REFERENCE path/to/tmfdem [REPEATS]"""
+       benchmarks/discrete_mechanics_throughput.py --against REFERENCE path/to/tmfdem [REPEATS]
+                                                   [--reference-set S ...]"""
 import json
 import os
 import subprocess
@@ -38,6 +43,13 @@ import tempfile
 
 here = os.path.dirname(os.path.abspath(__file__))
 arguments = sys.argv[1:]
+# --reference-set "Subsection/Entry=value": one more --set for the
+# reference runs only (e.g. the same binary with a feature off)
+reference_settings = []
+while "--reference-set" in arguments:
+    i = arguments.index("--reference-set")
+    reference_settings += ["--set", arguments[i + 1]]
+    del arguments[i:i + 2]
 reference = None
 if arguments[:1] == ["--against"]:
     if len(arguments) < 3:
@@ -155,10 +167,11 @@ end
     return name
 
 
-def run(prm_file, threads, steps, out, program=None):
+def run(prm_file, threads, steps, out, program=None, extra=()):
     cmd = [program or binary, prm_file, "--set", f"Output/Directory={out}",
            "--set", f"Discrete mechanics/Threads={threads}",
            "--set", f"Discrete mechanics/Maximum steps={steps}"]
+    cmd += list(extra)
     env = dict(os.environ)
     folder = os.path.dirname(os.path.abspath(cmd[0]))
     if os.path.exists(os.path.join(folder, "libtmfdem.so")):
@@ -215,7 +228,8 @@ def compare_builds():
             for build, program in (("reference", reference), ("candidate", binary)):
                 folder = os.path.join(work, f"{name}_{r}_{build}")
                 folders[build] = folder
-                s = run(p, 1, steps, folder, program)
+                s = run(p, 1, steps, folder, program,
+                        reference_settings if build == "reference" else ())
                 rates[build].append(s["element_steps_per_second"])
                 cpus[build].append(s["cpu_time_s"])
                 print(f"{name:>11} {r + 1:>5} {build:>9} {s['steps']:>6} "

@@ -242,8 +242,20 @@ namespace tmfdem
           // the strain energy this changes at fixed geometry (energy.h)
           const Matrix2 F = deformation_gradient(model, e);
           double       *w = &work[2 * (e / chunk_size)];
-          w[0] += element_strain_energy(model, e, F, s_old, element_lame[e]);
-          w[1] += element_strain_energy(model, e, F, s_new, element_lame[e]);
+          const double *anisotropy =
+            element_anisotropy.empty() ? nullptr : &element_anisotropy[6 * e];
+          w[0] += element_strain_energy(model,
+                                        e,
+                                        F,
+                                        s_old,
+                                        element_lame[e],
+                                        anisotropy);
+          w[1] += element_strain_energy(model,
+                                        e,
+                                        F,
+                                        s_new,
+                                        element_lame[e],
+                                        anisotropy);
           model.thermal_stretch[e] = s_new;
         }
       if (heat_distributed)

@@ -76,6 +76,17 @@ namespace tmfdem
       "does not change at penalties of 10 E and more. false: the triangles take E and nu as given and the "
       "joints soften the body by about x / (1 + x), x = 1.7 E / ((1 - nu) "
       "p_n) in plane stress (doc/tutorial/lesson-05-discrete-layer.md).");
+    prm.declare_entry(
+      "Anisotropic joint compliance compensation",
+      "true",
+      Patterns::Bool(),
+      "With Joint compliance compensation: true removes each triangle's "
+      "joints' compliance as the tensor it is (direction by direction), "
+      "not only its isotropic average, so that a triangle whose joints are "
+      "not spread evenly (on a free edge: no joint along it) is as stiff as "
+      "the material in every direction; the triangles then take an "
+      "anisotropic correction of Eq. 44 (doc/theory.md, 'Joint compliance "
+      "compensation'). false: isotropic compensation only.");
     prm.declare_entry("Contact penalty factor",
                       "10",
                       Patterns::Double(0.),
@@ -204,6 +215,8 @@ namespace tmfdem
       prm.get_double("Joint tangential penalty factor");
     joint_compliance_compensation =
       prm.get_bool("Joint compliance compensation");
+    anisotropic_joint_compliance_compensation =
+      prm.get_bool("Anisotropic joint compliance compensation");
     contact_penalty_factor = prm.get_double("Contact penalty factor");
     contact_tangential_penalty_factor =
       prm.get_double("Contact tangential penalty factor");

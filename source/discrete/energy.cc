@@ -23,6 +23,7 @@ namespace tmfdem
     void
     measure_stored_energy(const DiscreteModel              &model,
                           const std::vector<LameConstants> &element_lame,
+                          const std::vector<double>        &element_anisotropy,
                           EnergyBalance                    &balance)
     {
       double kinetic = 0., strain = 0., stored = 0.;
@@ -35,7 +36,10 @@ namespace tmfdem
                                           e,
                                           deformation_gradient(model, e),
                                           model.thermal_stretch[e],
-                                          element_lame[e]);
+                                          element_lame[e],
+                                          element_anisotropy.empty() ?
+                                            nullptr :
+                                            &element_anisotropy[6 * e]);
         }
       for (unsigned int j = 0; j < model.n_joints; ++j)
         if (model.joint_status[j] == JointStatus::intact &&

@@ -28,7 +28,7 @@ namespace tmfdem
     ExplicitSolver::energy()
     {
       synchronise(); // the whole state on every rank: same sums as one rank
-      measure_stored_energy(model, element_lame, balance);
+      measure_stored_energy(model, element_lame, element_anisotropy, balance);
       return balance;
     }
 
@@ -184,7 +184,11 @@ namespace tmfdem
                 const unsigned int     a = 3 * e + k, b = 3 * e + (k + 1) % 3;
                 BoundaryEdgeKnowledge &edge = boundary[a];
                 edge.lame                   = element_lame[e];
-                edge.thermal_stretch        = model.thermal_stretch[e];
+                if (!element_anisotropy.empty())
+                  std::copy_n(&element_anisotropy[6 * e],
+                              6,
+                              edge.anisotropy.begin());
+                edge.thermal_stretch = model.thermal_stretch[e];
                 if (with_heat)
                   edge.thermal_stretch =
                     thermal_stretch(m.thermal_expansion,
@@ -335,6 +339,7 @@ namespace tmfdem
           .add("joint_compliance_compensation",
                parameters.get<DiscreteMechanicsParameters>()
                  .joint_compliance_compensation)
+          .add("anisotropic_compensation", !element_anisotropy.empty())
           .add("compensation_max_share", compensation_share)
           .add("compensation_capped_elements", compensation_capped)
           .add("threads", n_threads)

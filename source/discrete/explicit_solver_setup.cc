@@ -221,6 +221,10 @@ namespace tmfdem
     {
       const auto &dm = parameters.get<DiscreteMechanicsParameters>();
       element_lame.resize(model.n_elements);
+      const bool anisotropic = dm.joint_compliance_compensation &&
+                               dm.anisotropic_joint_compliance_compensation;
+      element_anisotropy.assign(anisotropic ? 6 * model.n_elements : 0, 0.);
+      element_stiffness_bound.assign(anisotropic ? model.n_elements : 0, 1.);
       unsigned int n_capped  = 0;
       double       max_share = 0.;
       for (unsigned int e = 0; e < model.n_elements; ++e)
@@ -253,9 +257,17 @@ namespace tmfdem
                                             element_lame[e],
                                             pn,
                                             pt,
-                                            max_compensated_share);
+                                            max_compensated_share,
+                                            anisotropic);
               element_lame[e] = c.lame;
-              max_share       = std::max(max_share, c.share);
+              if (anisotropic)
+                {
+                  std::copy(c.anisotropy.begin(),
+                            c.anisotropy.end(),
+                            &element_anisotropy[6 * e]);
+                  element_stiffness_bound[e] = c.stiffness_bound_factor;
+                }
+              max_share = std::max(max_share, c.share);
               n_capped += c.capped ? 1 : 0;
             }
           // Damping ratio = zeta of the element's highest free mode
@@ -335,7 +347,13 @@ namespace tmfdem
               in.edge_joint_tangential_stiffness[k] = jc.tangential_stiffness;
             }
         }
-      in.lame      = element_lame[e];
+      in.lame = element_lame[e];
+      if (!element_stiffness_bound.empty())
+        {
+          // C_e <= f C(lame): the isotropic element f times stiffer bounds it
+          in.lame.lambda *= element_stiffness_bound[e];
+          in.lame.mu *= element_stiffness_bound[e];
+        }
       in.viscosity = viscosity[e];
       in.node_mass = model.mass[n0];
       // the contact law's bound (contact_law.h); 0 without contact

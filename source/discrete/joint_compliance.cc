@@ -1,3 +1,6 @@
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
 #include <algorithm>
 #include <cmath>
 #include <tmfdem/discrete/joint_compliance.h>
@@ -6,13 +9,114 @@ namespace tmfdem
 {
   namespace discrete
   {
+    namespace
+    {
+      using Matrix3 = dealii::Tensor<2, 3>;
+
+      /** The isotropic stiffness of @p lame as a Mandel matrix. */
+      Matrix3
+      isotropic_stiffness(const LameConstants &lame)
+      {
+        Matrix3 C;
+        C[0][0] = C[1][1] = lame.lambda + 2. * lame.mu;
+        C[0][1] = C[1][0] = lame.lambda;
+        C[2][2]           = 2. * lame.mu;
+        return C;
+      }
+
+      /** C(lame)^(power) for power +-1/2: the Mandel matrix of an isotropic
+       *  stiffness has the eigenvalues 2K (bulk, (1, 1, 0) / sqrt 2) and
+       *  2 mu (the rest). */
+      Matrix3
+      isotropic_stiffness_power(const LameConstants &lame, const double power)
+      {
+        const double bulk  = std::pow(2. * (lame.lambda + lame.mu), power);
+        const double shear = std::pow(2. * lame.mu, power);
+        Matrix3      P;
+        for (unsigned int i = 0; i < 3; ++i)
+          P[i][i] = shear;
+        for (unsigned int i = 0; i < 2; ++i)
+          for (unsigned int j = 0; j < 2; ++j)
+            P[i][j] += 0.5 * (bulk - shear);
+        return P;
+      }
+
+      /** The largest eigenvalue of the symmetric part of @p A. */
+      double
+      largest_eigenvalue(const Matrix3 &A)
+      {
+        return dealii::eigenvalues(dealii::symmetrize(A))[0];
+      }
+
+      void
+      anisotropic_compensation(const std::array<double, 3> &x,
+                               const std::array<double, 3> &y,
+                               const double                 area,
+                               const LameConstants         &lame,
+                               const std::array<double, 3> &normal_penalty,
+                               const std::array<double, 3> &tangential_penalty,
+                               const double                 max_share,
+                               CompensatedElement          &result)
+      {
+        const double sqrt2 = std::sqrt(2.);
+        // the joints' compliance tensor S_J (Mandel)
+        Matrix3 SJ;
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            const double pn = normal_penalty[k], pt = tangential_penalty[k];
+            if (!(pn > 0.) || !(pt > 0.))
+              continue;
+            const unsigned int b  = (k + 1) % 3;
+            const double       ex = x[b] - x[k], ey = y[b] - y[k];
+            const double       L2 = ex * ex + ey * ey;
+            const double       L  = std::sqrt(L2);
+            const double       tx = ex / L, ty = ey / L;
+            const double       nx = ty, ny = -tx;
+            const double       w     = L2 / (2. * area);
+            const double       mn[3] = {nx * nx, ny * ny, sqrt2 * nx * ny};
+            const double       mt[3] = {tx * nx,
+                                        ty * ny,
+                                        sqrt2 * 0.5 * (tx * ny + ty * nx)};
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = 0; j < 3; ++j)
+                SJ[i][j] += w * (mn[i] * mn[j] / pn + mt[i] * mt[j] / pt);
+          }
+        // its share of the material's compliance S in the worst direction:
+        // the largest eigenvalue of C^1/2 S_J C^1/2 (C = S^-1)
+        const Matrix3 root_C = isotropic_stiffness_power(lame, 0.5);
+        const double  share  = largest_eigenvalue(root_C * SJ * root_C);
+        result.share         = std::max(result.share, share);
+        if (share > max_share)
+          {
+            result.capped = true;
+            SJ *= max_share / share;
+          }
+        const Matrix3 Ce =
+          dealii::invert(dealii::invert(isotropic_stiffness(lame)) - SJ);
+        const Matrix3 delta = Ce - isotropic_stiffness(result.lame);
+        result.anisotropy   = {{0.5 * (delta[0][0] + delta[0][0]),
+                                delta[1][1],
+                                delta[2][2],
+                                0.5 * (delta[0][1] + delta[1][0]),
+                                0.5 * (delta[0][2] + delta[2][0]),
+                                0.5 * (delta[1][2] + delta[2][1])}};
+        // f with C_e <= f C(lame_e): the largest eigenvalue of
+        // C(lame_e)^-1/2 C_e C(lame_e)^-1/2
+        const Matrix3 inverse_root =
+          isotropic_stiffness_power(result.lame, -0.5);
+        result.stiffness_bound_factor =
+          std::max(1., largest_eigenvalue(inverse_root * Ce * inverse_root));
+      }
+    } // namespace
+
     CompensatedElement
     compensate_joint_compliance(const std::array<double, 3> &x,
                                 const std::array<double, 3> &y,
                                 const LameConstants         &lame,
                                 const std::array<double, 3> &normal_penalty,
                                 const std::array<double, 3> &tangential_penalty,
-                                const double                 max_share)
+                                const double                 max_share,
+                                const bool                   anisotropic)
     {
       CompensatedElement result;
       result.lame       = lame;
@@ -50,6 +154,15 @@ namespace tmfdem
       const double K_e = K / (1. - share_bulk), mu_e = mu / (1. - share_shear);
       result.lame.mu     = mu_e;
       result.lame.lambda = K_e - mu_e;
+      if (anisotropic)
+        anisotropic_compensation(x,
+                                 y,
+                                 area,
+                                 lame,
+                                 normal_penalty,
+                                 tangential_penalty,
+                                 max_share,
+                                 result);
       return result;
     }
   } // namespace discrete

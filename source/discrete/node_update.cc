@@ -35,6 +35,7 @@ namespace tmfdem
       const std::size_t first_element = partition.begin();
       const std::size_t first_chunk   = first_element / chunk_size;
       const bool        have_contact  = contact.has_pairs();
+      const bool        anisotropic   = !element_anisotropy.empty();
       // mass-proportional damping f_d = -c m v_avg, integrated exactly:
       // v_new = (a v_old + dt f / m) with a = (1 - c dt/2) / (1 + c dt/2)
       const double c_damp =
@@ -77,7 +78,15 @@ namespace tmfdem
             const double  s     = m.thermal_stretch[e];
             const double  inv_s = s == 1. ? 1. : 1. / s;
             const Matrix2 Fe    = F * inv_s;
-            const Stress2 sigma = elastic_stress(Fe, element_lame[e]);
+            Stress2       sigma = elastic_stress(Fe, element_lame[e]);
+            if (anisotropic)
+              {
+                const Stress2 correction =
+                  anisotropic_stress(Fe, &element_anisotropy[6 * e]);
+                sigma.xx += correction.xx;
+                sigma.yy += correction.yy;
+                sigma.xy += correction.xy;
+              }
             // viscous stress 2 eta sym(dF/dt F^-1), only where eta > 0
             const double eta = viscosity[e];
             Stress2      sigma_v;

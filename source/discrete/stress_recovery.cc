@@ -19,7 +19,9 @@ namespace tmfdem
                          const double                 reference_length,
                          const double                 tx,
                          const double                 ty,
-                         const BoundaryEdgeKnowledge &knowledge)
+                         const BoundaryEdgeKnowledge &knowledge,
+                         const double                 reference_dx,
+                         const double                 reference_dy)
     {
       const double length = std::hypot(x1 - x0, y1 - y0);
       const double sx = (x1 - x0) / length, sy = (y1 - y0) / length;
@@ -31,7 +33,7 @@ namespace tmfdem
       // B_ss = q^2 + l^2, J = p l; Eq. 44 then gives sigma_ns = mu q / l and
       // sigma_nn(p), increasing in p, solved for t_n by Newton's method
       const double l = length / reference_length / knowledge.thermal_stretch;
-      const double q = t_s * l / mu;
+      double       q = t_s * l / mu;
       double       p = 1.;
       for (unsigned int it = 0; it < 50; ++it)
         {
@@ -48,9 +50,68 @@ namespace tmfdem
           if (converged)
             break;
         }
-      const double J = p * l;
-      const double s_ss =
-        mu * (q * q + l * l - 1.) / J + 0.5 * lambda * (J - 1. / J);
+      double J    = p * l;
+      double s_ss = mu * (q * q + l * l - 1.) / J + 0.5 * lambda * (J - 1. / J);
+      const auto &dC = knowledge.anisotropy;
+      if (std::any_of(dC.begin(), dC.end(), [](const double c) {
+            return c != 0.;
+          }))
+        {
+          // with the anisotropic correction the reference direction of the
+          // edge enters: F_e = (p n + q s) N^T + l s S^T in global
+          // coordinates; Newton on (p, q) for the traction (t_n, t_s), from
+          // the isotropic solution, with a finite-difference Jacobian
+          const double L0 = std::hypot(reference_dx, reference_dy);
+          const double Sx = reference_dx / L0, Sy = reference_dy / L0;
+          const double Nx = Sy, Ny = -Sx;
+          auto         stress = [&](const double pp, const double qq) {
+            const double  ax = pp * nx + qq * sx, ay = pp * ny + qq * sy;
+            const Matrix2 Fe    = matrix2(ax * Nx + l * sx * Sx,
+                                       ax * Ny + l * sx * Sy,
+                                       ay * Nx + l * sy * Sx,
+                                       ay * Ny + l * sy * Sy);
+            Stress2       sigma = elastic_stress(Fe, knowledge.lame);
+            const Stress2 extra = anisotropic_stress(Fe, dC.data());
+            sigma.xx += extra.xx;
+            sigma.yy += extra.yy;
+            sigma.xy += extra.xy;
+            return sigma;
+          };
+          auto residual = [&](const double pp,
+                              const double qq,
+                              double      &r_n,
+                              double      &r_s,
+                              double      &ss) {
+            const Stress2 g   = stress(pp, qq);
+            const double  gnx = g.xx * nx + g.xy * ny;
+            const double  gny = g.xy * nx + g.yy * ny;
+            r_n               = gnx * nx + gny * ny - t_n;
+            r_s               = gnx * sx + gny * sy - t_s;
+            ss = sx * (g.xx * sx + g.xy * sy) + sy * (g.xy * sx + g.yy * sy);
+          };
+          double r_n, r_s;
+          residual(p, q, r_n, r_s, s_ss);
+          const double scale = mu + std::abs(t_n) + std::abs(t_s);
+          for (unsigned int it = 0;
+               it < 30 && std::abs(r_n) + std::abs(r_s) > 1e-13 * scale;
+               ++it)
+            {
+              const double h = 1e-7;
+              double       a_n, a_s, b_n, b_s, unused;
+              residual(p + h, q, a_n, a_s, unused);
+              residual(p, q + h, b_n, b_s, unused);
+              const double j00 = (a_n - r_n) / h, j10 = (a_s - r_s) / h;
+              const double j01 = (b_n - r_n) / h, j11 = (b_s - r_s) / h;
+              const double det = j00 * j11 - j01 * j10;
+              if (!(std::abs(det) > 0.))
+                break;
+              p -= (j11 * r_n - j01 * r_s) / det;
+              q -= (j00 * r_s - j10 * r_n) / det;
+              if (!(p > 0.))
+                p = 1e-3;
+              residual(p, q, r_n, r_s, s_ss);
+            }
+        }
       return {t_n * nx * nx + 2. * t_s * nx * sx + s_ss * sx * sx,
               t_n * ny * ny + 2. * t_s * ny * sy + s_ss * sy * sy,
               t_n * nx * ny + t_s * (nx * sy + ny * sx) + s_ss * sx * sy};
@@ -275,18 +336,21 @@ namespace tmfdem
                     if (edge.kind == BoundaryEdgeKnowledge::Kind::traction)
                       {
                         EdgeValue value;
-                        value.nx    = nx;
-                        value.ny    = ny;
-                        value.tx    = edge.traction[0] * ratio;
-                        value.ty    = edge.traction[1] * ratio;
-                        value.sigma = boundary_edge_stress(model.x[a],
-                                                           model.y[a],
-                                                           model.x[b],
-                                                           model.y[b],
-                                                           reference_length,
-                                                           value.tx,
-                                                           value.ty,
-                                                           edge);
+                        value.nx = nx;
+                        value.ny = ny;
+                        value.tx = edge.traction[0] * ratio;
+                        value.ty = edge.traction[1] * ratio;
+                        value.sigma =
+                          boundary_edge_stress(model.x[a],
+                                               model.y[a],
+                                               model.x[b],
+                                               model.y[b],
+                                               reference_length,
+                                               value.tx,
+                                               value.ty,
+                                               edge,
+                                               model.x_ref[b] - model.x_ref[a],
+                                               model.y_ref[b] - model.y_ref[a]);
                         known.push_back(value);
                       }
                     else

@@ -5,6 +5,7 @@
 // sigma_nt / p_t t), and its average strain L^2 / (2 A) sym([u] n) per joint
 // (half of each joint to the element), independently of the closed form.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <gtest/gtest.h>
@@ -32,13 +33,16 @@ namespace
                const std::array<double, 3> &y,
                const double                 pn,
                const double                 pt,
-               const std::array<double, 3> &s)
+               const std::array<double, 3> &s,
+               const std::array<bool, 3>   &jointed = {{true, true, true}})
   {
     const double area =
       0.5 * ((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]));
     std::array<double, 3> eps = {{0., 0., 0.}};
     for (unsigned int k = 0; k < 3; ++k)
       {
+        if (!jointed[k])
+          continue;
         const unsigned int b  = (k + 1) % 3;
         const double       L  = std::hypot(x[b] - x[k], y[b] - y[k]);
         const double       t0 = (x[b] - x[k]) / L, t1 = (y[b] - y[k]) / L;
@@ -56,7 +60,133 @@ namespace
       }
     return eps;
   }
+
+  // strain {xx, yy, xy} of the anisotropic element C(lame) + Delta C
+  // (Mandel, joint_compliance.h) under stress {xx, yy, xy}: Cramer's rule
+  std::array<double, 3>
+  anisotropic_element_strain(const CompensatedElement    &c,
+                             const std::array<double, 3> &s)
+  {
+    const double r2 = std::sqrt(2.), l = c.lame.lambda, m = c.lame.mu;
+    const auto  &d       = c.anisotropy;
+    const double C[3][3] = {{l + 2. * m + d[0], l + d[3], d[4]},
+                            {l + d[3], l + 2. * m + d[1], d[5]},
+                            {d[4], d[5], 2. * m + d[2]}};
+    const double b[3]    = {s[0], s[1], r2 * s[2]};
+    auto         det     = [](const double A[3][3]) {
+      return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+             A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+             A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    };
+    const double          D = det(C);
+    std::array<double, 3> e;
+    for (unsigned int k = 0; k < 3; ++k)
+      {
+        double A[3][3];
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            A[i][j] = j == k ? b[i] : C[i][j];
+        e[k] = det(A) / D;
+      }
+    return {{e[0], e[1], e[2] / r2}};
+  }
 } // namespace
+
+TEST(JointCompliance, AnisotropicElementWithSomeJointsHasTheMaterialsCompliance)
+{
+  // a triangle of no particular shape with joints on all, two or one of
+  // its edges (a triangle on a free edge has none along it): the element
+  // and its joints in series have the material's compliance under every
+  // stress; the isotropic compensation alone misses along the free edge
+  const double E = 10e9, nu = 0.25;
+  for (const auto ideal :
+       {Idealisation::plane_stress, Idealisation::plane_strain})
+    for (const double ratio_t : {1., 0.3})
+      for (const std::array<bool, 3> jointed :
+           {std::array<bool, 3>{{true, true, true}},
+            std::array<bool, 3>{{false, true, true}},
+            std::array<bool, 3>{{true, false, false}}})
+        {
+          const LameConstants         lame = lame_constants(E, nu, ideal);
+          const double                pn = 10. * E, pt = ratio_t * pn;
+          const std::array<double, 3> x = {{0., 1., 0.35}},
+                                      y = {{0., 0.05, 0.8}};
+          std::array<double, 3> normal{}, tangential{};
+          for (unsigned int k = 0; k < 3; ++k)
+            if (jointed[k])
+              {
+                normal[k]     = pn;
+                tangential[k] = pt;
+              }
+          const CompensatedElement c = compensate_joint_compliance(x,
+                                                                   y,
+                                                                   lame,
+                                                                   normal,
+                                                                   tangential,
+                                                                   0.75,
+                                                                   true);
+          ASSERT_FALSE(c.capped);
+          EXPECT_GE(c.stiffness_bound_factor, 1.);
+          double worst_isotropic = 0.;
+          for (const std::array<double, 3> s :
+               {std::array<double, 3>{{1., 0., 0.}},
+                std::array<double, 3>{{0., 1., 0.}},
+                std::array<double, 3>{{0., 0., 1.}},
+                std::array<double, 3>{{1., 1., 0.}},
+                std::array<double, 3>{{0.3, -0.7, 0.4}},
+                std::array<double, 3>{{-0.2, 0.5, -0.9}}})
+            {
+              const auto target = element_strain(lame, s);
+              const auto e      = anisotropic_element_strain(c, s);
+              const auto j      = joint_strain(x, y, pn, pt, s, jointed);
+              const auto iso    = element_strain(c.lame, s);
+              for (unsigned int i = 0; i < 3; ++i)
+                {
+                  EXPECT_NEAR(e[i] + j[i], target[i], 1e-12 / E)
+                    << "component " << i;
+                  worst_isotropic =
+                    std::max(worst_isotropic,
+                             std::abs(iso[i] + j[i] - target[i]) * E);
+                }
+            }
+          if (!jointed[0])
+            EXPECT_GT(worst_isotropic, 0.01) << "the isotropic part misses";
+        }
+}
+
+TEST(JointCompliance, AnisotropicStressIsTheDerivativeOfItsEnergy)
+{
+  // sigma = F (Delta C : E) F^T / J against the numerical derivative of
+  // psi = E : Delta C : E / 2: P = d psi / d F, sigma = P F^T / J
+  const double  dC[6] = {3e9, 1e9, 2e9, -0.5e9, 0.7e9, -0.3e9};
+  const Matrix2 F     = matrix2(1.02, 0.03, -0.05, 0.97);
+  const Stress2 sigma = anisotropic_stress(F, dC);
+  double        P[2][2];
+  for (unsigned int i = 0; i < 2; ++i)
+    for (unsigned int j = 0; j < 2; ++j)
+      {
+        const double h  = 1e-6;
+        Matrix2      Fp = F, Fm = F;
+        Fp(i, j) += h;
+        Fm(i, j) -= h;
+        P[i][j] = (anisotropic_energy_density(Fp, dC) -
+                   anisotropic_energy_density(Fm, dC)) /
+                  (2. * h);
+      }
+  const double J    = F.determinant();
+  const double s_xx = (P[0][0] * F(0, 0) + P[0][1] * F(0, 1)) / J;
+  const double s_yy = (P[1][0] * F(1, 0) + P[1][1] * F(1, 1)) / J;
+  const double s_xy = (P[0][0] * F(1, 0) + P[0][1] * F(1, 1)) / J;
+  EXPECT_NEAR(sigma.xx, s_xx, 1e-6 * 3e9 * 0.05);
+  EXPECT_NEAR(sigma.yy, s_yy, 1e-6 * 3e9 * 0.05);
+  EXPECT_NEAR(sigma.xy, s_xy, 1e-6 * 3e9 * 0.05);
+  // and in the small-strain limit Delta C : eps
+  const double  eps   = 1e-7;
+  const Stress2 small = anisotropic_stress(matrix2(1. + eps, 0., 0., 1.), dC);
+  EXPECT_NEAR(small.xx, dC[0] * eps, 1e-6 * dC[0] * eps);
+  EXPECT_NEAR(small.yy, dC[3] * eps, 1e-6 * dC[0] * eps);
+  EXPECT_NEAR(small.xy, dC[4] * eps / std::sqrt(2.), 1e-6 * dC[0] * eps);
+}
 
 TEST(JointCompliance, EquilateralElementWithJointsHasTheMaterialsStiffness)
 {

@@ -36,10 +36,13 @@ namespace tmfdem
     double joint_tangential_penalty_factor = 10.; ///< p_t / E [-]
     /** Stiffen each triangle by its joints' compliance (joint_compliance.h).
      */
-    bool   joint_compliance_compensation     = true;
-    double contact_penalty_factor            = 10.; ///< p_c / E [-]
-    double contact_tangential_penalty_factor = 1.;  ///< p_ct / E [-]
-    double friction_coefficient              = 0.5; ///< mu [-]
+    bool joint_compliance_compensation = true;
+    /** ... and by the tensor of that compliance, not only its isotropic
+     *  average (an anisotropic correction per triangle). */
+    bool   anisotropic_joint_compliance_compensation = false;
+    double contact_penalty_factor                    = 10.; ///< p_c / E [-]
+    double contact_tangential_penalty_factor         = 1.;  ///< p_ct / E [-]
+    double friction_coefficient                      = 0.5; ///< mu [-]
     /** Softening law (cohesive_law.h registry). */
     discrete::SofteningLaw softening_law = discrete::SofteningLaw::munjiza;
     double damping_ratio = 1.; ///< modal ratio of the highest element mode [-]

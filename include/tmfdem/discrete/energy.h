@@ -81,21 +81,28 @@ namespace tmfdem
                           const unsigned int   e,
                           const Matrix2       &F,
                           const double         s,
-                          const LameConstants &lame)
+                          const LameConstants &lame,
+                          const double        *anisotropy = nullptr)
     {
-      const Matrix2 Fe = F / s;
-      return model.reference_area[e] * s * s * strain_energy_density(Fe, lame);
+      const Matrix2 Fe  = F / s;
+      double        psi = strain_energy_density(Fe, lame);
+      if (anisotropy != nullptr)
+        psi += anisotropic_energy_density(Fe, anisotropy);
+      return model.reference_area[e] * s * s * psi;
     }
 
     /**
      * Sets the stored terms of @p balance at the current state of
      * @p model: kinetic energy 1/2 m |v|^2, strain energy of the elements
-     * (Eq. 44 on F_e = F / s with their Lame constants @p element_lame) and
+     * (Eq. 44 on F_e = F / s with their Lame constants @p element_lame, plus
+     * the anisotropic correction of @p element_anisotropy, 6 per element,
+     * where it is not empty) and
      * the energy stored in undamaged intact joints [J/m].
      */
     void
     measure_stored_energy(const DiscreteModel              &model,
                           const std::vector<LameConstants> &element_lame,
+                          const std::vector<double>        &element_anisotropy,
                           EnergyBalance                    &balance);
   } // namespace discrete
 } // namespace tmfdem

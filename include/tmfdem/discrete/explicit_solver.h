@@ -170,6 +170,12 @@ namespace tmfdem
       std::vector<double>        viscosity; ///< eta per element [Pa s]
       /** Lame constants per element [Pa] (setup_element_stiffness()). */
       std::vector<LameConstants> element_lame;
+      /** Anisotropic joint compliance compensation: Delta C per element,
+       *  6 Mandel components [Pa] (joint_compliance.h); empty without. */
+      std::vector<double> element_anisotropy;
+      /** Factor f >= 1 per element with C_e <= f C(element_lame) (empty
+       *  without the anisotropic compensation): the stable step's bound. */
+      std::vector<double> element_stiffness_bound;
       /** Joints' share of an element's compliance above which the
        *  compensation is capped (the element at most 4 x stiffer) [-]. */
       static constexpr double max_compensated_share = 0.75;

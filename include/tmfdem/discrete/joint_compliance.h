@@ -29,6 +29,14 @@
  * element and its share of the joints in series have the continuum's
  * stiffness. The joint law itself (penalties, peak traction, fracture
  * energy) is not changed.
+ *
+ * The isotropic part is exact only where the joint directions are spread
+ * evenly. A triangle on a free edge has no joint along that edge: its
+ * joints add more compliance along the edge than the average, and it is
+ * too soft there (an equilateral one by 0.58 / p_n with p_t = p_n). The
+ * anisotropic compensation removes the joints' compliance tensor itself
+ * and leaves the element an anisotropic correction Delta C of Eq. 44
+ * (solid.h, anisotropic_stress()).
  */
 #ifndef tmfdem_discrete_joint_compliance_h
 #define tmfdem_discrete_joint_compliance_h
@@ -52,6 +60,18 @@ namespace tmfdem
       double share = 0.;
       /** True when the share exceeded the cap and was limited to it. */
       bool capped = false;
+      /**
+       * Anisotropic compensation only: Delta C = C_e - C(lame) [Pa], the
+       * element's stiffness (the inverse of the material's compliance minus
+       * its joints' compliance tensor) less the isotropic part in `lame`,
+       * in Mandel components (11, 22, 33, 12, 13, 23) of (xx, yy,
+       * sqrt 2 xy); all zero where the joints' compliance is isotropic.
+       */
+      std::array<double, 6> anisotropy = {{0., 0., 0., 0., 0., 0.}};
+      /** Anisotropic compensation only: f >= 1 with C_e <= f C(lame) in
+       *  every direction, so that `lame` times f bounds the stiffness
+       *  (stable step) [-]. */
+      double stiffness_bound_factor = 1.;
     };
 
     /**
@@ -64,6 +84,13 @@ namespace tmfdem
      * shear) is limited to @p max_share (0 < max_share < 1, the element is
      * then at most 1 / (1 - max_share) times stiffer); a larger share is
      * reported in @p capped. An element without joints keeps @p lame.
+     *
+     * With @p anisotropic, also the tensor: the joints' compliance
+     * S_J = sum_k w_k (m_n m_n^T / p_n + m_t m_t^T / p_t) (Mandel vectors of
+     * n n and sym(t n)) is removed from the material's compliance S in
+     * full, C_e = (S - S_J)^-1, limited to @p max_share of S in its
+     * stiffest direction (largest eigenvalue of S^-1/2 S_J S^-1/2), and
+     * C_e - C(lame) is returned in `anisotropy`.
      */
     CompensatedElement
     compensate_joint_compliance(const std::array<double, 3> &x,
@@ -71,7 +98,8 @@ namespace tmfdem
                                 const LameConstants         &lame,
                                 const std::array<double, 3> &normal_penalty,
                                 const std::array<double, 3> &tangential_penalty,
-                                const double                 max_share);
+                                const double                 max_share,
+                                const bool anisotropic = false);
   } // namespace discrete
 } // namespace tmfdem
 

@@ -32,8 +32,9 @@ namespace tmfdem
      * the stiffer E for the penalties), with the strengths scaled by the
      * heterogeneity of Discrete mechanics (Weibull or normal factors drawn
      * from Random seed in the mesh's order of the joints, by
-     * DiscreteModel::mesh_index: the same field whatever the numbering). Throws InputError naming the joint
-     * if a fracture energy is below the work stored before the peak.
+     * DiscreteModel::mesh_index: the same field whatever the numbering). Throws
+     * InputError naming the joint if a fracture energy is below the work stored
+     * before the peak.
      */
     void
     setup_joint_constants(const Parameters  &parameters,

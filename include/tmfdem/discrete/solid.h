@@ -85,6 +85,52 @@ namespace tmfdem
     }
 
     /**
+     * The anisotropic correction of an element's stress [Pa]
+     * (joint_compliance.h): the Cauchy stress of the second Piola-Kirchhoff
+     * stress Delta C : E, E = (F_e^T F_e - I) / 2, that is
+     * F_e (Delta C : E) F_e^T / J, with @p delta_C the Mandel components
+     * (11, 22, 33, 12, 13, 23) [Pa]. Linear in the small strain, objective,
+     * and the derivative of anisotropic_energy_density().
+     */
+    inline Stress2
+    anisotropic_stress(const Matrix2 &Fe, const double *delta_C)
+    {
+      constexpr double sqrt2 = 1.4142135623730951;
+      const double     f00 = Fe(0, 0), f01 = Fe(0, 1);
+      const double     f10 = Fe(1, 0), f11 = Fe(1, 1);
+      const double     Exx = 0.5 * (f00 * f00 + f10 * f10 - 1.);
+      const double     Eyy = 0.5 * (f01 * f01 + f11 * f11 - 1.);
+      const double     Exy = sqrt2 * 0.5 * (f00 * f01 + f10 * f11);
+      const double Sxx = delta_C[0] * Exx + delta_C[3] * Eyy + delta_C[4] * Exy;
+      const double Syy = delta_C[3] * Exx + delta_C[1] * Eyy + delta_C[5] * Exy;
+      const double Sxy =
+        (delta_C[4] * Exx + delta_C[5] * Eyy + delta_C[2] * Exy) / sqrt2;
+      const double inverse_J = 1. / (f00 * f11 - f01 * f10);
+      const double a00 = f00 * Sxx + f01 * Sxy, a01 = f00 * Sxy + f01 * Syy;
+      const double a10 = f10 * Sxx + f11 * Sxy, a11 = f10 * Sxy + f11 * Syy;
+      return {(a00 * f00 + a01 * f01) * inverse_J,
+              (a10 * f10 + a11 * f11) * inverse_J,
+              (a00 * f10 + a01 * f11) * inverse_J};
+    }
+
+    /** The energy of anisotropic_stress() per unit area of the stress-free
+     *  configuration, E : Delta C : E / 2 [J/m^2]. */
+    inline double
+    anisotropic_energy_density(const Matrix2 &Fe, const double *delta_C)
+    {
+      constexpr double sqrt2 = 1.4142135623730951;
+      const double     f00 = Fe(0, 0), f01 = Fe(0, 1);
+      const double     f10 = Fe(1, 0), f11 = Fe(1, 1);
+      const double     e[3] = {0.5 * (f00 * f00 + f10 * f10 - 1.),
+                               0.5 * (f01 * f01 + f11 * f11 - 1.),
+                               sqrt2 * 0.5 * (f00 * f01 + f10 * f11)};
+      return 0.5 * (delta_C[0] * e[0] * e[0] + delta_C[1] * e[1] * e[1] +
+                    delta_C[2] * e[2] * e[2]) +
+             delta_C[3] * e[0] * e[1] + delta_C[4] * e[0] * e[2] +
+             delta_C[5] * e[1] * e[2];
+    }
+
+    /**
      * Strain energy per unit area of the stress-free configuration [J/m^2]
      * whose derivative is Eq. 44 (constitutive::strain_energy_density()).
      */

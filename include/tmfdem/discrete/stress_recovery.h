@@ -18,6 +18,7 @@
 #ifndef tmfdem_discrete_stress_recovery_h
 #define tmfdem_discrete_stress_recovery_h
 
+#include <array>
 #include <tmfdem/discrete/discrete_model.h>
 #include <tmfdem/discrete/solid.h>
 #include <vector>
@@ -50,6 +51,9 @@ namespace tmfdem
       double thermal_stretch = 1.;
       /** Lame constants of the edge's element [Pa]. */
       LameConstants lame;
+      /** The element's anisotropic correction Delta C, Mandel (11, 22,
+       *  33, 12, 13, 23) [Pa] (joint_compliance.h); zero: isotropic. */
+      std::array<double, 6> anisotropy = {{0., 0., 0., 0., 0., 0.}};
     };
 
     /**
@@ -145,7 +149,10 @@ namespace tmfdem
      * @p reference_length [m], its Cauchy traction (tx, ty) [Pa] (on the
      * outward normal of the current edge, the edge running
      * counter-clockwise around the body) and the elastic law of
-     * @p knowledge. Exposed for the unit tests.
+     * @p knowledge. With an anisotropic correction in @p knowledge the
+     * reference direction of the edge matters: (@p reference_dx,
+     * @p reference_dy) is the reference edge vector [m]. Exposed for the
+     * unit tests.
      */
     Stress2
     boundary_edge_stress(const double                 x0,
@@ -155,7 +162,9 @@ namespace tmfdem
                          const double                 reference_length,
                          const double                 tx,
                          const double                 ty,
-                         const BoundaryEdgeKnowledge &knowledge);
+                         const BoundaryEdgeKnowledge &knowledge,
+                         const double                 reference_dx = 0.,
+                         const double                 reference_dy = 0.);
   } // namespace discrete
 } // namespace tmfdem
 
