@@ -126,26 +126,22 @@ namespace tmfdem
                 const unsigned int node = n0 + k;
                 // joints: node k starts edge k and ends edge k+2
                 double fjx = 0., fjy = 0.;
-                // (codes 2 j + side, -1 without joint: halved and tested
-                // unsigned)
-                const int start_code = m.edge_joint[n0 + k];
-                if (start_code >= 0)
-                  {
-                    const unsigned int code = start_code;
-                    const double      *jf   = &m.joint_force[8 * (code >> 1)];
-                    const unsigned int slot = (code & 1) == 0 ? 0 : 3;
-                    fjx += jf[2 * slot];
-                    fjy += jf[2 * slot + 1];
-                  }
-                const int end_code = m.edge_joint[n0 + (k + 2) % 3];
-                if (end_code >= 0)
-                  {
-                    const unsigned int code = end_code;
-                    const double      *jf   = &m.joint_force[8 * (code >> 1)];
-                    const unsigned int slot = (code & 1) == 0 ? 1 : 2;
-                    fjx += jf[2 * slot];
-                    fjy += jf[2 * slot + 1];
-                  }
+                // the force on node slot A_slot (side A) or B_slot (side
+                // B) of the joint of edge code 2 j + side (-1: no joint)
+                const auto add_joint_force = [&](const int          edge_code,
+                                                 const unsigned int a_slot,
+                                                 const unsigned int b_slot) {
+                  if (edge_code < 0)
+                    return;
+                  const unsigned int code = edge_code;
+                  const double      *jf   = &m.joint_force[8 * (code >> 1)];
+                  const unsigned int slot = (code & 1) == 0 ? a_slot : b_slot;
+                  fjx += jf[2 * slot];
+                  fjy += jf[2 * slot + 1];
+                };
+                // a0 / b1 start an edge, a1 / b0 end it
+                add_joint_force(m.edge_joint[n0 + k], 0, 3);
+                add_joint_force(m.edge_joint[n0 + (k + 2) % 3], 1, 2);
                 const double mass = node_mass[k];
                 const double fgx  = mass * d.gravity[0],
                              fgy  = mass * d.gravity[1];
