@@ -449,9 +449,34 @@ namespace tmfdem
     if (time_dependent_robin)
       assemble_robin(new_time, robin_weights_new);
 
-    // condense onto the unconstrained DoFs, add the Dirichlet lifting
-    full_rhs_ghosted = full_rhs;
-    homogeneous_constraints.condense(full_rhs_ghosted, system_rhs);
+    // condense onto the unconstrained DoFs, add the Dirichlet lifting.
+    // Own elimination rather than AffineConstraints::condense(ghosted,
+    // output), which in deal.II 9.4 mixes insert and add on a Trilinos
+    // vector without a compress() between them (a Debug assertion; wrong
+    // results with constraints across ranks are reported in deal.II issue
+    // 11195): each constrained row i this rank owns adds a_ij b_i to its
+    // DoFs j (some owned by other ranks) and becomes zero.
+    system_rhs        = full_rhs;
+    condense_transfer = 0.;
+    std::vector<types::global_dof_index> columns;
+    std::vector<double>                  values;
+    for (const auto &line : homogeneous_constraints.get_lines())
+      if (locally_owned_dofs.is_element(line.index))
+        {
+          const double b = full_rhs[line.index];
+          for (const auto &[column, weight] : line.entries)
+            {
+              columns.push_back(column);
+              values.push_back(weight * b);
+            }
+        }
+    condense_transfer.add(columns, values);
+    condense_transfer.compress(VectorOperation::add);
+    system_rhs += condense_transfer;
+    for (const auto &line : homogeneous_constraints.get_lines())
+      if (locally_owned_dofs.is_element(line.index))
+        system_rhs[line.index] = 0.;
+    system_rhs.compress(VectorOperation::insert);
     system_rhs += lifting;
   }
 

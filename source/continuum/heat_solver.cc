@@ -213,9 +213,12 @@ namespace tmfdem
                          &variable_loads[0].vector,
                          &variable_loads[1].vector})
       vector->reinit(locally_owned_dofs, communicator);
-    full_rhs_ghosted.reinit(locally_owned_dofs,
-                            locally_relevant_dofs,
-                            communicator);
+    // owned entries plus writable entries of the relevant DoFs of other
+    // ranks (the condensation adds into them, heat_assembly.cc)
+    condense_transfer.reinit(locally_owned_dofs,
+                             locally_relevant_dofs,
+                             communicator,
+                             true);
     for (auto &level : variable_loads)
       level.valid = false;
     reaction_rows.clear();

@@ -326,7 +326,7 @@ namespace tmfdem
     TrilinosWrappers::MPI::Vector capacity_row_sums;
     /** The constrained right-hand side is the condensed full_rhs plus the
      *  lifting of the Dirichlet values. */
-    TrilinosWrappers::MPI::Vector full_rhs, full_rhs_ghosted, lifting;
+    TrilinosWrappers::MPI::Vector full_rhs, condense_transfer, lifting;
     /** Owned copies of T^{n+1} and T^n, and work space. */
     TrilinosWrappers::MPI::Vector owned_solution, owned_old_solution, work;
 
