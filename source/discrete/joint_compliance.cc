@@ -58,7 +58,6 @@ namespace tmfdem
                                const double                 max_share,
                                CompensatedElement          &result)
       {
-        const double sqrt2 = std::sqrt(2.);
         // the joints' compliance tensor S_J (Mandel)
         Matrix3 SJ;
         for (unsigned int k = 0; k < 3; ++k)
@@ -72,11 +71,11 @@ namespace tmfdem
             const double       L  = std::sqrt(L2);
             const double       tx = ex / L, ty = ey / L;
             const double       nx = ty, ny = -tx;
-            const double       w     = L2 / (2. * area);
-            const double       mn[3] = {nx * nx, ny * ny, sqrt2 * nx * ny};
-            const double       mt[3] = {tx * nx,
-                                        ty * ny,
-                                        sqrt2 * 0.5 * (tx * ny + ty * nx)};
+            const double       w = L2 / (2. * area);
+            const double mn[3]   = {nx * nx, ny * ny, mandel_sqrt2 * nx * ny};
+            const double mt[3]   = {tx * nx,
+                                    ty * ny,
+                                    mandel_sqrt2 * 0.5 * (tx * ny + ty * nx)};
             for (unsigned int i = 0; i < 3; ++i)
               for (unsigned int j = 0; j < 3; ++j)
                 SJ[i][j] += w * (mn[i] * mn[j] / pn + mt[i] * mt[j] / pt);
@@ -94,7 +93,7 @@ namespace tmfdem
         const Matrix3 Ce =
           dealii::invert(dealii::invert(isotropic_stiffness(lame)) - SJ);
         const Matrix3 delta = Ce - isotropic_stiffness(result.lame);
-        result.anisotropy   = {{0.5 * (delta[0][0] + delta[0][0]),
+        result.anisotropy   = {{delta[0][0],
                                 delta[1][1],
                                 delta[2][2],
                                 0.5 * (delta[0][1] + delta[1][0]),

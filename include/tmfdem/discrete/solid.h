@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>
+#include <array>
 #include <tmfdem/base/constitutive.h>
 
 namespace tmfdem
@@ -84,6 +85,21 @@ namespace tmfdem
                                           lame);
     }
 
+    /** sqrt 2, of the Mandel components below. */
+    constexpr double mandel_sqrt2 = 1.4142135623730951;
+
+    /** Green-Lagrange strain E = (F_e^T F_e - I) / 2 of @p Fe in Mandel
+     *  components (xx, yy, sqrt 2 xy) [-]. */
+    inline std::array<double, 3>
+    green_lagrange_mandel(const Matrix2 &Fe)
+    {
+      const double f00 = Fe(0, 0), f01 = Fe(0, 1);
+      const double f10 = Fe(1, 0), f11 = Fe(1, 1);
+      return {{0.5 * (f00 * f00 + f10 * f10 - 1.),
+               0.5 * (f01 * f01 + f11 * f11 - 1.),
+               mandel_sqrt2 * 0.5 * (f00 * f01 + f10 * f11)}};
+    }
+
     /**
      * The anisotropic correction of an element's stress [Pa]
      * (joint_compliance.h): the Cauchy stress of the second Piola-Kirchhoff
@@ -95,16 +111,16 @@ namespace tmfdem
     inline Stress2
     anisotropic_stress(const Matrix2 &Fe, const double *delta_C)
     {
-      constexpr double sqrt2 = 1.4142135623730951;
-      const double     f00 = Fe(0, 0), f01 = Fe(0, 1);
-      const double     f10 = Fe(1, 0), f11 = Fe(1, 1);
-      const double     Exx = 0.5 * (f00 * f00 + f10 * f10 - 1.);
-      const double     Eyy = 0.5 * (f01 * f01 + f11 * f11 - 1.);
-      const double     Exy = sqrt2 * 0.5 * (f00 * f01 + f10 * f11);
-      const double Sxx = delta_C[0] * Exx + delta_C[3] * Eyy + delta_C[4] * Exy;
-      const double Syy = delta_C[3] * Exx + delta_C[1] * Eyy + delta_C[5] * Exy;
+      const auto   e = green_lagrange_mandel(Fe);
+      const double Sxx =
+        delta_C[0] * e[0] + delta_C[3] * e[1] + delta_C[4] * e[2];
+      const double Syy =
+        delta_C[3] * e[0] + delta_C[1] * e[1] + delta_C[5] * e[2];
       const double Sxy =
-        (delta_C[4] * Exx + delta_C[5] * Eyy + delta_C[2] * Exy) / sqrt2;
+        (delta_C[4] * e[0] + delta_C[5] * e[1] + delta_C[2] * e[2]) /
+        mandel_sqrt2;
+      const double f00 = Fe(0, 0), f01 = Fe(0, 1);
+      const double f10 = Fe(1, 0), f11 = Fe(1, 1);
       const double inverse_J = 1. / (f00 * f11 - f01 * f10);
       const double a00 = f00 * Sxx + f01 * Sxy, a01 = f00 * Sxy + f01 * Syy;
       const double a10 = f10 * Sxx + f11 * Sxy, a11 = f10 * Sxy + f11 * Syy;
@@ -118,12 +134,7 @@ namespace tmfdem
     inline double
     anisotropic_energy_density(const Matrix2 &Fe, const double *delta_C)
     {
-      constexpr double sqrt2 = 1.4142135623730951;
-      const double     f00 = Fe(0, 0), f01 = Fe(0, 1);
-      const double     f10 = Fe(1, 0), f11 = Fe(1, 1);
-      const double     e[3] = {0.5 * (f00 * f00 + f10 * f10 - 1.),
-                               0.5 * (f01 * f01 + f11 * f11 - 1.),
-                               sqrt2 * 0.5 * (f00 * f01 + f10 * f11)};
+      const auto e = green_lagrange_mandel(Fe);
       return 0.5 * (delta_C[0] * e[0] * e[0] + delta_C[1] * e[1] * e[1] +
                     delta_C[2] * e[2] * e[2]) +
              delta_C[3] * e[0] * e[1] + delta_C[4] * e[0] * e[2] +
