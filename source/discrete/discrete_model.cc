@@ -161,7 +161,7 @@ namespace tmfdem
       joint_damage.assign(2 * n_joints, 0.);
       joint_status.assign(n_joints, JointStatus::intact);
       joint_break_time.assign(n_joints, -1.);
-      joint_force.assign(8 * n_joints, 0.);
+      node_joint_force.assign(4 * n_nodes, 0.);
     }
 
     void

@@ -132,7 +132,6 @@ namespace tmfdem
       out.put(model.joint_damage);
       out.put(model.joint_status);
       out.put(model.joint_break_time);
-      out.put(model.joint_force);
       // energy terms and reactions
       out.put(balance);
       out.put(drivers.body_reaction);
@@ -216,7 +215,6 @@ namespace tmfdem
       in.get(model.joint_damage, model.joint_damage.size());
       in.get(model.joint_status, j);
       in.get(model.joint_break_time, j);
-      in.get(model.joint_force, model.joint_force.size());
       in.get(balance);
       in.get(drivers.body_reaction, drivers.body_reaction.size());
       in.get(drivers.condition_reaction);

@@ -98,7 +98,6 @@ namespace tmfdem
                   }
                 const std::size_t j =
                   i < n_range ? subset.begin + i : subset.others[i - n_range];
-                double *f = &m.joint_force[8 * j];
                 if (m.joint_status[j] != JointStatus::intact)
                   continue;
                 const JointFrame     &g    = frames[block];
@@ -138,19 +137,24 @@ namespace tmfdem
                                             ratio < 0.1 ? JointStatus::mode_II :
                                                           JointStatus::mixed;
                     m.joint_break_time[j] = t;
-                    for (unsigned int i = 0; i < 8; ++i)
-                      f[i] = 0.;
-                    broke_in_chunk[c] = 1;
-                    continue;
+                    fa0x = fa0y = fa1x = fa1y = 0.;
+                    broke_in_chunk[c]         = 1;
                   }
-                f[0] = fa0x;
-                f[1] = fa0y;
-                f[2] = fa1x;
-                f[3] = fa1y;
-                f[4] = -fa0x;
-                f[5] = -fa0y;
-                f[6] = -fa1x;
-                f[7] = -fa1y;
+                // a0 and b1 start the joint's edge (slot 0), a1 and b0 end
+                // it (slot 2): DiscreteModel::node_joint_force
+                const unsigned int *nodes = &m.joint_nodes[4 * j];
+                double             *a0    = &m.node_joint_force[4 * nodes[0]];
+                double             *a1    = &m.node_joint_force[4 * nodes[1]];
+                double             *b0    = &m.node_joint_force[4 * nodes[2]];
+                double             *b1    = &m.node_joint_force[4 * nodes[3]];
+                a0[0]                     = fa0x;
+                a0[1]                     = fa0y;
+                a1[2]                     = fa1x;
+                a1[3]                     = fa1y;
+                b0[2]                     = -fa0x;
+                b0[3]                     = -fa0y;
+                b1[0]                     = -fa1x;
+                b1[1]                     = -fa1y;
               }
           });
         for (const char b : broke_in_chunk)

@@ -124,24 +124,11 @@ namespace tmfdem
             for (unsigned int k = 0; k < 3; ++k)
               {
                 const unsigned int node = n0 + k;
-                // joints: node k starts edge k and ends edge k+2
-                double fjx = 0., fjy = 0.;
-                // the force on node slot A_slot (side A) or B_slot (side
-                // B) of the joint of edge code 2 j + side (-1: no joint)
-                const auto add_joint_force = [&](const int          edge_code,
-                                                 const unsigned int a_slot,
-                                                 const unsigned int b_slot) {
-                  if (edge_code < 0)
-                    return;
-                  const unsigned int code = edge_code;
-                  const double      *jf   = &m.joint_force[8 * (code >> 1)];
-                  const unsigned int slot = (code & 1) == 0 ? a_slot : b_slot;
-                  fjx += jf[2 * slot];
-                  fjy += jf[2 * slot + 1];
-                };
-                // a0 / b1 start an edge, a1 / b0 end it
-                add_joint_force(m.edge_joint[n0 + k], 0, 3);
-                add_joint_force(m.edge_joint[n0 + (k + 2) % 3], 1, 2);
+                // joints: node k starts edge k and ends edge k+2, in that
+                // order (zero slots where an edge has no intact joint)
+                const double *jf  = &m.node_joint_force[4 * node];
+                const double  fjx = 0. + jf[0] + jf[2];
+                const double  fjy = 0. + jf[1] + jf[3];
                 const double mass = node_mass[k];
                 const double fgx  = mass * d.gravity[0],
                              fgy  = mass * d.gravity[1];

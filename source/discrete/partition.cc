@@ -41,8 +41,9 @@ namespace tmfdem
        *  nodes and its stress (xx, yy, xy) (geometry only: not the stress). */
       constexpr unsigned int element_width = 15;
       /** Doubles per joint in synchronise(): status, damage at both Gauss
-       *  points, break time and the eight forces (geometry only: status). */
-      constexpr unsigned int joint_width = 12;
+       *  points and break time (geometry only: status). The joint forces
+       *  are not state (DiscreteModel::node_joint_force). */
+      constexpr unsigned int joint_width = 4;
       /** Bits of a joint's status in synchronise_joint_status()'s words
        *  (JointStatus: 0 to 3); the joint's index takes the others. */
       constexpr unsigned int joint_status_bits = 2;
@@ -397,8 +398,6 @@ namespace tmfdem
             *b++ = m.joint_damage[2 * j];
             *b++ = m.joint_damage[2 * j + 1];
             *b++ = m.joint_break_time[j];
-            for (unsigned int c = 0; c < 8; ++c)
-              *b++ = m.joint_force[8 * j + c];
           }
       }
       allgather_blocks(scratch, MPI_DOUBLE);
@@ -424,8 +423,6 @@ namespace tmfdem
               m.joint_damage[2 * j]     = *b++;
               m.joint_damage[2 * j + 1] = *b++;
               m.joint_break_time[j]     = *b++;
-              for (unsigned int c = 0; c < 8; ++c)
-                m.joint_force[8 * j + c] = *b++;
             }
         }
     }

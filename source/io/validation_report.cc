@@ -77,7 +77,7 @@ namespace tmfdem
              bytes(model.joint_nodes) + bytes(model.joint_elements) +
              bytes(model.joint_constants) + bytes(model.joint_length) +
              bytes(model.joint_damage) + bytes(model.joint_status) +
-             bytes(model.joint_break_time) + bytes(model.joint_force);
+             bytes(model.joint_break_time) + bytes(model.node_joint_force);
     }
 
     void

@@ -92,8 +92,18 @@ namespace tmfdem
       std::vector<double>         joint_damage; ///< per Gauss point (2)
       std::vector<JointStatus>    joint_status;
       std::vector<double>         joint_break_time; ///< [s]
-      /** Forces of the last step on a0, a1, b0, b1 (x, y each) [N/m]. */
-      std::vector<double> joint_force;
+      /**
+       * The joint forces of the last step per node [N/m], four per node:
+       * (x, y) from the joint of the element edge that starts at the node,
+       * then (x, y) from the joint of the edge that ends there (counter-
+       * clockwise in the node's triangle; a0 and b1 start a joint's edge,
+       * a1 and b0 end it). Each slot has one writer (the joint of that
+       * edge), so the joint pass scatters without conflicts and the node
+       * update reads its node's forces in order, without indirection. Zero
+       * where the edge has no intact joint. Not state: every step forms it
+       * before the node update reads it (not in checkpoints).
+       */
+      std::vector<double> node_joint_force;
 
       /**
        * Builds the exploded mesh from @p dof_handler, which must carry
