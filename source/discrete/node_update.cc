@@ -126,12 +126,12 @@ namespace tmfdem
                 const unsigned int node = n0 + k;
                 // joints: node k starts edge k and ends edge k+2, in that
                 // order (zero slots where an edge has no intact joint)
-                const double *jf  = &m.node_joint_force[4 * node];
-                const double  fjx = 0. + jf[0] + jf[2];
-                const double  fjy = 0. + jf[1] + jf[3];
-                const double mass = node_mass[k];
-                const double fgx  = mass * d.gravity[0],
-                             fgy  = mass * d.gravity[1];
+                const double *jf   = &m.node_joint_force[4 * node];
+                const double  fjx  = 0. + jf[0] + jf[2];
+                const double  fjy  = 0. + jf[1] + jf[3];
+                const double  mass = node_mass[k];
+                const double  fgx  = mass * d.gravity[0],
+                             fgy   = mass * d.gravity[1];
                 const double fx =
                   f_el[2 * k] + f_v[2 * k] + fjx + f_contact[2 * k] + fgx;
                 const double fy = f_el[2 * k + 1] + f_v[2 * k + 1] + fjy +
