@@ -95,12 +95,45 @@ namespace tmfdem
         parameters.get<DiscreteHeatParameters>().relaxation_damping ==
         DiscreteHeatParameters::RelaxationDamping::kinetic;
       double previous_kinetic = 0., window_kinetic = 0.;
+      // Fracture event duration: once a joint breaks (on any rank), the
+      // velocity resets pause until step event_end, so that the fracture
+      // runs with inertia (counted again from every later break)
+      const double event_duration =
+        parameters.get<DiscreteHeatParameters>().fracture_event_duration;
+      const unsigned int event_length =
+        event_duration > 0. ?
+          static_cast<unsigned int>(
+            std::min(std::ceil(event_duration / time_step), double(1u << 30))) :
+          0u;
+      unsigned int event_end = 0;
+      bool         had_event = false;
       while (i < steps_per_thermal_step)
         {
           relaxation_step = i;
           mechanical_step();
           ++i;
-          if (kinetic_damping)
+          if (event_length > 0 && joints_broke_anywhere)
+            {
+              event_end = i + event_length;
+              had_event = true;
+            }
+          const bool in_event = i < event_end;
+          if (in_event)
+            {
+              ++fracture_event_steps;
+              window_kinetic   = std::max(window_kinetic, step_kinetic);
+              previous_kinetic = step_kinetic;
+            }
+          else if (i == event_end)
+            {
+              // the event is over: every piece comes to rest (as on the
+              // real support); a free piece drifting at constant speed has
+              // no peak of kinetic energy for the kinetic damping to catch
+              window_kinetic = std::max(window_kinetic, step_kinetic);
+              reset_velocities();
+              previous_kinetic = 0.;
+            }
+          else if (kinetic_damping)
             {
               window_kinetic = std::max(window_kinetic, step_kinetic);
               if (step_kinetic < previous_kinetic)
@@ -124,6 +157,8 @@ namespace tmfdem
                 (kinetic_damping ? window_kinetic : balance.kinetic) <
                   unloaded_energy;
               window_kinetic = 0.;
+              if (in_event)
+                continue;
               if (i > quasi_static_ramp_steps && unloaded)
                 {
                   relaxed = true;
@@ -142,8 +177,11 @@ namespace tmfdem
                 }
             }
         }
-      relaxation_step       = quasi_static_ramp_steps + 1;
-      last_relaxation_steps = i;
+      relaxation_step           = quasi_static_ramp_steps + 1;
+      last_relaxation_steps     = i;
+      last_relaxation_converged = relaxed;
+      if (had_event)
+        ++fracture_events;
       synchronise(); // joint counts and utilisation of the whole state
       if (parameters.get<DiscreteHeatParameters>().relaxation_predictor ==
           DiscreteHeatParameters::RelaxationPredictor::extrapolate)
@@ -333,10 +371,14 @@ namespace tmfdem
       // the last relaxation took the state from relaxed_x to x over the
       // thermal step relaxed_thermal_step; a response linear in time goes on
       // by the same increment per unit time. Not across a relaxation that
-      // damaged or broke joints (its increment holds the crack's jump).
+      // damaged or broke joints (its increment holds the crack's jump), nor
+      // from one that did not converge (its increment holds motion still
+      // under way, e.g. free pieces drifting after a fracture event: pushed
+      // on, they overlap, and the contact work of that jump is not booked)
       const unsigned int damaged = n_damaged_or_broken_joints(model);
       const bool         extrapolate =
         relaxed_thermal_step > 0. && relaxed_x.size() == model.n_nodes &&
+        last_relaxation_converged &&
         damaged_before_relaxation == damaged_after_relaxation &&
         damaged == damaged_after_relaxation;
       if (extrapolate)

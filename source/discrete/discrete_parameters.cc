@@ -432,6 +432,20 @@ namespace tmfdem
       "the lowest frequency and suits bodies whose lowest mode changes as "
       "they crack (Mass damping 0 or small); convergence is then judged on "
       "the largest kinetic energy since the last check (doc/theory.md 8).");
+    prm.declare_entry(
+      "Fracture event duration",
+      "0",
+      Patterns::Double(0.),
+      "Quasi-static coupling with Relaxation damping = kinetic: once a joint "
+      "breaks in a relaxation, the velocity resets pause for this much time "
+      "of mechanical steps (duration / mechanical time step, counted again "
+      "from every later break), so that the fracture event runs as it does "
+      "in the body: cracks grow and the released energy spreads with the "
+      "inertia and the material's own damping (element viscosity, Mass "
+      "damping), not along the path of the kinetic damping; then the "
+      "relaxation settles as before. A few times the time a wave takes "
+      "across the body. The steps count against Mechanical steps per "
+      "thermal step. 0: kinetic damping throughout [s].");
     prm.declare_entry("Relaxation cap is error",
                       "false",
                       Patterns::Bool(),
@@ -492,14 +506,15 @@ namespace tmfdem
     relaxation_tolerance       = prm.get_double("Relaxation tolerance");
     relaxation_cap_is_error    = prm.get_bool("Relaxation cap is error");
     relaxation_force_tolerance = prm.get_double("Relaxation force tolerance");
-    relaxation_predictor = prm.get("Relaxation predictor") == "extrapolate" ?
-                             RelaxationPredictor::extrapolate :
-                             RelaxationPredictor::none;
-    relaxation_damping   = prm.get("Relaxation damping") == "kinetic" ?
-                             RelaxationDamping::kinetic :
-                             RelaxationDamping::mass;
-    thermal_step_growth  = prm.get_double("Thermal step growth factor");
-    maximum_thermal_step = prm.get_double("Maximum thermal step");
+    relaxation_predictor    = prm.get("Relaxation predictor") == "extrapolate" ?
+                                RelaxationPredictor::extrapolate :
+                                RelaxationPredictor::none;
+    relaxation_damping      = prm.get("Relaxation damping") == "kinetic" ?
+                                RelaxationDamping::kinetic :
+                                RelaxationDamping::mass;
+    fracture_event_duration = prm.get_double("Fracture event duration");
+    thermal_step_growth     = prm.get_double("Thermal step growth factor");
+    maximum_thermal_step    = prm.get_double("Maximum thermal step");
     maximum_utilisation_change = prm.get_double("Maximum utilisation change");
     {
       const std::string name  = prm.get("Contact heat model");
@@ -521,6 +536,16 @@ namespace tmfdem
         Utilities::to_string(thermal_step_growth) +
         ": a growing thermal step needs Coupling = quasi-static (the dynamic "
         "coupling ties the thermal step to the mechanical one); allowed is 1.");
+    if (fracture_event_duration > 0. &&
+        (coupling != Coupling::quasi_static ||
+         relaxation_damping != RelaxationDamping::kinetic))
+      throw InputError(
+        "Discrete heat/Fracture event duration = " +
+        Utilities::to_string(fracture_event_duration) +
+        ": pauses the kinetic damping of a quasi-static relaxation, so it "
+        "needs Coupling = quasi-static and Relaxation damping = kinetic "
+        "(the dynamic coupling runs every fracture with inertia anyway); "
+        "allowed otherwise is 0.");
     if (!(joint_conductance_factor > 0.))
       throw InputError("Discrete heat/Joint conductance factor = " +
                        Utilities::to_string(joint_conductance_factor) +

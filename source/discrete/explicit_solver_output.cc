@@ -401,6 +401,9 @@ namespace tmfdem
               .add("relaxations_at_cap", relaxations_at_cap)
               .add("predicted_relaxations", predicted_relaxations)
               .add("velocity_resets", static_cast<long long>(velocity_resets))
+              .add("fracture_events", static_cast<long long>(fracture_events))
+              .add("fracture_event_steps",
+                   static_cast<long long>(fracture_event_steps))
               .add("last_relative_unbalanced_force", relative_unbalanced_force)
               .add("last_kinetic_to_strain_energy", last_kinetic_to_strain)
               .add("mechanical_steps_per_thermal_step", steps_per_thermal_step)

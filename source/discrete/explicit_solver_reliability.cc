@@ -143,8 +143,11 @@ namespace tmfdem
       out.put(relaxed_thermal_step);
       out.put(damaged_before_relaxation);
       out.put(damaged_after_relaxation);
+      out.put<std::uint32_t>(last_relaxation_converged ? 1 : 0);
       out.put(predicted_relaxations);
       out.put(velocity_resets);
+      out.put(fracture_events);
+      out.put(fracture_event_steps);
       // contact candidates with their friction history
       contact.save(out);
       // output counters and series
@@ -224,8 +227,15 @@ namespace tmfdem
       in.get(relaxed_thermal_step);
       in.get(damaged_before_relaxation);
       in.get(damaged_after_relaxation);
+      {
+        std::uint32_t converged = 1;
+        in.get(converged);
+        last_relaxation_converged = converged != 0;
+      }
       in.get(predicted_relaxations);
       in.get(velocity_resets);
+      in.get(fracture_events);
+      in.get(fracture_event_steps);
       contact.load(in, e);
       in.get(next_output);
       in.get(next_history);

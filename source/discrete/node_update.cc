@@ -271,11 +271,13 @@ namespace tmfdem
                      });
       // on several ranks: every chunk's sums from its one owner (exact), and
       // the joint-break flag; then each rank's ghosts
+      joints_broke_anywhere = joints_broke;
       if (partition.distributed())
         {
           chunk_sums.back() = joints_broke ? 1. : 0.;
           partition.sum(chunk_sums);
-          if (chunk_sums.back() > 0.)
+          joints_broke_anywhere = chunk_sums.back() > 0.;
+          if (joints_broke_anywhere)
             contact.request_search();
           partition.exchange_ghosts(m);
         }

@@ -10,6 +10,10 @@
       rim inward; at the end (88 C) the crack has cut the wall: it opens
       as the wedge of the cut ring, 2 pi beta T_a r / ln(b/a), and the
       ring's hoop stress is gone (within 2 %); heat balance 1e-6.
+  verify_discrete_thermal_cracking.py TMFDEM OUT event
+      the same with Weibull strengths and Fracture event duration = 1 ms
+      (event(): the event runs, the relaxations converge after it, the
+      contact stays passive, the cut pieces are stress-free).
   verify_discrete_thermal_cracking.py TMFDEM OUT shock
       prm/thermal_shock_disc.prm (h = 0.4 mm) to 50 ms at T0 = 300 and 500 C:
       the first damage at the rim, once the analytic hoop stress of the
@@ -91,9 +95,13 @@ def hollow(binary, out):
     # snapshot after an onset at 8.13e5 s came at 8.41e5 s, after the crack
     # had crossed the wall)
     times = ",".join(str(t) for t in np.arange(7.0e5, 8.81e5, 5e3))
+    # the kinetically damped relaxation (no fracture event): one crack cuts
+    # the ring, whose wedge opening cut_ring() checks exactly; the event's
+    # two cracks: event()
     run(binary, os.path.join(PRM, "hollow_cylinder_cracking.prm"), out,
         "Time stepping/Time step=2e4", "Time stepping/End time=8.8e5",
-        f"Output/Times={times}", "Output/Interval=0")
+        f"Output/Times={times}", "Output/Interval=0",
+        "Discrete heat/Fracture event duration=0")
     hist = history(out)
     onset = np.nonzero(hist["damaged_joints"] > 0)[0]
     ok &= check(len(onset) > 0, "joints damaged by t = 8.8e5 s")
@@ -152,9 +160,17 @@ def cut_ring(out, a, b, rate, nu=0.25, alpha=1.8e-5):
                     f"crack opening / (2 pi beta T_a r / ln(b/a)) = {ratio.min():.4f}.."
                     f"{ratio.max():.4f} at r = {r[on_crack].min():.4f}..{r[on_crack].max():.4f} m "
                     f"(T_a = {T_a:.2f} C; the cut ring's wedge opening, within 2 %)")
+    ok &= stress_free(out, T_a, nu, alpha)
+    return ok
+
+
+def stress_free(out, T_a, nu=0.25, alpha=1.8e-5):
+    """The last hoop stress at the probes 'inner' and 'outer' of the ring
+    cut through within 2 % of the uncut ring's at T_a [C] (analytic)."""
+    ok = True
     probes = np.genfromtxt(os.path.join(out, "probes.csv"), delimiter=",", names=True,
                            dtype=None, encoding=None)
-    for name, radius in (("inner", a), ("outer", b)):
+    for name in ("inner", "outer"):
         rows = probes[probes["name"] == name]
         last = rows[np.argmax(rows["time"])]
         x, y = float(last["x"]), float(last["y"])
@@ -163,8 +179,47 @@ def cut_ring(out, a, b, rate, nu=0.25, alpha=1.8e-5):
         hoop = last["sxx"] * sn * sn + last["syy"] * c * c - 2 * last["sxy"] * sn * c
         _, uncut = analytic.cylinder_stress([rr], E=20e9, nu=nu, alpha=alpha, t_a=T_a)
         ok &= check(abs(hoop) <= 0.02 * abs(uncut[0]),
-                    f"{name} probe (r = {rr:.4f} m): hoop stress {hoop / 1e6:+.3f} MPa after "
-                    f"the cut, uncut ring {uncut[0] / 1e6:+.2f} MPa (within 2 % of it)")
+                    f"{name} probe (r = {rr:.4f} m): hoop stress {hoop / 1e6:+.3f} MPa in the "
+                    f"cut ring, uncut ring {uncut[0] / 1e6:+.2f} MPa (within 2 % of it)")
+    return ok
+
+
+def event(binary, out):
+    """Fracture events (Discrete heat/Fracture event duration = 1 ms): the
+    hollow cylinder with Weibull strengths (m = 10, seed 3) to 92 C, where
+    the cracks run while the kinetic damping pauses. The event runs its
+    full length; the energy balance closes to 1e-5 (it failed by 2.9e-4
+    when the relaxation predictor pushed the cut pieces on from a
+    relaxation that had not converged: their overlap's contact work was not
+    booked); the pieces of a ring cut through are stress-free under the
+    steady profile (hoop stress at both probes within 2 % of the uncut
+    ring's). Printed, not asserted: the relaxations at the cap after the
+    event and the contact work (doc/cases/hollow_cylinder_cracking.md)."""
+    ok = True
+    a, b, rate, duration = 0.03, 0.15, 1e-4, 1e-3
+    run(binary, os.path.join(PRM, "hollow_cylinder_cracking.prm"), out,
+        "Time stepping/Time step=2e4", "Time stepping/End time=9.2e5",
+        "Output/Interval=2e4", f"Discrete heat/Fracture event duration={duration}",
+        "Discrete mechanics/Heterogeneity=Weibull", "Discrete mechanics/Weibull modulus=10",
+        "Discrete mechanics/Random seed=3")
+    s = summary(out)
+    length = int(np.ceil(duration / s["time_step"]))
+    ok &= check(s["fracture_events"] >= 1 and s["fracture_event_steps"] >= length,
+                f"{s['fracture_events']} fracture event(s), {s['fracture_event_steps']} steps "
+                f"(>= 1 event of ceil(1 ms / dt) = {length} steps)")
+    e = s["energy"]
+    print(f"  {s['relaxations_at_cap']} relaxations at the cap; contact work "
+          f"{e['contact_work']:.3e} J/m, thermal work {e['thermal_work']:.3e} J/m", flush=True)
+    ok &= check(abs(e["relative_balance_error"]) < 1e-5,
+                f"energy balance {e['relative_balance_error']:.1e} (< 1e-5)")
+    r, _ = broken_joints(series(out, "cracks")[-1][1])
+    print(f"  {len(r)} broken joints, {s['cracks']} cracks", flush=True)
+    t_end, vtu = crack_opening.solution_file(out)
+    rv, _, opening = crack_opening.vertex_openings(vtu)
+    if np.any((opening > 1e-6) & (rv < a + 1e-6)):
+        ok &= stress_free(out, rate * t_end)
+    else:
+        ok &= check(False, "no crack cuts the wall by 92 C")
     return ok
 
 
@@ -258,4 +313,5 @@ def step(binary, out):
 
 if __name__ == "__main__":
     binary, out, case = sys.argv[1:4]
-    sys.exit(0 if {"hollow": hollow, "shock": shock, "step": step}[case](binary, out) else 1)
+    sys.exit(0 if {"hollow": hollow, "event": event, "shock": shock,
+                   "step": step}[case](binary, out) else 1)

@@ -132,6 +132,10 @@ namespace tmfdem
       kinetic
     };
     RelaxationDamping relaxation_damping = RelaxationDamping::mass;
+    /** Quasi-static, kinetic damping: physical time of mechanical steps
+     *  for which the velocity resets pause once a joint breaks in a
+     *  relaxation (the fracture event runs with inertia) [s]; 0: never. */
+    double fracture_event_duration = 0.;
     /** Quasi-static: thermal step n = Time step x growth^n [-]. */
     double thermal_step_growth = 1.;
     /** Quasi-static: cap of the growing thermal step, 0 = none [s]. */

@@ -231,10 +231,18 @@ namespace tmfdem
       /** Joints damaged or broken at the start of the last relaxation and
        *  at its end [-]: the predictor extrapolates only where they agree. */
       unsigned int damaged_before_relaxation = 0, damaged_after_relaxation = 0;
+      /** Whether the last relaxation converged (did not reach its cap):
+       *  the predictor extrapolates only from one that did, not from one
+       *  whose increment holds motion still under way (free pieces
+       *  drifting after a fracture event). */
+      bool last_relaxation_converged = true;
       /** Relaxations started from an extrapolated state. */
       unsigned int predicted_relaxations = 0;
       /** Relaxation damping = kinetic: velocity resets so far. */
       unsigned long velocity_resets = 0;
+      /** Fracture event duration > 0: relaxations in which a fracture
+       *  event paused the velocity resets, and their mechanical steps. */
+      unsigned long fracture_events = 0, fracture_event_steps = 0;
       /**
        * Relaxation predictor = extrapolate, before the relaxation of a
        * thermal step @p dt [s]: moves the free node components by the last
@@ -312,6 +320,8 @@ namespace tmfdem
       unsigned long synchronised_step = static_cast<unsigned long>(-1);
       /** Joints broke in this rank's part during the step under way. */
       bool joints_broke = false;
+      /** Joints broke on some rank in the last step (update_nodes()). */
+      bool joints_broke_anywhere = false;
       /**
        * Gives every rank the whole state (partition.h) unless it already
        * has it at this step; a no-op on one rank. Called before whatever

@@ -45,8 +45,8 @@ namespace tmfdem
      * Forces of all intact joints at time @p time [s] into
      * the slots of their four nodes in model.node_joint_force [N/m]; joints
      * whose damage reaches 1 at both Gauss points break (status by mode,
-     * break time @p time) and their slots are zeroed. Runs in @p arena over fixed
-     * chunks; @p broke_in_chunk is scratch. Only the joints of @p subset
+     * break time @p time) and their slots are zeroed. Runs in @p arena over
+     * fixed chunks; @p broke_in_chunk is scratch. Only the joints of @p subset
      * are computed (on several ranks those with a triangle of this rank,
      * partition.h). Returns whether one of them broke.
      */
