@@ -22,10 +22,10 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot_vtu import read_vtu  # noqa: E402
 
 
-def last_cracks(folder, time=None):
-    """(time [s], path) of the last cracks_*.vtu, or of the one written
-    nearest time [s]."""
-    pvd = os.path.join(folder, "cracks.pvd")
+def series_entry(folder, name, time=None):
+    """(time [s], path) of the last file of the series name.pvd in folder
+    (name: cracks, solution), or of the one written nearest time [s]."""
+    pvd = os.path.join(folder, name + ".pvd")
     sets = [(float(d.get("timestep")), d.get("file"))
             for d in ET.parse(pvd).getroot().iter("DataSet")]
     if time is None:
@@ -33,6 +33,12 @@ def last_cracks(folder, time=None):
     else:
         t, f = min(sets, key=lambda s: abs(s[0] - time))
     return t, os.path.join(folder, f)
+
+
+def last_cracks(folder, time=None):
+    """(time [s], path) of the last cracks_*.vtu, or of the one written
+    nearest time [s]."""
+    return series_entry(folder, "cracks", time)
 
 
 def cracks(vtu, gap):

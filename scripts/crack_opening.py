@@ -17,22 +17,18 @@ time [s] instead of the last one. Needs only numpy.
 import argparse
 import os
 import sys
-import xml.etree.ElementTree as ET
 
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot_vtu import read_vtu  # noqa: E402
+from count_radial_cracks import series_entry  # noqa: E402
 
 
 def solution_file(folder, time=None):
     """(time [s], path) of the last solution_*.vtu, or of the one written
     nearest time [s]."""
-    pvd = os.path.join(folder, "solution.pvd")
-    sets = [(float(d.get("timestep")), d.get("file"))
-            for d in ET.parse(pvd).getroot().iter("DataSet")]
-    t, f = max(sets) if time is None else min(sets, key=lambda s: abs(s[0] - time))
-    return t, os.path.join(folder, f)
+    return series_entry(folder, "solution", time)
 
 
 def vertex_openings(vtu):
