@@ -2,11 +2,14 @@
 // (Eq. 44 on F_e), the cohesive law's work to break, and the exact contact
 // integrals, each against an independent evaluation.
 
+#include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
+#include <iostream>
 #include <random>
 #include <tmfdem/discrete/cohesive_law.h>
 #include <tmfdem/discrete/contact.h>
+#include <tmfdem/discrete/contact_law.h>
 #include <tmfdem/discrete/solid.h>
 
 using namespace tmfdem::discrete;
@@ -307,6 +310,153 @@ TEST(Contact, EdgeIntegralsAreExact)
                   1e-12);
     }
   EXPECT_GT(entered, 50u);
+}
+
+namespace
+{
+  /** The normal contact forces of a contactor triangle (nodes 0-2 of
+   *  @p x, @p y) and a target (nodes 3-5) on each other, both pair
+   *  directions, through PenaltyCoulombContact::edge_forces() (p_n = 1,
+   *  no friction): f[0..5] on the contactor, f[6..11] on the target. */
+  void
+  pair_normal_forces(const double *x, const double *y, double *f)
+  {
+    PenaltyCoulombContact law;
+    law.normal_penalty = 1.;
+    const double v[6]  = {0., 0., 0., 0., 0., 0.};
+    for (unsigned int i = 0; i < 12; ++i)
+      f[i] = 0.;
+    for (unsigned int pass = 0; pass < 2; ++pass)
+      {
+        const unsigned int c0 = pass == 0 ? 0 : 3, t0 = pass == 0 ? 3 : 0;
+        double            *fc = f + 2 * c0, *ft = f + 2 * t0;
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            const unsigned int     a = c0 + k, b = c0 + (k + 1) % 3;
+            EdgePotentialIntegrals I;
+            if (!edge_potential_integrals(x[a],
+                                          y[a],
+                                          x[b],
+                                          y[b],
+                                          x + t0,
+                                          y + t0,
+                                          I))
+              continue;
+            double slip = 0.;
+            law.edge_forces(x,
+                            y,
+                            v,
+                            v,
+                            a,
+                            b,
+                            k,
+                            (k + 1) % 3,
+                            t0,
+                            I,
+                            1e-6,
+                            slip,
+                            fc,
+                            ft);
+          }
+      }
+  }
+} // namespace
+
+// The normal contact force p (grad phi_c - grad phi_t) over the overlap is
+// minus the gradient of p int_S (phi_c + phi_t) dA for rigid motions of a
+// triangle (the boundary terms vanish where phi = 0): no work around a
+// closed path of rotations and translations, up to the midpoint rule's
+// O(1/N^2) over N steps per leg. (Moving one node around a loop, which
+// deforms the triangle, is not covered by that argument, and there the
+// force does work: printed, theory manual 5.5.)
+TEST(Contact, NormalForceDoesNoWorkAroundRigidLoops)
+{
+  const double target_x[3] = {0., 1., 0.}, target_y[3] = {0., 0., 1.};
+  const double c_x[3] = {0.3, 1.1, 0.5}, c_y[3] = {0.2, 0.5, 1.0};
+  const double gx = (c_x[0] + c_x[1] + c_x[2]) / 3.;
+  const double gy = (c_y[0] + c_y[1] + c_y[2]) / 3.;
+  // the contactor after a rotation th about its centroid and a move (dx, dy)
+  const auto place = [&](const double th,
+                         const double dx,
+                         const double dy,
+                         double      *x,
+                         double      *y) {
+    for (unsigned int k = 0; k < 3; ++k)
+      {
+        const double rx = c_x[k] - gx, ry = c_y[k] - gy;
+        x[k]     = gx + dx + std::cos(th) * rx - std::sin(th) * ry;
+        y[k]     = gy + dy + std::sin(th) * rx + std::cos(th) * ry;
+        x[3 + k] = target_x[k];
+        y[3 + k] = target_y[k];
+      }
+  };
+  // legs (rotation, move x, move y): rotate, move, rotate back, move back
+  const double       legs[4][3] = {{0.3, 0., 0.},
+                                   {0., 0.1, 0.05},
+                                   {-0.3, 0., 0.},
+                                   {0., -0.1, -0.05}};
+  const unsigned int n          = 10000;
+  double             work = 0., force_times_path = 0.;
+  double             th = 0., dx = 0., dy = 0.;
+  for (const auto &leg : legs)
+    for (unsigned int s = 0; s < n; ++s)
+      {
+        double x0[6], y0[6], x1[6], y1[6], xm[6], ym[6], f[12];
+        place(th, dx, dy, x0, y0);
+        th += leg[0] / n;
+        dx += leg[1] / n;
+        dy += leg[2] / n;
+        place(th, dx, dy, x1, y1);
+        place(th - 0.5 * leg[0] / n,
+              dx - 0.5 * leg[1] / n,
+              dy - 0.5 * leg[2] / n,
+              xm,
+              ym);
+        pair_normal_forces(xm, ym, f);
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            work += f[2 * k] * (x1[k] - x0[k]) + f[2 * k + 1] * (y1[k] - y0[k]);
+            force_times_path += std::hypot(f[2 * k], f[2 * k + 1]) *
+                                std::hypot(x1[k] - x0[k], y1[k] - y0[k]);
+          }
+      }
+  EXPECT_GT(force_times_path, 0.1); // the loop stays in contact
+  EXPECT_LT(std::abs(work), 1e-9 * force_times_path);
+
+  // deforming loops: one node of the contactor (or of the target) around a
+  // square of side 0.05; printed, not asserted
+  for (unsigned int node = 0; node < 6; node += 1)
+    {
+      if (node == 3 || node == 5)
+        continue;
+      double x[6], y[6];
+      place(0., 0., 0., x, y);
+      const double a           = 0.05;
+      const double moves[4][2] = {{a, 0.}, {0., a}, {-a, 0.}, {0., -a}};
+      double       loop_work   = 0.;
+      double       f0[12];
+      pair_normal_forces(x, y, f0);
+      const double force_times_perimeter =
+        std::hypot(f0[2 * node], f0[2 * node + 1]) * 4. * a;
+      for (const auto &move : moves)
+        for (unsigned int s = 0; s < n; ++s)
+          {
+            double xm[6], ym[6], f[12];
+            std::copy(x, x + 6, xm);
+            std::copy(y, y + 6, ym);
+            xm[node] += 0.5 * move[0] / n;
+            ym[node] += 0.5 * move[1] / n;
+            pair_normal_forces(xm, ym, f);
+            loop_work +=
+              f[2 * node] * move[0] / n + f[2 * node + 1] * move[1] / n;
+            x[node] += move[0] / n;
+            y[node] += move[1] / n;
+          }
+      std::cout << "  " << (node < 3 ? "contactor" : "target") << " node "
+                << node % 3 << " around a 0.05 x 0.05 loop: work " << loop_work
+                << "; its force at the start x the loop's length "
+                << force_times_perimeter << "\n";
+    }
 }
 
 TEST(Contact, LinkedCellsFindAllOverlappingBoxes)
