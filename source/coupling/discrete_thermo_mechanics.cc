@@ -144,7 +144,9 @@ namespace tmfdem
               else
                 previous_kinetic = step_kinetic;
             }
-          if (i % 50 == 0)
+          // convergence checks, not while a fracture event runs (it is not
+          // over until event_end, whatever its energies say)
+          if (i % 50 == 0 && !in_event)
             {
               energy();
               last_kinetic_to_strain =
@@ -157,8 +159,6 @@ namespace tmfdem
                 (kinetic_damping ? window_kinetic : balance.kinetic) <
                   unloaded_energy;
               window_kinetic = 0.;
-              if (in_event)
-                continue;
               if (i > quasi_static_ramp_steps && unloaded)
                 {
                   relaxed = true;
