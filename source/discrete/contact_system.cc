@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <string>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/discrete/contact_system.h>
@@ -31,6 +32,33 @@ namespace tmfdem
             return contact.penalty_coulomb.node_stiffness_bound();
         }
       return 0.;
+    }
+
+    double
+    ContactSystem::face_penalty_factor(const DiscreteModel &model,
+                                       const unsigned int   a,
+                                       const unsigned int   b,
+                                       const double         penalty)
+    {
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          const int code = model.edge_joint[3 * a + k];
+          if (code < 0)
+            continue;
+          const unsigned int j = static_cast<unsigned int>(code) / 2;
+          if (model.joint_elements[2 * j + 1 - code % 2] != b)
+            continue;
+          // E_joint = k_n / 2 int o^2 ds, E_contact = 3 p / 2
+          // (1 / H_a + 1 / H_b) int o^2 ds, H = 2 A / L the altitudes
+          const double L = model.joint_length[j];
+          const double inverse_altitudes =
+            0.5 * L *
+            (1. / model.reference_area[a] + 1. / model.reference_area[b]);
+          return std::min(1.,
+                          model.joint_constants[j].normal_stiffness /
+                            (3. * penalty * inverse_altitudes));
+        }
+      return 1.;
     }
 
     void
@@ -195,6 +223,8 @@ namespace tmfdem
                                        tbb::task_arena        &arena,
                                        const ElementPartition &partition)
     {
+      const bool   match_broken_joints = contact.match_broken_joints;
+      const double penalty             = law.normal_penalty;
       // on several ranks: the pairs with a triangle of this rank (the
       // others' friction entries stay 0)
       const bool distributed = partition.distributed();
@@ -212,6 +242,7 @@ namespace tmfdem
         distributed ? local_pairs.size() : pair_list.size(),
         256,
         [&](const std::size_t begin, const std::size_t end, const std::size_t) {
+          Law scaled_law;
           for (std::size_t i = begin; i < end; ++i)
             {
               const std::size_t p     = distributed ? local_pairs[i] : i;
@@ -225,6 +256,15 @@ namespace tmfdem
                   pair_friction[p] = 0.;
                   continue;
                 }
+              // the faces of a broken joint: its compressive stiffness
+              const double face_factor =
+                match_broken_joints ?
+                  face_penalty_factor(m, pair.first, pair.second, penalty) :
+                  1.;
+              const Law &pair_law =
+                face_factor == 1. ?
+                  law :
+                  (scaled_law = law.with_normal_penalty_scaled(face_factor));
               // each element is once the contactor, once the target
               for (unsigned int direction = 0; direction < 2; ++direction)
                 {
@@ -235,6 +275,7 @@ namespace tmfdem
                   double       *fc = force + 6 * direction;
                   double       *ft = force + 6 * (1 - direction);
                   const double *tx = &m.x[3 * t], *ty = &m.y[3 * t];
+                  bool          entered = false;
                   for (unsigned int edge = 0; edge < 3; ++edge)
                     {
                       double            &slip = pair.slip[3 * direction + edge];
@@ -252,21 +293,41 @@ namespace tmfdem
                           slip = 0.; // the edge left the target
                           continue;
                         }
-                      dissipated += law.edge_forces(m.x.data(),
-                                                    m.y.data(),
-                                                    m.vx.data(),
-                                                    m.vy.data(),
-                                                    a,
-                                                    b,
-                                                    edge,
-                                                    (edge + 1) % 3,
-                                                    3 * t,
-                                                    I,
-                                                    dt,
-                                                    slip,
-                                                    fc,
-                                                    ft);
+                      entered = true;
+                      dissipated += pair_law.edge_forces(m.x.data(),
+                                                         m.y.data(),
+                                                         m.vx.data(),
+                                                         m.vy.data(),
+                                                         a,
+                                                         b,
+                                                         edge,
+                                                         (edge + 1) % 3,
+                                                         3 * t,
+                                                         I,
+                                                         dt,
+                                                         slip,
+                                                         fc,
+                                                         ft);
                     }
+                  // the target's share of the normal force: where an edge
+                  // of the contactor entered it, or where it lies inside
+                  // the contactor (its node 0 left of all three edges)
+                  const double *cx = &m.x[3 * c], *cy = &m.y[3 * c];
+                  bool          overlap = entered;
+                  if (!overlap)
+                    {
+                      overlap = true;
+                      for (unsigned int k = 0; k < 3; ++k)
+                        {
+                          const unsigned int k1 = (k + 1) % 3;
+                          if ((cx[k1] - cx[k]) * (ty[0] - cy[k]) -
+                                (cy[k1] - cy[k]) * (tx[0] - cx[k]) <
+                              0.)
+                            overlap = false;
+                        }
+                    }
+                  if (overlap)
+                    pair_law.target_forces(cx, cy, tx, ty, ft);
                 }
               pair_friction[p] = dissipated;
             }

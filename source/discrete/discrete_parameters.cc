@@ -97,6 +97,30 @@ namespace tmfdem
                       Patterns::Double(0.),
                       "Tangential (stick) contact penalty = factor x E [Pa] "
                       "per unit contact length fraction.");
+    prm.declare_entry(
+      "Contact force on the target",
+      "potential gradient",
+      Patterns::Selection("potential gradient|contact points"),
+      "How the nodes of the target triangle get the normal contact force "
+      "(doc/theory.md 5.5). potential gradient: minus the gradient of the "
+      "contact energy p int (phi_c + phi_t) dA with respect to them, so "
+      "that the normal force is conservative for any motion of the nodes, "
+      "deformation included (no energy gained by vibrating pieces in "
+      "contact). contact points: Munjiza's and the Y code's rule, the "
+      "reaction of each contactor edge's force at its points, shared by the "
+      "target's barycentric coordinates there; conservative for rigid "
+      "motions only. Both give the same net force and moment per pair.");
+    prm.declare_entry(
+      "Contact of broken joint faces",
+      "joint stiffness",
+      Patterns::Selection("joint stiffness|contact penalty"),
+      "The normal contact penalty between the two triangles of a broken "
+      "joint (doc/theory.md 5.5). joint stiffness: the contact penalty "
+      "scaled down, where the joint was softer in compression than the "
+      "contact, so that the overlap of its faces stores no more energy than "
+      "the joint stored for it: the contact takes over a compressed or "
+      "hinged joint at its break without putting energy into the pieces. "
+      "contact penalty: the same penalty as every other pair.");
     prm.declare_entry("Friction coefficient",
                       "0.5",
                       Patterns::Double(0.),
@@ -221,6 +245,10 @@ namespace tmfdem
     contact_tangential_penalty_factor =
       prm.get_double("Contact tangential penalty factor");
     friction_coefficient = prm.get_double("Friction coefficient");
+    contact_broken_faces_at_joint_stiffness =
+      prm.get("Contact of broken joint faces") == "joint stiffness";
+    contact_potential_gradient_on_target =
+      prm.get("Contact force on the target") == "potential gradient";
     {
       const std::string name = prm.get("Softening law");
       for (const auto &[entry, law] : discrete::softening_law_registry())

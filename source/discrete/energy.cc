@@ -55,16 +55,27 @@ namespace tmfdem
             const double        d0y = model.y[n[2]] - model.y[n[0]];
             const double        d1x = model.x[n[3]] - model.x[n[1]];
             const double        d1y = model.y[n[3]] - model.y[n[1]];
-            // the two Gauss points of the force computation (joints.cc)
+            // the two Gauss points of the force computation (joints.cc),
+            // and the closed part of a joint closed at one end exactly
+            const double o_start       = d0x * ty - d0y * tx;
+            const double o_end         = d1x * ty - d1y * tx;
+            const bool   partly_closed = (o_start < 0.) != (o_end < 0.);
             for (const double u : {0.21132486540518713, 0.78867513459481287})
               {
-                const double dx = (1. - u) * d0x + u * d1x;
-                const double dy = (1. - u) * d0y + u * d1y;
-                stored += 0.5 * L *
-                          stored_joint_energy(dx * ty - dy * tx,
-                                              dx * tx + dy * ty,
-                                              model.joint_constants[j]);
+                const double          dx = (1. - u) * d0x + u * d1x;
+                const double          dy = (1. - u) * d0y + u * d1y;
+                const double          o  = dx * ty - dy * tx;
+                const JointConstants &k  = model.joint_constants[j];
+                stored +=
+                  0.5 * L *
+                  (stored_joint_energy(o, dx * tx + dy * ty, k) -
+                   (partly_closed && o < 0. ? 0.5 * k.normal_stiffness * o * o :
+                                              0.));
               }
+            if (partly_closed)
+              stored +=
+                joint_closed_part(o_start, o_end, L, model.joint_constants[j])
+                  .energy;
           }
       balance.kinetic      = kinetic;
       balance.strain       = strain;

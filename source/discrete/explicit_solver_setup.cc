@@ -315,6 +315,9 @@ namespace tmfdem
       settings.penalty_coulomb.tangential_penalty =
         dm.contact_tangential_penalty_factor * E_max;
       settings.penalty_coulomb.friction = dm.friction_coefficient;
+      settings.penalty_coulomb.potential_gradient_on_target =
+        dm.contact_potential_gradient_on_target;
+      settings.match_broken_joints = dm.contact_broken_faces_at_joint_stiffness;
       // buffer: a quarter of the smallest edge or element size by default
       double min_h = 1e300;
       for (unsigned int j = 0; j < model.n_joints; ++j)

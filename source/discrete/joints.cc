@@ -104,6 +104,12 @@ namespace tmfdem
                 const JointConstants &k    = m.joint_constants[j];
                 double                fa0x = 0, fa0y = 0, fa1x = 0, fa1y = 0;
                 double                last_do = 0., last_ds = 0.;
+                // the openings at the two ends: a joint closed at one end
+                // and open at the other takes its compression exactly
+                // (below), not at the Gauss points
+                const double o_start       = g.d0x * g.nx + g.d0y * g.ny;
+                const double o_end         = g.d1x * g.nx + g.d1y * g.ny;
+                const bool   partly_closed = (o_start < 0.) != (o_end < 0.);
                 for (unsigned int q = 0; q < 2; ++q)
                   {
                     const double        u  = q == 0 ? gauss_0 : gauss_1;
@@ -119,13 +125,26 @@ namespace tmfdem
                     last_do = std::max(last_do, tr.d_opening);
                     last_ds = std::max(last_ds, tr.d_slip);
                     // traction on A (pulls A toward B), weight L/2
-                    const double w  = 0.5 * g.L;
-                    const double px = w * (tr.normal * g.nx + tr.shear * g.tx);
-                    const double py = w * (tr.normal * g.ny + tr.shear * g.ty);
+                    const double w = 0.5 * g.L;
+                    const double normal =
+                      partly_closed && o < 0. ? 0. : tr.normal;
+                    const double px = w * (normal * g.nx + tr.shear * g.tx);
+                    const double py = w * (normal * g.ny + tr.shear * g.ty);
                     fa0x += (1. - u) * px;
                     fa0y += (1. - u) * py;
                     fa1x += u * px;
                     fa1y += u * py;
+                  }
+                if (partly_closed)
+                  {
+                    // k_n o(u) over the closed part, with the shape
+                    // functions of the two ends (joint_closed_part())
+                    const ClosedPart c =
+                      joint_closed_part(o_start, o_end, g.L, k);
+                    fa0x += c.force_start * g.nx;
+                    fa0y += c.force_start * g.ny;
+                    fa1x += c.force_end * g.nx;
+                    fa1y += c.force_end * g.ny;
                   }
                 if (m.joint_damage[2 * j] >= 1. &&
                     m.joint_damage[2 * j + 1] >= 1.)

@@ -148,6 +148,54 @@ namespace tmfdem
       return t;
     }
 
+    /** The compression of a joint closed over part of its length: the
+     *  normal forces on its two node pairs and the energy it stores. */
+    struct ClosedPart
+    {
+      /** int k_n o(u) N(u) L du over the closed part, N = 1 - u for the
+       *  pair that starts the edge, u for the pair that ends it [N/m];
+       *  negative (pushes the faces apart), like JointTraction::normal. */
+      double force_start = 0., force_end = 0.;
+      /** k_n / 2 int o^2 L du over the closed part [J/m]. */
+      double energy = 0.;
+    };
+
+    /**
+     * The compression of a joint whose opening is linear along its edge,
+     * o(u) = (1 - u) @p o_start + u @p o_end [m], closed (o < 0) at one end
+     * and open at the other (the signs of @p o_start and @p o_end differ),
+     * of length @p length [m]: the penalty k_n o integrated exactly over
+     * the closed part u in [0, w] (or [1 - w, 1]), w = o_c / (o_c - o_o),
+     * o_c the closed end's opening, o_o the open end's:
+     *
+     *   closed end  k_n L o_c w (1/2 - w/6),   open end  k_n L o_c w^2 / 6,
+     *   energy      k_n L o_c^2 w / 6.
+     *
+     * The two Gauss points of the cohesive law miss the closed part where
+     * it is shorter than 0.21 of the edge (a hinge): the faces would
+     * interpenetrate there unresisted, and the contact that takes over at
+     * the break would find that overlap (doc/theory.md 5.2).
+     */
+    inline ClosedPart
+    joint_closed_part(const double          o_start,
+                      const double          o_end,
+                      const double          length,
+                      const JointConstants &k)
+    {
+      const bool   at_start = o_start < 0.;
+      const double oc       = at_start ? o_start : o_end,
+                   oo       = at_start ? o_end : o_start;
+      const double w        = oc / (oc - oo);
+      const double scale    = k.normal_stiffness * length * oc;
+      ClosedPart   c;
+      const double closed = scale * w * (0.5 - w / 6.),
+                   open   = scale * w * w / 6.;
+      c.force_start       = at_start ? closed : open;
+      c.force_end         = at_start ? open : closed;
+      c.energy            = scale * oc * w / 6.;
+      return c;
+    }
+
     /**
      * Joint constants from material strengths and the joint length
      * @p length [m]: penalties p_n, p_t [Pa] give k = p / length; the

@@ -140,6 +140,179 @@ namespace tmfdem
       return true;
     }
 
+    namespace contact_internal
+    {
+      /** Room for the vertices of a clipped polygon: a triangle cut by five
+       *  lines has at most 8 in exact arithmetic; the rest for round-off. */
+      constexpr unsigned int max_clipped_vertices = 16;
+
+      /**
+       * Sutherland-Hodgman step: the part of the convex polygon (@p px,
+       * @p py [m], @p n vertices) where g = @p a x + @p b y + @p c >= 0,
+       * written to (@p qx, @p qy). An intersection point is inserted where
+       * an edge crosses g = 0 strictly. Returns the number of vertices
+       * written (at most max_clipped_vertices).
+       */
+      inline unsigned int
+      clip_polygon(const double      *px,
+                   const double      *py,
+                   const unsigned int n,
+                   const double       a,
+                   const double       b,
+                   const double       c,
+                   double            *qx,
+                   double            *qy)
+      {
+        double g[max_clipped_vertices];
+        for (unsigned int i = 0; i < n; ++i)
+          g[i] = a * px[i] + b * py[i] + c;
+        unsigned int m = 0;
+        for (unsigned int i = 0; i < n && m < max_clipped_vertices; ++i)
+          {
+            const unsigned int j = i + 1 == n ? 0 : i + 1;
+            if (g[i] >= 0.)
+              {
+                qx[m] = px[i];
+                qy[m] = py[i];
+                ++m;
+              }
+            if (((g[i] > 0. && g[j] < 0.) || (g[i] < 0. && g[j] > 0.)) &&
+                m < max_clipped_vertices)
+              {
+                const double t = g[i] / (g[i] - g[j]);
+                qx[m]          = px[i] + t * (px[j] - px[i]);
+                qy[m]          = py[i] + t * (py[j] - py[i]);
+                ++m;
+              }
+          }
+        return m < 3 ? 0 : m;
+      }
+    } // namespace contact_internal
+
+    /**
+     * The forces on the target's nodes of the normal contact energy
+     * E_t = p int_S phi_t dA (S the overlap of contactor and target,
+     * phi_t the target's potential) [N/m]: exactly minus its gradient with
+     * respect to the target's nodes, added to @p ft (six components).
+     * Together with the contactor's forces from the edge integrals
+     * (edge_potential_integrals(), which are exactly minus the gradient of
+     * E_t with respect to the contactor's nodes) the pair's normal force is
+     * conservative for any motion of the six nodes, deformation included
+     * (theory manual 5.5).
+     *
+     * In the part S_k of S where phi_t = 3 lambda_k (lambda_k the smallest
+     * barycentric coordinate), moving target node j by dv changes phi_t by
+     * -3 lambda_j grad(lambda_k) . dv at a fixed point, and the target's
+     * moving boundary adds nothing (phi_t = 0 there), so
+     *
+     *   f_j = 3 p sum_k grad(lambda_k) int_{S_k} lambda_j dA,
+     *
+     * exact with the area and first moments of the polygons S_k (the
+     * contactor clipped by the target's three edges and by the two lines
+     * through the target's centroid that bound S_k). @p cx, @p cy: the
+     * contactor's nodes, @p tx, @p ty: the target's (counter-clockwise)
+     * [m]; @p penalty: p [Pa].
+     */
+    inline double
+    add_target_potential_forces(const double *cx,
+                                const double *cy,
+                                const double *tx,
+                                const double *ty,
+                                const double  penalty,
+                                double       *ft)
+    {
+      using contact_internal::clip_polygon;
+      using contact_internal::max_clipped_vertices;
+      const double det =
+        (ty[1] - ty[2]) * (tx[0] - tx[2]) + (tx[2] - tx[1]) * (ty[0] - ty[2]);
+      if (!(det > 0.))
+        return 0.;
+      const double inv = 1. / det;
+      // lambda_k = alpha_k x + beta_k y + gamma_k in coordinates relative to
+      // the target's node 0 (smaller numbers, less round-off)
+      const double ox = tx[0], oy = ty[0];
+      double       alpha[3], beta[3], gamma[3];
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          const unsigned int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+          alpha[k] = (ty[k1] - ty[k2]) * inv;
+          beta[k]  = (tx[k2] - tx[k1]) * inv;
+          gamma[k] = -(alpha[k] * (tx[k1] - ox) + beta[k] * (ty[k1] - oy));
+        }
+      // S: the contactor inside the three edges (lambda_k >= 0)
+      double       sx[max_clipped_vertices], sy[max_clipped_vertices];
+      double       wx[max_clipped_vertices], wy[max_clipped_vertices];
+      unsigned int n = 3;
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          sx[k] = cx[k] - ox;
+          sy[k] = cy[k] - oy;
+        }
+      for (unsigned int k = 0; k < 3 && n > 0; ++k)
+        {
+          n = clip_polygon(sx, sy, n, alpha[k], beta[k], gamma[k], wx, wy);
+          std::copy(wx, wx + n, sx);
+          std::copy(wy, wy + n, sy);
+        }
+      if (n == 0)
+        return 0.;
+      double energy = 0.;
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          // S_k: where lambda_k <= lambda_k1 and lambda_k <= lambda_k2
+          const unsigned int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+          double             px[max_clipped_vertices], py[max_clipped_vertices];
+          unsigned int       m = clip_polygon(sx,
+                                        sy,
+                                        n,
+                                        alpha[k1] - alpha[k],
+                                        beta[k1] - beta[k],
+                                        gamma[k1] - gamma[k],
+                                        wx,
+                                        wy);
+          m                    = clip_polygon(wx,
+                           wy,
+                           m,
+                           alpha[k2] - alpha[k],
+                           beta[k2] - beta[k],
+                           gamma[k2] - gamma[k],
+                           px,
+                           py);
+          if (m == 0)
+            continue;
+          // area and first moments, int dA, int x dA, int y dA
+          double area = 0., moment_x = 0., moment_y = 0.;
+          for (unsigned int i = 0; i < m; ++i)
+            {
+              const unsigned int j     = i + 1 == m ? 0 : i + 1;
+              const double       cross = px[i] * py[j] - px[j] * py[i];
+              area += cross;
+              moment_x += (px[i] + px[j]) * cross;
+              moment_y += (py[i] + py[j]) * cross;
+            }
+          // (a contactor numbered clockwise gives the same polygon
+          // clockwise: the integrals do not depend on its orientation)
+          const double orientation = area < 0. ? -1. : 1.;
+          area *= 0.5 * orientation;
+          moment_x *= orientation / 6.;
+          moment_y *= orientation / 6.;
+          if (!(area > 0.))
+            continue;
+          const double gx = 3. * penalty * alpha[k],
+                       gy = 3. * penalty * beta[k];
+          for (unsigned int j = 0; j < 3; ++j)
+            {
+              const double lambda_integral =
+                alpha[j] * moment_x + beta[j] * moment_y + gamma[j] * area;
+              ft[2 * j] += gx * lambda_integral;
+              ft[2 * j + 1] += gy * lambda_integral;
+              if (j == k)
+                energy += 3. * penalty * lambda_integral;
+            }
+        }
+      return energy;
+    }
+
     /** A candidate pair of elements (first < second) and its friction
      * history: accumulated elastic slip per contactor edge [m], edges 0-2 of
      * `first` against `second`, then edges 0-2 of `second` against

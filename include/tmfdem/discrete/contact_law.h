@@ -8,9 +8,11 @@
  * edge and calls the law; the law also gives the stiffness bound the
  * stable step needs (stable_step.h).
  *
- * To add a law: write a class with the two members of
- * PenaltyCoulombContact below, add its name to ContactLaw and dispatch on
- * it in ContactSystem::compute_forces() (source/discrete/contact_system.cc).
+ * To add a law: write a class with the four members of
+ * PenaltyCoulombContact below (node_stiffness_bound(),
+ * with_normal_penalty_scaled(), target_forces(), edge_forces()), add its name
+ * to ContactLaw and dispatch on it in ContactSystem::compute_forces()
+ * (source/discrete/contact_system.cc).
  */
 #ifndef tmfdem_discrete_contact_law_h
 #define tmfdem_discrete_contact_law_h
@@ -32,15 +34,27 @@ namespace tmfdem
 
     /**
      * Munjiza's penalty potential (normal force p_n L int phi_t N n along
-     * the contactor edge, Eq. 5) with Coulomb friction on an elastic slip
-     * history: tangential spring p_t over the clipped length, capped at
-     * mu times the normal force (Eq. 6).
+     * the contactor edge, Eq. 5; on the target's nodes the exact gradient
+     * of the potential energy, or Munjiza's reaction at the contact points)
+     * with Coulomb friction on an elastic slip history: tangential spring p_t
+     * over the clipped length, capped at mu times the normal force (Eq. 6).
      */
     struct PenaltyCoulombContact
     {
       double normal_penalty     = 0.; ///< p_n [Pa]
       double tangential_penalty = 0.; ///< p_t [Pa]
       double friction           = 0.; ///< Coulomb coefficient mu [-]
+      /**
+       * How the target's nodes get the normal force (`Contact force on the
+       * target`). true: minus the gradient of p int_S phi_t dA with respect
+       * to them (add_target_potential_forces(), once per contactor and
+       * target), so that the normal force is conservative also when the
+       * triangles deform; false: the reaction of each contactor edge's
+       * force at its points, with the target's barycentric coordinates
+       * there (Munjiza's and the Y code's rule, conservative for rigid
+       * motions only).
+       */
+      bool potential_gradient_on_target = true;
 
       /**
        * Bound of the contact stiffness one node can feel [N/m per m]: a
@@ -52,6 +66,36 @@ namespace tmfdem
       node_stiffness_bound() const
       {
         return 3. * normal_penalty + tangential_penalty;
+      }
+
+      /**
+       * The same law with the normal penalty multiplied by @p factor (the
+       * faces of a broken joint, ContactSystem::face_penalty_factor()).
+       */
+      PenaltyCoulombContact
+      with_normal_penalty_scaled(const double factor) const
+      {
+        PenaltyCoulombContact scaled = *this;
+        scaled.normal_penalty *= factor;
+        return scaled;
+      }
+
+      /**
+       * With potential_gradient_on_target: adds to @p ft the normal forces
+       * on the target's nodes (@p tx, @p ty) of the contactor (@p cx,
+       * @p cy) overlapping it [N/m]; to be called once per contactor and
+       * target whenever they may overlap (an edge of the contactor entered
+       * the target, or the target lies inside the contactor).
+       */
+      void
+      target_forces(const double *cx,
+                    const double *cy,
+                    const double *tx,
+                    const double *ty,
+                    double       *ft) const
+      {
+        if (potential_gradient_on_target)
+          add_target_potential_forces(cx, cy, tx, ty, normal_penalty, ft);
       }
 
       /**
@@ -90,11 +134,12 @@ namespace tmfdem
         fc[2 * ka + 1] -= fa * ny;
         fc[2 * kb] -= fb * nx;
         fc[2 * kb + 1] -= fb * ny;
-        for (unsigned int k = 0; k < 3; ++k)
-          {
-            ft[2 * k] += scale * I.phi_target[k] * nx;
-            ft[2 * k + 1] += scale * I.phi_target[k] * ny;
-          }
+        if (!potential_gradient_on_target)
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              ft[2 * k] += scale * I.phi_target[k] * nx;
+              ft[2 * k + 1] += scale * I.phi_target[k] * ny;
+            }
         // Coulomb friction with elastic slip history
         const double normal_force = fa + fb;
         const double mu           = friction;

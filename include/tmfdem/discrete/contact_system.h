@@ -33,6 +33,10 @@ namespace tmfdem
       /** Search buffer: pairs are searched with boxes this much larger and
        *  searched again when a node may have travelled half of it [m]. */
       double buffer = 0.;
+      /** The faces of a broken joint touch with at most the joint's
+       *  compressive stiffness (face_penalty_factor(); `Contact of broken
+       *  joint faces`); false: with the contact penalty like any pair. */
+      bool match_broken_joints = true;
     };
 
     /**
@@ -67,6 +71,25 @@ namespace tmfdem
        *  0 without contact. */
       double
       node_stiffness_bound() const;
+
+      /**
+       * The factor on the normal contact penalty @p penalty [Pa] of the
+       * pair (@p a, @p b) [-]: for the two faces of a broken joint, the one
+       * that gives their overlap the energy the joint stored in
+       * compression, so that the contact takes over a compressed joint at
+       * its break without a jump in energy or force (doc/theory.md 5.5). A
+       * joint of normal stiffness k_n [Pa/m] stores k_n / 2 int o^2 ds for
+       * an overlap o(s) linear along its edge; the potential contact of the
+       * same overlap stores 3 p / 2 (1 / H_a + 1 / H_b) int o^2 ds (H the
+       * triangles' altitudes onto the edge, in the reference
+       * configuration), so the factor is k_n / (3 p (1 / H_a + 1 / H_b)).
+       * 1 for any other pair.
+       */
+      static double
+      face_penalty_factor(const DiscreteModel &model,
+                          const unsigned int   a,
+                          const unsigned int   b,
+                          const double         penalty);
 
       /**
        * The elements that take part in the next search: those with a free

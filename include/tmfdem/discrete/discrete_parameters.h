@@ -39,10 +39,16 @@ namespace tmfdem
     bool joint_compliance_compensation = true;
     /** ... and by the tensor of that compliance, not only its isotropic
      *  average (an anisotropic correction per triangle). */
-    bool   anisotropic_joint_compliance_compensation = false;
+    bool   anisotropic_joint_compliance_compensation = true;
     double contact_penalty_factor                    = 10.; ///< p_c / E [-]
     double contact_tangential_penalty_factor         = 1.;  ///< p_ct / E [-]
     double friction_coefficient                      = 0.5; ///< mu [-]
+    /** The target's share of the normal contact force as the exact
+     *  gradient of the contact energy (false: at the contact points). */
+    bool contact_potential_gradient_on_target = true;
+    /** The faces of a broken joint touch with at most the joint's
+     *  compressive stiffness (false: with the contact penalty). */
+    bool contact_broken_faces_at_joint_stiffness = true;
     /** Softening law (cohesive_law.h registry). */
     discrete::SofteningLaw softening_law = discrete::SofteningLaw::munjiza;
     double damping_ratio = 1.; ///< modal ratio of the highest element mode [-]
