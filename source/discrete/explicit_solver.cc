@@ -285,11 +285,24 @@ namespace tmfdem
       const auto   threads_start   = thread_cpu_times();
       const double loop_cpu_start  = process_cpu_time();
       const auto   loop_wall_start = std::chrono::steady_clock::now();
-      while (time < end - 0.5 * advance &&
+      // explicit steps are all of one length: stop within half of one;
+      // thermal steps shrink near failure and land on the end time
+      // (quasi_static_thermal_step()): stop only there, else a run whose steps
+      // were shortened would end up to half a Time step early
+      const double end_tolerance =
+        quasi_static ? 1e-9 * std::max(std::abs(end), advance) : 0.5 * advance;
+      while (time < end - end_tolerance &&
              (max_steps == 0 || step_number < max_steps))
         {
+          const double time_before = time;
           step();
           check_step_guards();
+          // outputs snap to the nearest step: within half of the step just
+          // taken (thermal steps shrink near failure, so not half of Time
+          // step, which would write an output, the last one included, up to
+          // half a Time step early)
+          const double snap =
+            0.5 * (quasi_static ? time - time_before : advance);
           if (quasi_static && writes_files())
             std::cerr << "[tmfdem] t = " << time << " s: relaxed in "
                       << last_relaxation_steps
@@ -308,7 +321,7 @@ namespace tmfdem
           // one file per step at most: a long (growing) thermal step may
           // pass several output times
           if (next_output < output_times.size() &&
-              time >= output_times[next_output] - 0.5 * advance)
+              time >= output_times[next_output] - snap)
             {
               if (!snap_reported && writes_files() &&
                   std::abs(time - output_times[next_output]) >
@@ -320,12 +333,12 @@ namespace tmfdem
                     << " s requested, written at t = " << time
                     << " s: outputs snap to the nearest "
                     << (quasi_static ? "thermal" : "mechanical") << " step ("
-                    << advance << " s)\n";
+                    << 2. * snap << " s)\n";
                 }
               energy();
               write_output();
               while (next_output < output_times.size() &&
-                     time >= output_times[next_output] - 0.5 * advance)
+                     time >= output_times[next_output] - snap)
                 ++next_output;
             }
           if ((step_number & 255) == 0)
