@@ -568,6 +568,60 @@ TEST(Contact, PotentialGradientForcesAreBalanced)
 
 
 
+// The forces are minus the gradient of the energy E = p int_S (phi_c +
+// phi_t) dA that add_target_potential_forces() returns (its two calls, one
+// per pair direction): central differences over all twelve coordinates of
+// random overlapping pairs. E is C1 (the force is continuous), so the
+// differences agree to O(h) even across a change of the overlap's shape.
+TEST(Contact, NormalForceIsMinusTheGradientOfTheContactEnergy)
+{
+  std::mt19937_64                        random(5);
+  std::uniform_real_distribution<double> u(-1., 1.);
+  const auto energy = [](const double *x, const double *y) {
+    double f[6];
+    return add_target_potential_forces(x, y, x + 3, y + 3, 1., f) +
+           add_target_potential_forces(x + 3, y + 3, x, y, 1., f);
+  };
+  unsigned int overlapping = 0;
+  for (unsigned int trial = 0; trial < 300; ++trial)
+    {
+      double x[6], y[6];
+      for (unsigned int k = 0; k < 6; ++k)
+        {
+          x[k] = u(random) + (k < 3 ? 0.5 : 0.);
+          y[k] = u(random);
+        }
+      for (const unsigned int t0 : {0u, 3u})
+        if ((x[t0 + 1] - x[t0]) * (y[t0 + 2] - y[t0]) -
+              (y[t0 + 1] - y[t0]) * (x[t0 + 2] - x[t0]) <
+            0.)
+          {
+            std::swap(x[t0 + 1], x[t0 + 2]);
+            std::swap(y[t0 + 1], y[t0 + 2]);
+          }
+      if (!(energy(x, y) > 1e-6))
+        continue;
+      ++overlapping;
+      double f[12];
+      pair_normal_forces(x, y, f);
+      const double h = 1e-7;
+      for (unsigned int k = 0; k < 6; ++k)
+        for (unsigned int d = 0; d < 2; ++d)
+          {
+            double      &c     = d == 0 ? x[k] : y[k];
+            const double c0    = c;
+            c                  = c0 + h;
+            const double plus  = energy(x, y);
+            c                  = c0 - h;
+            const double minus = energy(x, y);
+            c                  = c0;
+            EXPECT_NEAR(f[2 * k + d], -(plus - minus) / (2. * h), 1e-5)
+              << "trial " << trial << ", node " << k << ", direction " << d;
+          }
+    }
+  EXPECT_GT(overlapping, 50u);
+}
+
 TEST(Contact, LinkedCellsFindAllOverlappingBoxes)
 {
   // a row of 50 unit triangles; compare with the brute-force pair list

@@ -211,7 +211,8 @@ namespace tmfdem
      * contactor clipped by the target's three edges and by the two lines
      * through the target's centroid that bound S_k). @p cx, @p cy: the
      * contactor's nodes, @p tx, @p ty: the target's (counter-clockwise)
-     * [m]; @p penalty: p [Pa].
+     * [m]; @p penalty: p [Pa]. Returns E_t [J/m], 3 p sum_k int_{S_k}
+     * lambda_k dA.
      */
     inline double
     add_target_potential_forces(const double *cx,
