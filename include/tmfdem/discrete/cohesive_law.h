@@ -174,7 +174,7 @@ namespace tmfdem
      * The two Gauss points of the cohesive law miss the closed part where
      * it is shorter than 0.21 of the edge (a hinge): the faces would
      * interpenetrate there unresisted, and the contact that takes over at
-     * the break would find that overlap (doc/theory.md 5.2).
+     * the break would find that overlap (doc/theory.md 5.4).
      */
     inline ClosedPart
     joint_closed_part(const double          o_start,
