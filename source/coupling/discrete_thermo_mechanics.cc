@@ -374,7 +374,7 @@ namespace tmfdem
       // damaged or broke joints (its increment holds the crack's jump), nor
       // from one that did not converge (its increment holds motion still
       // under way, e.g. free pieces drifting after a fracture event: pushed
-      // on, they overlap, and the contact work of that jump is not booked)
+      // on, they overlap and the contact pushes them apart again)
       const unsigned int damaged = n_damaged_or_broken_joints(model);
       const bool         extrapolate =
         relaxed_thermal_step > 0. && relaxed_x.size() == model.n_nodes &&
@@ -384,7 +384,9 @@ namespace tmfdem
       if (extrapolate)
         {
           const EnergyBalance before = energy();
-          const double        ratio  = dt / relaxed_thermal_step;
+          const double        contact_before =
+            contact.enabled() ? contact.stored_energy(model, partition) : 0.;
+          const double ratio = dt / relaxed_thermal_step;
           for (unsigned int n = 0; n < model.n_nodes; ++n)
             {
               const double dx = model.x[n] - relaxed_x[n];
@@ -399,11 +401,18 @@ namespace tmfdem
                 model.y[n] += ratio * dy;
             }
           energy();
-          // the jump's work on the solid and the intact joints (damaged
-          // joints and contacts: force x jump, not booked)
+          // the jump's work on the solid, the intact joints and the
+          // contacts of the current pairs, each the change of its stored
+          // energy (damaged joints: not booked)
+          const double contact_jump =
+            contact.enabled() ?
+              contact.stored_energy(model, partition) - contact_before :
+              0.;
           balance.relaxation_work += balance.strain - before.strain +
-                                     balance.joint_stored - before.joint_stored;
+                                     balance.joint_stored -
+                                     before.joint_stored + contact_jump;
           balance.joint_work += balance.joint_stored - before.joint_stored;
+          balance.contact_work += contact_jump;
           if (contact.enabled())
             contact.request_search();
           ++predicted_relaxations;

@@ -166,6 +166,52 @@ namespace tmfdem
       return static_cast<unsigned int>(count[0]);
     }
 
+    double
+    ContactSystem::stored_energy(const DiscreteModel    &model,
+                                 const ElementPartition &partition) const
+    {
+      // per chunk of triangles (of the pairs' first triangles), each chunk
+      // on one rank, added in chunk order: the same on any number of ranks
+      const unsigned int  chunk = partition.chunk_size();
+      std::vector<double> chunk_energy((model.n_elements + chunk - 1) / chunk,
+                                       0.);
+      const double        penalty = contact.penalty_coulomb.normal_penalty;
+      std::vector<double> scratch(6);
+      for (std::size_t p = 0; p < pair_list.size(); ++p)
+        {
+          const ContactPair &pair = pair_list[p];
+          if (pair_is_rigid[p] || !partition.owns(pair.first))
+            continue;
+          const double pair_penalty =
+            penalty *
+            (contact.match_broken_joints ?
+               face_penalty_factor(model, pair.first, pair.second, penalty) :
+               1.);
+          const double *ax = &model.x[3 * pair.first];
+          const double *ay = &model.y[3 * pair.first];
+          const double *bx = &model.x[3 * pair.second];
+          const double *by = &model.y[3 * pair.second];
+          chunk_energy[pair.first / chunk] +=
+            add_target_potential_forces(ax,
+                                        ay,
+                                        bx,
+                                        by,
+                                        pair_penalty,
+                                        scratch.data()) +
+            add_target_potential_forces(bx,
+                                        by,
+                                        ax,
+                                        ay,
+                                        pair_penalty,
+                                        scratch.data());
+        }
+      partition.sum(chunk_energy);
+      double energy = 0.;
+      for (const double e : chunk_energy)
+        energy += e;
+      return energy;
+    }
+
     void
     ContactSystem::index_pairs(const unsigned int n_elements)
     {

@@ -220,6 +220,18 @@ namespace tmfdem
        *  all ranks (collective on several ranks). */
       unsigned int
       n_mechanical_pairs(const ElementPartition &partition) const;
+
+      /**
+       * The energy stored in the normal contact of the current pairs [J/m]:
+       * p int_S (phi_c + phi_t) dA summed over the pairs that carry force,
+       * each with its penalty (face_penalty_factor()), each pair counted by
+       * the owner of its first triangle and summed over the ranks. The
+       * normal force is minus its gradient (add_target_potential_forces());
+       * the relaxation predictor books its change over a jump.
+       */
+      double
+      stored_energy(const DiscreteModel    &model,
+                    const ElementPartition &partition) const;
       unsigned long
       n_searches() const
       {
