@@ -521,30 +521,40 @@ TEST(Contact, NormalForceDoesNoWorkAroundClosedLoops)
   EXPECT_GT(largest_contact_point_work, 1e-5);
 }
 
+namespace
+{
+  /** Two random counter-clockwise triangles (nodes 0-2 and 3-5 of @p x,
+   *  @p y) in [-1, 1]^2, the first shifted by 0.5 in x: often overlapping. */
+  void
+  random_pair(std::mt19937_64 &random, double *x, double *y)
+  {
+    std::uniform_real_distribution<double> u(-1., 1.);
+    for (unsigned int k = 0; k < 6; ++k)
+      {
+        x[k] = u(random) + (k < 3 ? 0.5 : 0.);
+        y[k] = u(random);
+      }
+    for (const unsigned int t0 : {0u, 3u})
+      if ((x[t0 + 1] - x[t0]) * (y[t0 + 2] - y[t0]) -
+            (y[t0 + 1] - y[t0]) * (x[t0 + 2] - x[t0]) <
+          0.)
+        {
+          std::swap(x[t0 + 1], x[t0 + 2]);
+          std::swap(y[t0 + 1], y[t0 + 2]);
+        }
+  }
+} // namespace
+
 // Both triangles' forces together: no net force and no net moment, for
 // random overlapping pairs (E is invariant under rigid motions).
 TEST(Contact, PotentialGradientForcesAreBalanced)
 {
-  std::mt19937_64                        random(11);
-  std::uniform_real_distribution<double> u(-1., 1.);
-  unsigned int                           overlapping = 0;
+  std::mt19937_64 random(11);
+  unsigned int    overlapping = 0;
   for (unsigned int trial = 0; trial < 500; ++trial)
     {
       double x[6], y[6];
-      for (unsigned int k = 0; k < 6; ++k)
-        {
-          x[k] = u(random) + (k < 3 ? 0.5 : 0.);
-          y[k] = u(random);
-        }
-      // counter-clockwise
-      for (const unsigned int t0 : {0u, 3u})
-        if ((x[t0 + 1] - x[t0]) * (y[t0 + 2] - y[t0]) -
-              (y[t0 + 1] - y[t0]) * (x[t0 + 2] - x[t0]) <
-            0.)
-          {
-            std::swap(x[t0 + 1], x[t0 + 2]);
-            std::swap(y[t0 + 1], y[t0 + 2]);
-          }
+      random_pair(random, x, y);
       double f[12];
       pair_normal_forces(x, y, f);
       double fx = 0., fy = 0., moment = 0., scale = 0.;
@@ -575,9 +585,8 @@ TEST(Contact, PotentialGradientForcesAreBalanced)
 // differences agree to O(h) even across a change of the overlap's shape.
 TEST(Contact, NormalForceIsMinusTheGradientOfTheContactEnergy)
 {
-  std::mt19937_64                        random(5);
-  std::uniform_real_distribution<double> u(-1., 1.);
-  const auto energy = [](const double *x, const double *y) {
+  std::mt19937_64 random(5);
+  const auto      energy = [](const double *x, const double *y) {
     double f[6];
     return add_target_potential_forces(x, y, x + 3, y + 3, 1., f) +
            add_target_potential_forces(x + 3, y + 3, x, y, 1., f);
@@ -586,19 +595,7 @@ TEST(Contact, NormalForceIsMinusTheGradientOfTheContactEnergy)
   for (unsigned int trial = 0; trial < 300; ++trial)
     {
       double x[6], y[6];
-      for (unsigned int k = 0; k < 6; ++k)
-        {
-          x[k] = u(random) + (k < 3 ? 0.5 : 0.);
-          y[k] = u(random);
-        }
-      for (const unsigned int t0 : {0u, 3u})
-        if ((x[t0 + 1] - x[t0]) * (y[t0 + 2] - y[t0]) -
-              (y[t0 + 1] - y[t0]) * (x[t0 + 2] - x[t0]) <
-            0.)
-          {
-            std::swap(x[t0 + 1], x[t0 + 2]);
-            std::swap(y[t0 + 1], y[t0 + 2]);
-          }
+      random_pair(random, x, y);
       if (!(energy(x, y) > 1e-6))
         continue;
       ++overlapping;
