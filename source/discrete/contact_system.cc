@@ -215,6 +215,7 @@ namespace tmfdem
     void
     ContactSystem::index_pairs(const unsigned int n_elements)
     {
+      pair_penalty_factor.clear();
       pair_force.assign(12 * pair_list.size(), 0.);
       pair_friction.assign(pair_list.size(), 0.);
       element_pair_start.assign(n_elements + 1, 0);
@@ -269,8 +270,17 @@ namespace tmfdem
                                        tbb::task_arena        &arena,
                                        const ElementPartition &partition)
     {
-      const bool   match_broken_joints = contact.match_broken_joints;
-      const double penalty             = law.normal_penalty;
+      // the faces of broken joints: their factors, once per pair list
+      if (contact.match_broken_joints &&
+          pair_penalty_factor.size() != pair_list.size())
+        {
+          pair_penalty_factor.resize(pair_list.size());
+          for (std::size_t p = 0; p < pair_list.size(); ++p)
+            pair_penalty_factor[p] = face_penalty_factor(m,
+                                                         pair_list[p].first,
+                                                         pair_list[p].second,
+                                                         law.normal_penalty);
+        }
       // on several ranks: the pairs with a triangle of this rank (the
       // others' friction entries stay 0)
       const bool distributed = partition.distributed();
@@ -304,9 +314,7 @@ namespace tmfdem
                 }
               // the faces of a broken joint: its compressive stiffness
               const double face_factor =
-                match_broken_joints ?
-                  face_penalty_factor(m, pair.first, pair.second, penalty) :
-                  1.;
+                pair_penalty_factor.empty() ? 1. : pair_penalty_factor[p];
               const Law &pair_law =
                 face_factor == 1. ?
                   law :

@@ -287,6 +287,9 @@ namespace tmfdem
        *  the search numbered local_pairs_of_search - 1. */
       std::vector<unsigned int> local_pairs;
       unsigned long             local_pairs_of_search = 0;
+      /** face_penalty_factor() of each pair, formed once per pair list
+       *  (emptied by index_pairs()); empty without match_broken_joints. */
+      std::vector<double> pair_penalty_factor;
       /** Several ranks: all pairs (all_pairs()), gathered for the search
        *  numbered all_pairs_of_search - 1. */
       std::vector<ContactPair> all_pair_list;
