@@ -59,6 +59,171 @@ namespace tmfdem
         return g;
       }
 
+      /** Joints per batch of the vectorised joint forces (one AVX-512
+       *  register of doubles). */
+      constexpr unsigned int joint_lanes = 8;
+
+      /** One double per joint of a batch (GCC vector extension). */
+      using JointLanes =
+        double __attribute__((vector_size(joint_lanes * sizeof(double))));
+      /** The comparison result of JointLanes. */
+      using JointMask =
+        long long __attribute__((vector_size(joint_lanes * sizeof(double))));
+
+      /** Is the comparison @p mask true in some lane? */
+      inline bool
+      any_lane(const JointMask mask)
+      {
+        for (unsigned int l = 0; l < joint_lanes; ++l)
+          if (mask[l] != 0)
+            return true;
+        return false;
+      }
+
+      /** |v| lane by lane (the sign bit cleared, as std::abs). */
+      inline JointLanes
+      lanes_abs(const JointLanes v)
+      {
+        return reinterpret_cast<JointLanes>(reinterpret_cast<JointMask>(v) &
+                                            0x7fffffffffffffffLL);
+      }
+
+      /**
+       * The forces of the joints j0 ... j0 + joint_lanes - 1 if all are
+       * intact and undamaged and stay below their peaks at both Gauss points
+       * (the cohesive law's rising branch, z = 1, no new damage: the common
+       * case), written to DiscreteModel::node_joint_force; returns true. The
+       * operations are those of joint_frame(), cohesive_traction() and
+       * joint_closed_part() in the same order, one joint per lane (no FMA
+       * contraction: this file is compiled with -ffp-contract=off), so the
+       * forces are bitwise those of the joint-by-joint loop. Returns false,
+       * having written nothing, where any joint of the batch needs that
+       * loop (damaged, broken, softening).
+       */
+      __attribute__((target_clones("avx512f", "avx2", "default"))) bool
+      elastic_joint_batch(DiscreteModel &m, const std::size_t j0)
+      {
+        for (unsigned int l = 0; l < joint_lanes; ++l)
+          if (m.joint_status[j0 + l] != JointStatus::intact ||
+              m.joint_damage[2 * (j0 + l)] != 0. ||
+              m.joint_damage[2 * (j0 + l) + 1] != 0.)
+            return false;
+        // joint_frame()
+        JointLanes x[4], y[4];
+        for (unsigned int l = 0; l < joint_lanes; ++l)
+          {
+            const unsigned int *n = &m.joint_nodes[4 * (j0 + l)];
+            for (unsigned int a = 0; a < 4; ++a)
+              {
+                x[a][l] = m.x[n[a]];
+                y[a][l] = m.y[n[a]];
+              }
+          }
+        const JointLanes d0x = x[2] - x[0], d0y = y[2] - y[0];
+        const JointLanes d1x = x[3] - x[1], d1y = y[3] - y[1];
+        const JointLanes ex = 0.5 * (x[1] + x[3] - x[0] - x[2]);
+        const JointLanes ey = 0.5 * (y[1] + y[3] - y[0] - y[2]);
+        const JointLanes L2 = ex * ex + ey * ey;
+        JointLanes       L;
+        for (unsigned int l = 0; l < joint_lanes; ++l)
+          L[l] = std::sqrt(L2[l]);
+        const JointLanes inverse_L = 1. / L;
+        const JointLanes tx = ex * inverse_L, ty = ey * inverse_L;
+        const JointLanes nx = ty, ny = -tx;
+        // the joints' constants
+        JointLanes kn, kt, ft, coh, ftan, inv_op, inv_sp;
+        for (unsigned int l = 0; l < joint_lanes; ++l)
+          {
+            const JointConstants &k = m.joint_constants[j0 + l];
+            kn[l]                   = k.normal_stiffness;
+            kt[l]                   = k.tangential_stiffness;
+            ft[l]                   = k.tensile_strength;
+            coh[l]                  = k.cohesion;
+            ftan[l]                 = k.friction_tangent;
+            inv_op[l]               = k.inverse_opening_peak;
+            inv_sp[l]               = k.inverse_slip_peak_open;
+          }
+        const JointLanes zero          = {};
+        const JointLanes o_start       = d0x * nx + d0y * ny;
+        const JointLanes o_end         = d1x * nx + d1y * ny;
+        const JointMask  partly_closed = (o_start < 0.) != (o_end < 0.);
+        JointLanes       fa0x = zero, fa0y = zero, fa1x = zero, fa1y = zero;
+        JointMask        beyond_peak = {};
+        for (unsigned int q = 0; q < 2; ++q)
+          {
+            const double     u  = q == 0 ? gauss_0 : gauss_1;
+            const JointLanes dx = (1. - u) * d0x + u * d1x;
+            const JointLanes dy = (1. - u) * d0y + u * d1y;
+            const JointLanes o  = dx * nx + dy * ny;
+            const JointLanes s  = dx * tx + dy * ty;
+            // cohesive_traction() with z = 1
+            const JointMask  closed      = o < 0.;
+            const JointLanes compression = closed ? kn * o : zero;
+            const JointLanes fs    = closed ? coh - compression * ftan : coh;
+            const JointLanes abs_s = lanes_abs(s);
+            const JointLanes r     = o * inv_op;
+            // the division only where some joint of the batch is closed
+            JointLanes r_s = abs_s * inv_sp;
+            if (any_lane(closed))
+              r_s = closed ? abs_s * kt / (2. * fs) : r_s;
+            beyond_peak |= (r > 1.) | (r_s > 1.);
+            const JointLanes rising = ft * r * (2. - r);
+            const JointLanes normal =
+              closed ? compression : (r <= 1. ? rising : ft);
+            const JointLanes shear_magnitude =
+              fs * (r_s < 1. ? r_s * (2. - r_s) : 1. + zero);
+            const JointLanes shear =
+              s < 0. ? -shear_magnitude : shear_magnitude;
+            const JointLanes w      = 0.5 * L;
+            const JointLanes n_used = (partly_closed & closed) ? zero : normal;
+            const JointLanes px     = w * (n_used * nx + shear * tx);
+            const JointLanes py     = w * (n_used * ny + shear * ty);
+            fa0x += (1. - u) * px;
+            fa0y += (1. - u) * py;
+            fa1x += u * px;
+            fa1y += u * py;
+          }
+        for (unsigned int l = 0; l < joint_lanes; ++l)
+          if (beyond_peak[l])
+            return false;
+        // joint_closed_part() where the joint is closed at one end only
+        if (any_lane(partly_closed))
+          {
+            const JointMask  at_start = o_start < 0.;
+            const JointLanes oc       = at_start ? o_start : o_end;
+            const JointLanes oo       = at_start ? o_end : o_start;
+            const JointLanes w        = oc / (oc - oo);
+            const JointLanes scale    = kn * L * oc;
+            const JointLanes closed   = scale * w * (0.5 - w / 6.);
+            const JointLanes open     = scale * w * w / 6.;
+            const JointLanes f_start  = at_start ? closed : open;
+            const JointLanes f_end    = at_start ? open : closed;
+            fa0x = partly_closed ? fa0x + f_start * nx : fa0x;
+            fa0y = partly_closed ? fa0y + f_start * ny : fa0y;
+            fa1x = partly_closed ? fa1x + f_end * nx : fa1x;
+            fa1y = partly_closed ? fa1y + f_end * ny : fa1y;
+          }
+        // a0 and b1 start the joint's edge (slot 0), a1 and b0 end it
+        // (slot 2): DiscreteModel::node_joint_force
+        for (unsigned int l = 0; l < joint_lanes; ++l)
+          {
+            const unsigned int *n  = &m.joint_nodes[4 * (j0 + l)];
+            double             *a0 = &m.node_joint_force[4 * n[0]];
+            double             *a1 = &m.node_joint_force[4 * n[1]];
+            double             *b0 = &m.node_joint_force[4 * n[2]];
+            double             *b1 = &m.node_joint_force[4 * n[3]];
+            a0[0]                  = fa0x[l];
+            a0[1]                  = fa0y[l];
+            a1[2]                  = fa1x[l];
+            a1[3]                  = fa1y[l];
+            b0[2]                  = -fa0x[l];
+            b0[3]                  = -fa0y[l];
+            b1[0]                  = -fa1x[l];
+            b1[1]                  = -fa1y[l];
+          }
+        return true;
+      }
+
       template <SofteningLaw law>
       bool
       compute_joint_forces_with(DiscreteModel     &m,
@@ -79,101 +244,116 @@ namespace tmfdem
               const std::size_t end,
               const std::size_t c) {
             JointFrame frames[frame_block_size];
-            for (std::size_t i = begin; i < end; ++i)
+            for (std::size_t block_begin = begin; block_begin < end;
+                 block_begin += frame_block_size)
               {
-                const std::size_t block = (i - begin) % frame_block_size;
-                if (block == 0)
+                const std::size_t block_end =
+                  std::min<std::size_t>(end, block_begin + frame_block_size);
+                // batches of elastic joints, vectorised; the rest below
+                std::uint32_t vectorised = 0;
+                for (std::size_t b = block_begin;
+                     b + joint_lanes <=
+                     std::min<std::size_t>(block_end, n_range);
+                     b += joint_lanes)
+                  if (elastic_joint_batch(m, subset.begin + b))
+                    vectorised |= ((1u << joint_lanes) - 1)
+                                  << (b - block_begin);
+                // the frames of the block's other intact joints
+                for (std::size_t b = block_begin; b < block_end; ++b)
                   {
-                    // the frames of the next block of intact joints
-                    const std::size_t block_end =
-                      std::min<std::size_t>(end, i + frame_block_size);
-                    for (std::size_t b = i; b < block_end; ++b)
+                    const std::size_t jb = b < n_range ?
+                                             subset.begin + b :
+                                             subset.others[b - n_range];
+                    if (!(vectorised >> (b - block_begin) & 1u) &&
+                        m.joint_status[jb] == JointStatus::intact)
+                      frames[b - block_begin] = joint_frame(m, jb);
+                  }
+                for (std::size_t i = block_begin; i < block_end; ++i)
+                  {
+                    const std::size_t block = i - block_begin;
+                    if (vectorised >> block & 1u)
+                      continue;
+                    const std::size_t j = i < n_range ?
+                                            subset.begin + i :
+                                            subset.others[i - n_range];
+                    if (m.joint_status[j] != JointStatus::intact)
+                      continue;
+                    const JointFrame     &g = frames[block];
+                    const JointConstants &k = m.joint_constants[j];
+                    double fa0x = 0, fa0y = 0, fa1x = 0, fa1y = 0;
+                    double last_do = 0., last_ds = 0.;
+                    // the openings at the two ends: a joint closed at one end
+                    // and open at the other takes its compression exactly
+                    // (below), not at the Gauss points
+                    const double o_start       = g.d0x * g.nx + g.d0y * g.ny;
+                    const double o_end         = g.d1x * g.nx + g.d1y * g.ny;
+                    const bool   partly_closed = (o_start < 0.) != (o_end < 0.);
+                    for (unsigned int q = 0; q < 2; ++q)
                       {
-                        const std::size_t jb = b < n_range ?
-                                                 subset.begin + b :
-                                                 subset.others[b - n_range];
-                        if (m.joint_status[jb] == JointStatus::intact)
-                          frames[b - i] = joint_frame(m, jb);
+                        const double        u  = q == 0 ? gauss_0 : gauss_1;
+                        const double        dx = (1. - u) * g.d0x + u * g.d1x;
+                        const double        dy = (1. - u) * g.d0y + u * g.d1y;
+                        const double        o  = dx * g.nx + dy * g.ny;
+                        const double        s  = dx * g.tx + dy * g.ty;
+                        const JointTraction tr =
+                          cohesive_traction<law>(o,
+                                                 s,
+                                                 k,
+                                                 m.joint_damage[2 * j + q]);
+                        last_do = std::max(last_do, tr.d_opening);
+                        last_ds = std::max(last_ds, tr.d_slip);
+                        // traction on A (pulls A toward B), weight L/2
+                        const double w = 0.5 * g.L;
+                        const double normal =
+                          partly_closed && o < 0. ? 0. : tr.normal;
+                        const double px = w * (normal * g.nx + tr.shear * g.tx);
+                        const double py = w * (normal * g.ny + tr.shear * g.ty);
+                        fa0x += (1. - u) * px;
+                        fa0y += (1. - u) * py;
+                        fa1x += u * px;
+                        fa1y += u * py;
                       }
-                  }
-                const std::size_t j =
-                  i < n_range ? subset.begin + i : subset.others[i - n_range];
-                if (m.joint_status[j] != JointStatus::intact)
-                  continue;
-                const JointFrame     &g    = frames[block];
-                const JointConstants &k    = m.joint_constants[j];
-                double                fa0x = 0, fa0y = 0, fa1x = 0, fa1y = 0;
-                double                last_do = 0., last_ds = 0.;
-                // the openings at the two ends: a joint closed at one end
-                // and open at the other takes its compression exactly
-                // (below), not at the Gauss points
-                const double o_start       = g.d0x * g.nx + g.d0y * g.ny;
-                const double o_end         = g.d1x * g.nx + g.d1y * g.ny;
-                const bool   partly_closed = (o_start < 0.) != (o_end < 0.);
-                for (unsigned int q = 0; q < 2; ++q)
-                  {
-                    const double        u  = q == 0 ? gauss_0 : gauss_1;
-                    const double        dx = (1. - u) * g.d0x + u * g.d1x;
-                    const double        dy = (1. - u) * g.d0y + u * g.d1y;
-                    const double        o  = dx * g.nx + dy * g.ny;
-                    const double        s  = dx * g.tx + dy * g.ty;
-                    const JointTraction tr =
-                      cohesive_traction<law>(o,
-                                             s,
-                                             k,
-                                             m.joint_damage[2 * j + q]);
-                    last_do = std::max(last_do, tr.d_opening);
-                    last_ds = std::max(last_ds, tr.d_slip);
-                    // traction on A (pulls A toward B), weight L/2
-                    const double w = 0.5 * g.L;
-                    const double normal =
-                      partly_closed && o < 0. ? 0. : tr.normal;
-                    const double px = w * (normal * g.nx + tr.shear * g.tx);
-                    const double py = w * (normal * g.ny + tr.shear * g.ty);
-                    fa0x += (1. - u) * px;
-                    fa0y += (1. - u) * py;
-                    fa1x += u * px;
-                    fa1y += u * py;
-                  }
-                if (partly_closed)
-                  {
-                    // k_n o(u) over the closed part, with the shape
-                    // functions of the two ends (joint_closed_part())
-                    const ClosedPart c =
-                      joint_closed_part(o_start, o_end, g.L, k);
-                    fa0x += c.force_start * g.nx;
-                    fa0y += c.force_start * g.ny;
-                    fa1x += c.force_end * g.nx;
-                    fa1y += c.force_end * g.ny;
-                  }
-                if (m.joint_damage[2 * j] >= 1. &&
-                    m.joint_damage[2 * j + 1] >= 1.)
-                  {
-                    const double ratio =
-                      last_do * last_do /
-                      std::max(1e-300, last_do * last_do + last_ds * last_ds);
-                    m.joint_status[j]     = ratio > 0.9 ? JointStatus::mode_I :
+                    if (partly_closed)
+                      {
+                        // k_n o(u) over the closed part, with the shape
+                        // functions of the two ends (joint_closed_part())
+                        const ClosedPart c =
+                          joint_closed_part(o_start, o_end, g.L, k);
+                        fa0x += c.force_start * g.nx;
+                        fa0y += c.force_start * g.ny;
+                        fa1x += c.force_end * g.nx;
+                        fa1y += c.force_end * g.ny;
+                      }
+                    if (m.joint_damage[2 * j] >= 1. &&
+                        m.joint_damage[2 * j + 1] >= 1.)
+                      {
+                        const double ratio =
+                          last_do * last_do /
+                          std::max(1e-300,
+                                   last_do * last_do + last_ds * last_ds);
+                        m.joint_status[j] = ratio > 0.9 ? JointStatus::mode_I :
                                             ratio < 0.1 ? JointStatus::mode_II :
                                                           JointStatus::mixed;
-                    m.joint_break_time[j] = t;
-                    fa0x = fa0y = fa1x = fa1y = 0.;
-                    broke_in_chunk[c]         = 1;
+                        m.joint_break_time[j] = t;
+                        fa0x = fa0y = fa1x = fa1y = 0.;
+                        broke_in_chunk[c]         = 1;
+                      }
+                    // a0 and b1 start the joint's edge (slot 0), a1 and b0 end
+                    // it (slot 2): DiscreteModel::node_joint_force
+                    const unsigned int *nodes = &m.joint_nodes[4 * j];
+                    double             *a0 = &m.node_joint_force[4 * nodes[0]];
+                    double             *a1 = &m.node_joint_force[4 * nodes[1]];
+                    double             *b0 = &m.node_joint_force[4 * nodes[2]];
+                    double             *b1 = &m.node_joint_force[4 * nodes[3]];
+                    a0[0]                  = fa0x;
+                    a0[1]                  = fa0y;
+                    a1[2]                  = fa1x;
+                    a1[3]                  = fa1y;
+                    b0[2]                  = -fa0x;
+                    b0[3]                  = -fa0y;
+                    b1[0]                  = -fa1x;
+                    b1[1]                  = -fa1y;
                   }
-                // a0 and b1 start the joint's edge (slot 0), a1 and b0 end
-                // it (slot 2): DiscreteModel::node_joint_force
-                const unsigned int *nodes = &m.joint_nodes[4 * j];
-                double             *a0    = &m.node_joint_force[4 * nodes[0]];
-                double             *a1    = &m.node_joint_force[4 * nodes[1]];
-                double             *b0    = &m.node_joint_force[4 * nodes[2]];
-                double             *b1    = &m.node_joint_force[4 * nodes[3]];
-                a0[0]                     = fa0x;
-                a0[1]                     = fa0y;
-                a1[2]                     = fa1x;
-                a1[3]                     = fa1y;
-                b0[2]                     = -fa0x;
-                b0[3]                     = -fa0y;
-                b1[0]                     = -fa1x;
-                b1[1]                     = -fa1y;
               }
           });
         for (const char b : broke_in_chunk)

@@ -18,6 +18,225 @@ namespace tmfdem
 {
   namespace discrete
   {
+    namespace
+    {
+      /**
+       * Elements per batch of the vectorised node update: eight doubles, one
+       * AVX-512 register, two AVX2 or four SSE2 registers (the kernel is
+       * compiled for each and chosen at run time).
+       */
+      constexpr unsigned int lanes = 8;
+
+      /** One double per element of a batch (GCC vector extension). */
+      using Lanes = double __attribute__((vector_size(lanes * sizeof(double))));
+
+      /** The sums of one chunk of the node update, in element order. */
+      struct ChunkSums
+      {
+        double w_elastic = 0., w_viscous = 0., w_joint = 0., w_contact = 0.,
+               w_external = 0., max_speed = 0.;
+        /** first non-finite node and first inverted element, or -1 */
+        double bad_node = -1., inverted = -1.;
+      };
+
+      /** What the vectorised update of a batch reads besides the model. */
+      struct BatchInput
+      {
+        const LameConstants *lame;
+        /** six constants per element, or nullptr (no anisotropic part) */
+        const double *anisotropy;
+        const double *viscosity;
+        /** per element of the batch its contact forces (6), or nullptr */
+        const double *contact_forces;
+        double        dt, damp_a, damp_b, c_damp, gravity_x, gravity_y;
+      };
+
+      inline Lanes
+      gather(const double *p, const unsigned int stride)
+      {
+        Lanes v;
+        for (unsigned int l = 0; l < lanes; ++l)
+          v[l] = p[stride * l];
+        return v;
+      }
+
+      inline void
+      scatter(const Lanes v, double *p, const unsigned int stride)
+      {
+        for (unsigned int l = 0; l < lanes; ++l)
+          p[stride * l] = v[l];
+      }
+
+      /**
+       * The node update of the elements e0 ... e0 + lanes - 1, all of whose
+       * nodes are free (no condition, no fixed or driven body): the same
+       * operations in the same order as the element-by-element loop of
+       * ExplicitSolver::update_nodes() (no FMA contraction: the file is
+       * compiled with -ffp-contract=off), one element per lane, so that
+       * every node's result is bitwise that of the scalar loop; the sums
+       * are then added lane by lane, node by node, in element order as
+       * there.
+       */
+      __attribute__((target_clones("avx512f", "avx2", "default"))) void
+      update_free_batch(DiscreteModel    &m,
+                        const std::size_t e0,
+                        const BatchInput &in,
+                        ChunkSums        &sums)
+      {
+        const std::size_t n0 = 3 * e0;
+        Lanes             X[3], Y[3], VX[3], VY[3], mass[3];
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            X[k]    = gather(&m.x[n0 + k], 3);
+            Y[k]    = gather(&m.y[n0 + k], 3);
+            VX[k]   = gather(&m.vx[n0 + k], 3);
+            VY[k]   = gather(&m.vy[n0 + k], 3);
+            mass[k] = gather(&m.mass[n0 + k], 3);
+          }
+        const Lanes ib0 = gather(&m.inverse_basis[4 * e0], 4),
+                    ib1 = gather(&m.inverse_basis[4 * e0 + 1], 4),
+                    ib2 = gather(&m.inverse_basis[4 * e0 + 2], 4),
+                    ib3 = gather(&m.inverse_basis[4 * e0 + 3], 4);
+        // F = [x1 - x0, x2 - x0; y1 - y0, y2 - y0] Fi^-1
+        const Lanes b00 = X[1] - X[0], b01 = X[2] - X[0];
+        const Lanes b10 = Y[1] - Y[0], b11 = Y[2] - Y[0];
+        const Lanes F00 = b00 * ib0 + b01 * ib2, F01 = b00 * ib1 + b01 * ib3;
+        const Lanes F10 = b10 * ib0 + b11 * ib2, F11 = b10 * ib1 + b11 * ib3;
+        const Lanes det = F00 * F11 - F10 * F01;
+        // F_e = F / s (1 / 1 is 1: the scalar loop's shortcut, bit for bit)
+        const Lanes inv_s = 1. / gather(&m.thermal_stretch[e0], 1);
+        const Lanes f00 = F00 * inv_s, f01 = F01 * inv_s;
+        const Lanes f10 = F10 * inv_s, f11 = F11 * inv_s;
+        // Eq. 44 (constitutive::elastic_stress())
+        Lanes mu, lambda;
+        for (unsigned int l = 0; l < lanes; ++l)
+          {
+            mu[l]     = in.lame[e0 + l].mu;
+            lambda[l] = in.lame[e0 + l].lambda;
+          }
+        const Lanes J         = f00 * f11 - f01 * f10;
+        const Lanes b_xx      = f00 * f00 + f01 * f01;
+        const Lanes b_yy      = f10 * f10 + f11 * f11;
+        const Lanes b_xy      = f00 * f10 + f01 * f11;
+        const Lanes inverse_J = 1. / J;
+        const Lanes mu_J      = mu * inverse_J;
+        const Lanes vol       = 0.5 * lambda * (J - inverse_J);
+        Lanes       sxx       = mu_J * (b_xx - 1.) + vol;
+        Lanes       syy       = mu_J * (b_yy - 1.) + vol;
+        Lanes       sxy       = mu_J * b_xy;
+        if (in.anisotropy != nullptr)
+          {
+            // anisotropic_stress() (solid.h)
+            const double *a  = &in.anisotropy[6 * e0];
+            const Lanes   c0 = gather(a, 6), c1 = gather(a + 1, 6),
+                        c2 = gather(a + 2, 6), c3 = gather(a + 3, 6),
+                        c4 = gather(a + 4, 6), c5 = gather(a + 5, 6);
+            const Lanes e_0   = 0.5 * (f00 * f00 + f10 * f10 - 1.);
+            const Lanes e_1   = 0.5 * (f01 * f01 + f11 * f11 - 1.);
+            const Lanes e_2   = mandel_sqrt2 * 0.5 * (f00 * f01 + f10 * f11);
+            const Lanes Sxx   = c0 * e_0 + c3 * e_1 + c4 * e_2;
+            const Lanes Syy   = c3 * e_0 + c1 * e_1 + c5 * e_2;
+            const Lanes Sxy   = (c4 * e_0 + c5 * e_1 + c2 * e_2) / mandel_sqrt2;
+            const Lanes inv_J = 1. / (f00 * f11 - f01 * f10);
+            const Lanes a00   = f00 * Sxx + f01 * Sxy,
+                        a01   = f00 * Sxy + f01 * Syy;
+            const Lanes a10   = f10 * Sxx + f11 * Sxy,
+                        a11   = f10 * Sxy + f11 * Syy;
+            sxx += (a00 * f00 + a01 * f01) * inv_J;
+            syy += (a10 * f10 + a11 * f11) * inv_J;
+            sxy += (a00 * f10 + a01 * f11) * inv_J;
+          }
+        // viscous stress 2 eta sym(dF/dt F^-1) where eta > 0, else 0
+        const Lanes eta = gather(&in.viscosity[e0], 1);
+        const Lanes d00 = VX[1] - VX[0], d01 = VX[2] - VX[0];
+        const Lanes d10 = VY[1] - VY[0], d11 = VY[2] - VY[0];
+        const Lanes D00 = d00 * ib0 + d01 * ib2, D01 = d00 * ib1 + d01 * ib3;
+        const Lanes D10 = d10 * ib0 + d11 * ib2, D11 = d10 * ib1 + d11 * ib3;
+        // Eigen's 2x2 inverse: 1 / det, then the cofactors times it
+        const Lanes invdet = 1. / det;
+        const Lanes G00 = F11 * invdet, G10 = -F10 * invdet;
+        const Lanes G01 = -F01 * invdet, G11 = F00 * invdet;
+        const Lanes L00 = D00 * G00 + D01 * G10, L01 = D00 * G01 + D01 * G11;
+        const Lanes L10 = D10 * G00 + D11 * G10, L11 = D10 * G01 + D11 * G11;
+        const auto  viscous = eta > 0.;
+        const Lanes zero    = {};
+        const Lanes vxx     = viscous ? 2. * eta * L00 : zero;
+        const Lanes vyy     = viscous ? 2. * eta * L11 : zero;
+        const Lanes vxy     = viscous ? eta * (L01 + L10) : zero;
+        scatter(sxx + vxx, &m.stress[3 * e0], 3);
+        scatter(syy + vyy, &m.stress[3 * e0 + 1], 3);
+        scatter(sxy + vxy, &m.stress[3 * e0 + 2], 3);
+        // nodal_forces() (solid.h) of both stresses: -1/2 sigma grad
+        const Lanes gx[3] = {Y[1] - Y[2], Y[2] - Y[0], Y[0] - Y[1]};
+        const Lanes gy[3] = {X[2] - X[1], X[0] - X[2], X[1] - X[0]};
+        Lanes       t_elastic[3], t_viscous[3], t_damping[3], t_joint[3],
+          t_contact[3], t_external[3], speed2[3];
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            const Lanes fex = -0.5 * (sxx * gx[k] + sxy * gy[k]);
+            const Lanes fey = -0.5 * (sxy * gx[k] + syy * gy[k]);
+            // exactly +0 where eta = 0, as the scalar loop's f_v
+            const Lanes fvx =
+              viscous ? -0.5 * (vxx * gx[k] + vxy * gy[k]) : zero;
+            const Lanes fvy =
+              viscous ? -0.5 * (vxy * gx[k] + vyy * gy[k]) : zero;
+            const Lanes fjx = 0. +
+                              gather(&m.node_joint_force[4 * (n0 + k)], 12) +
+                              gather(&m.node_joint_force[4 * (n0 + k) + 2], 12);
+            const Lanes fjy =
+              0. + gather(&m.node_joint_force[4 * (n0 + k) + 1], 12) +
+              gather(&m.node_joint_force[4 * (n0 + k) + 3], 12);
+            Lanes fcx = zero, fcy = zero;
+            if (in.contact_forces != nullptr)
+              {
+                fcx = gather(&in.contact_forces[2 * k], 6);
+                fcy = gather(&in.contact_forces[2 * k + 1], 6);
+              }
+            const Lanes fgx = mass[k] * in.gravity_x;
+            const Lanes fgy = mass[k] * in.gravity_y;
+            const Lanes fx  = fex + fvx + fjx + fcx + fgx;
+            const Lanes fy  = fey + fvy + fjy + fcy + fgy;
+            const Lanes b_m = in.damp_b / mass[k];
+            const Lanes vx  = in.damp_a * VX[k] + b_m * fx;
+            const Lanes vy  = in.damp_a * VY[k] + b_m * fy;
+            const Lanes ax  = 0.5 * in.dt * (VX[k] + vx);
+            const Lanes ay  = 0.5 * in.dt * (VY[k] + vy);
+            t_elastic[k]    = fex * ax + fey * ay;
+            t_viscous[k]    = fvx * ax + fvy * ay;
+            t_damping[k]    = in.c_damp * mass[k] / in.dt * (ax * ax + ay * ay);
+            t_joint[k]      = fjx * ax + fjy * ay;
+            t_contact[k]    = fcx * ax + fcy * ay;
+            t_external[k]   = fgx * ax + fgy * ay;
+            scatter(vx, &m.vx[n0 + k], 3);
+            scatter(vy, &m.vy[n0 + k], 3);
+            scatter(X[k] + in.dt * vx, &m.x[n0 + k], 3);
+            scatter(Y[k] + in.dt * vy, &m.y[n0 + k], 3);
+            speed2[k] = vx * vx + vy * vy;
+          }
+        // the sums in the scalar loop's order: element by element, node by
+        // node
+        for (unsigned int l = 0; l < lanes; ++l)
+          {
+            if (!(det[l] > 0.) && sums.inverted < 0.)
+              sums.inverted = e0 + l;
+            for (unsigned int k = 0; k < 3; ++k)
+              {
+                sums.w_elastic += t_elastic[k][l];
+                sums.w_viscous += t_viscous[k][l];
+                if (in.c_damp > 0.)
+                  sums.w_viscous -= t_damping[k][l];
+                sums.w_joint += t_joint[k][l];
+                sums.w_contact += t_contact[k][l];
+                sums.w_external += t_external[k][l];
+                const double v2 = speed2[k][l];
+                sums.max_speed  = std::max(sums.max_speed, v2);
+                if (!(v2 < 1e300) && sums.bad_node < 0.)
+                  sums.bad_node = n0 + 3 * l + k;
+              }
+          }
+      }
+    } // namespace
+
     void
     ExplicitSolver::update_nodes()
     {
@@ -47,6 +266,15 @@ namespace tmfdem
       // summary's last_relative_unbalanced_force): formed only there
       // (a compile-time flag, so that the loop without them keeps no
       // accumulators for them)
+      // are the nodes [first, last) all free (no condition, no fixed or
+      // driven body)?
+      const auto nodes_free = [&d](const std::size_t first,
+                                   const std::size_t last) {
+        for (std::size_t n = first; n < last; ++n)
+          if (d.node_condition_slot[n] >= 0 || !d.node_is_free(n))
+            return false;
+        return true;
+      };
       const auto chunk_update = [&](const auto        diagnostics_flag,
                                     const std::size_t local_begin,
                                     const std::size_t local_end,
@@ -57,6 +285,20 @@ namespace tmfdem
         double *sums      = &chunk_sums[(first_chunk + local_chunk) * stride];
         double  w_elastic = 0., w_viscous = 0., w_joint = 0., w_contact = 0.,
                w_external = 0., max_speed = 0.;
+        // batches of free elements: the same arithmetic, vectorised
+        // (update_free_batch()); not with the diagnostics (heat runs)
+        BatchInput batch;
+        batch.lame       = element_lame.data();
+        batch.anisotropy = anisotropic ? element_anisotropy.data() : nullptr;
+        batch.viscosity  = viscosity.data();
+        batch.contact_forces = nullptr;
+        batch.dt             = dt;
+        batch.damp_a         = damp_a;
+        batch.damp_b         = damp_b;
+        batch.c_damp         = c_damp;
+        batch.gravity_x      = d.gravity[0];
+        batch.gravity_y      = d.gravity[1];
+        double batch_contact[6 * lanes];
         // out-of-balance force (free components, no viscous part) and the
         // scale of the internal forces, both squared
         double unbalanced = 0., internal = 0., kinetic = 0.;
@@ -64,6 +306,37 @@ namespace tmfdem
         double bad_node = -1., inverted = -1.;
         for (std::size_t e = begin; e < end; ++e)
           {
+            if constexpr (!diagnostics)
+              if (e + lanes <= end && nodes_free(3 * e, 3 * (e + lanes)))
+                {
+                  if (have_contact)
+                    {
+                      std::fill(batch_contact, batch_contact + 6 * lanes, 0.);
+                      for (unsigned int l = 0; l < lanes; ++l)
+                        contact.add_forces(e + l, &batch_contact[6 * l]);
+                      batch.contact_forces = batch_contact;
+                    }
+                  ChunkSums s;
+                  s.w_elastic  = w_elastic;
+                  s.w_viscous  = w_viscous;
+                  s.w_joint    = w_joint;
+                  s.w_contact  = w_contact;
+                  s.w_external = w_external;
+                  s.max_speed  = max_speed;
+                  s.bad_node   = bad_node;
+                  s.inverted   = inverted;
+                  update_free_batch(m, e, batch, s);
+                  w_elastic  = s.w_elastic;
+                  w_viscous  = s.w_viscous;
+                  w_joint    = s.w_joint;
+                  w_contact  = s.w_contact;
+                  w_external = s.w_external;
+                  max_speed  = s.max_speed;
+                  bad_node   = s.bad_node;
+                  inverted   = s.inverted;
+                  e += lanes - 1;
+                  continue;
+                }
             const unsigned int n0 = 3 * e;
             const double      *X = &m.x[n0], *Y = &m.y[n0];
             const double      *VX = &m.vx[n0], *VY = &m.vy[n0];
