@@ -14,6 +14,15 @@ namespace tmfdem
   namespace
   {
     std::string
+    vector_instructions_selection()
+    {
+      std::string names;
+      for (const auto &[name, set] : discrete::vector_instructions_registry())
+        names += (names.empty() ? "" : "|") + name;
+      return names;
+    }
+
+    std::string
     softening_selection()
     {
       std::string names;
@@ -183,6 +192,18 @@ namespace tmfdem
                       "Allow oversubscription is true. Results do not "
                       "depend on it.");
     prm.declare_entry(
+      "Vector instructions",
+      "auto",
+      Patterns::Selection("auto|" + vector_instructions_selection()),
+      "Instruction set of the explicit loop, which takes the triangles whose "
+      "nodes are all free and the joints on the rising branch of their law "
+      "eight at a time, one per lane of a vector (node_update.cc, "
+      "joints.cc): auto: the widest this processor has; AVX-512, AVX2, "
+      "SSE2 (every x86-64 processor); none: one at a time. Every lane does "
+      "the operations of the one-at-a-time loop in the same order, so "
+      "results are bitwise the same with every choice; a set this processor "
+      "lacks is an error.");
+    prm.declare_entry(
       "Triangle numbering",
       "Hilbert curve",
       Patterns::Selection("Hilbert curve|mesh"),
@@ -259,10 +280,12 @@ namespace tmfdem
     mass_damping  = prm.get_double("Mass damping");
     gravity       = Utilities::string_to_double(
       Utilities::split_string_list(prm.get("Gravity"), ','));
-    contact_buffer          = prm.get_double("Contact buffer");
-    contact                 = prm.get_bool("Contact");
-    threads                 = prm.get_integer("Threads");
-    allow_oversubscription  = prm.get_bool("Allow oversubscription");
+    contact_buffer         = prm.get_double("Contact buffer");
+    contact                = prm.get_bool("Contact");
+    threads                = prm.get_integer("Threads");
+    allow_oversubscription = prm.get_bool("Allow oversubscription");
+    vector_instructions =
+      discrete::resolve_vector_instructions(prm.get("Vector instructions"));
     hilbert_curve_numbering = prm.get("Triangle numbering") == "Hilbert curve";
     {
       const std::string name = prm.get("Heterogeneity");

@@ -143,8 +143,14 @@ namespace tmfdem
                                           model,
                                           time,
                                           arena_for(n_threads),
-                                          joint_chunk_broke,
-                                          partition.joints());
+                                          joint_tally,
+                                          partition.joints(),
+                                          vector_instructions);
+      for (const JointChunkTally &t : joint_tally)
+        {
+          joint_steps_done += t.intact;
+          vectorised_joint_steps += t.vectorised;
+        }
       if (joints_broke && !partition.distributed())
         contact.request_search();
       update_nodes();

@@ -280,7 +280,11 @@ namespace tmfdem
       const double communication_max =
         Utilities::MPI::max(partition.communication_time(), communicator);
       const unsigned int contact_pairs = contact.n_mechanical_pairs(partition);
-      const double       ghosts =
+      const double       joint_steps =
+        Utilities::MPI::sum(joint_steps_done, communicator);
+      const double vectorised_joints =
+        Utilities::MPI::sum(vectorised_joint_steps, communicator);
+      const double ghosts =
         Utilities::MPI::sum(static_cast<double>(partition.n_ghosts()),
                             communicator);
       on_rank_zero([&]() {
@@ -346,6 +350,14 @@ namespace tmfdem
           .add("threads_requested", threads_requested)
           .add("threads_available", threads_available)
           .add("threads_used", threads_used)
+          .add("vector_instructions",
+               vector_instructions_name(vector_instructions))
+          .add("vectorised_element_share",
+               element_steps_done > 0. ?
+                 vectorised_element_steps / element_steps_done :
+                 0.)
+          .add("vectorised_joint_share",
+               joint_steps > 0. ? vectorised_joints / joint_steps : 0.)
           .add("cpu_time_s", loop_cpu_time)
           .add("wall_time_s", loop_wall_time)
           .add("cpu_time_busiest_thread_s",

@@ -98,9 +98,10 @@ namespace tmfdem
        * contraction: this file is compiled with -ffp-contract=off), so the
        * forces are bitwise those of the joint-by-joint loop. Returns false,
        * having written nothing, where any joint of the batch needs that
-       * loop (damaged, broken, softening).
+       * loop (damaged, broken, softening). Compiled once per instruction
+       * set (the wrappers below).
        */
-      __attribute__((target_clones("avx512f", "avx2", "default"))) bool
+      __attribute__((always_inline)) inline bool
       elastic_joint_batch(DiscreteModel &m, const std::size_t j0)
       {
         for (unsigned int l = 0; l < joint_lanes; ++l)
@@ -224,18 +225,63 @@ namespace tmfdem
         return true;
       }
 
+      /** The joint batch compiled for each instruction set. */
+      using JointBatchKernel = bool (*)(DiscreteModel &, const std::size_t);
+
+#if defined(__x86_64__)
+      __attribute__((target("avx512f"))) bool
+      elastic_joint_batch_avx512(DiscreteModel &m, const std::size_t j0)
+      {
+        return elastic_joint_batch(m, j0);
+      }
+
+      __attribute__((target("avx2"))) bool
+      elastic_joint_batch_avx2(DiscreteModel &m, const std::size_t j0)
+      {
+        return elastic_joint_batch(m, j0);
+      }
+#endif
+
+      bool
+      elastic_joint_batch_baseline(DiscreteModel &m, const std::size_t j0)
+      {
+        return elastic_joint_batch(m, j0);
+      }
+
+      /** The kernel of @p instructions, or nullptr (joint by joint). */
+      JointBatchKernel
+      joint_batch_kernel(const VectorInstructions instructions)
+      {
+        switch (instructions)
+          {
+#if defined(__x86_64__)
+            case VectorInstructions::avx512:
+              return elastic_joint_batch_avx512;
+            case VectorInstructions::avx2:
+              return elastic_joint_batch_avx2;
+#endif
+            case VectorInstructions::none:
+              return nullptr;
+            default:
+              return elastic_joint_batch_baseline;
+          }
+      }
+
       template <SofteningLaw law>
       bool
-      compute_joint_forces_with(DiscreteModel     &m,
-                                const double       t,
-                                tbb::task_arena   &arena,
-                                std::vector<char> &broke_in_chunk,
-                                const JointSubset &subset)
+      compute_joint_forces_with(DiscreteModel                &m,
+                                const double                  t,
+                                tbb::task_arena              &arena,
+                                std::vector<JointChunkTally> &tally,
+                                const JointSubset            &subset,
+                                const VectorInstructions      instructions)
       {
+        const JointBatchKernel batch_kernel = joint_batch_kernel(instructions);
         // the joints of the subset: a range, then a list (partition.h)
         const std::size_t n_range = subset.end - subset.begin;
         const std::size_t n       = n_range + subset.others.size();
-        broke_in_chunk.assign((n + joint_chunk_size - 1) / joint_chunk_size, 0);
+        tally.assign((n + joint_chunk_size - 1) / joint_chunk_size,
+                     JointChunkTally());
         for_each_chunk(
           arena,
           n,
@@ -252,12 +298,17 @@ namespace tmfdem
                 // batches of elastic joints, vectorised; the rest below
                 std::uint32_t vectorised = 0;
                 for (std::size_t b = block_begin;
+                     batch_kernel != nullptr &&
                      b + joint_lanes <=
-                     std::min<std::size_t>(block_end, n_range);
+                       std::min<std::size_t>(block_end, n_range);
                      b += joint_lanes)
-                  if (elastic_joint_batch(m, subset.begin + b))
-                    vectorised |= ((1u << joint_lanes) - 1)
-                                  << (b - block_begin);
+                  if (batch_kernel(m, subset.begin + b))
+                    {
+                      vectorised |= ((1u << joint_lanes) - 1)
+                                    << (b - block_begin);
+                      tally[c].intact += joint_lanes;
+                      tally[c].vectorised += joint_lanes;
+                    }
                 // the frames of the block's other intact joints
                 for (std::size_t b = block_begin; b < block_end; ++b)
                   {
@@ -278,6 +329,7 @@ namespace tmfdem
                                             subset.others[i - n_range];
                     if (m.joint_status[j] != JointStatus::intact)
                       continue;
+                    ++tally[c].intact;
                     const JointFrame     &g = frames[block];
                     const JointConstants &k = m.joint_constants[j];
                     double fa0x = 0, fa0y = 0, fa1x = 0, fa1y = 0;
@@ -336,7 +388,7 @@ namespace tmfdem
                                                           JointStatus::mixed;
                         m.joint_break_time[j] = t;
                         fa0x = fa0y = fa1x = fa1y = 0.;
-                        broke_in_chunk[c]         = 1;
+                        tally[c].broke            = true;
                       }
                     // a0 and b1 start the joint's edge (slot 0), a1 and b0 end
                     // it (slot 2): DiscreteModel::node_joint_force
@@ -356,8 +408,8 @@ namespace tmfdem
                   }
               }
           });
-        for (const char b : broke_in_chunk)
-          if (b)
+        for (const JointChunkTally &t : tally)
+          if (t.broke)
             return true;
         return false;
       }
@@ -484,12 +536,13 @@ namespace tmfdem
     }
 
     bool
-    compute_joint_forces(const SofteningLaw law,
-                         DiscreteModel     &model,
-                         const double       time,
-                         tbb::task_arena   &arena,
-                         std::vector<char> &broke_in_chunk,
-                         const JointSubset &subset)
+    compute_joint_forces(const SofteningLaw            law,
+                         DiscreteModel                &model,
+                         const double                  time,
+                         tbb::task_arena              &arena,
+                         std::vector<JointChunkTally> &tally,
+                         const JointSubset            &subset,
+                         const VectorInstructions      instructions)
     {
       switch (law)
         {
@@ -498,15 +551,17 @@ namespace tmfdem
               model,
               time,
               arena,
-              broke_in_chunk,
-              subset);
+              tally,
+              subset,
+              instructions);
           case SofteningLaw::munjiza:
             return compute_joint_forces_with<SofteningLaw::munjiza>(
               model,
               time,
               arena,
-              broke_in_chunk,
-              subset);
+              tally,
+              subset,
+              instructions);
         }
       return false;
     }

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <tmfdem/discrete/explicit_solver.h>
+#include <tmfdem/discrete/vector_instructions.h>
 #include <type_traits>
 
 namespace tmfdem
@@ -37,6 +38,9 @@ namespace tmfdem
                w_external = 0., max_speed = 0.;
         /** first non-finite node and first inverted element, or -1 */
         double bad_node = -1., inverted = -1.;
+        /** with the diagnostics: the out-of-balance force and the internal
+         *  force scale, squared, and the kinetic energy */
+        double unbalanced = 0., internal = 0., kinetic = 0.;
       };
 
       /** What the vectorised update of a batch reads besides the model. */
@@ -75,9 +79,10 @@ namespace tmfdem
        * compiled with -ffp-contract=off), one element per lane, so that
        * every node's result is bitwise that of the scalar loop; the sums
        * are then added lane by lane, node by node, in element order as
-       * there.
+       * there. Compiled once per instruction set (the wrappers below).
        */
-      __attribute__((target_clones("avx512f", "avx2", "default"))) void
+      template <bool diagnostics>
+      __attribute__((always_inline)) inline void
       update_free_batch(DiscreteModel    &m,
                         const std::size_t e0,
                         const BatchInput &in,
@@ -171,6 +176,7 @@ namespace tmfdem
         const Lanes gy[3] = {X[2] - X[1], X[0] - X[2], X[1] - X[0]};
         Lanes       t_elastic[3], t_viscous[3], t_damping[3], t_joint[3],
           t_contact[3], t_external[3], speed2[3];
+        Lanes t_unbalanced[3], t_internal[3], t_kinetic[3];
         for (unsigned int k = 0; k < 3; ++k)
           {
             const Lanes fex = -0.5 * (sxx * gx[k] + sxy * gy[k]);
@@ -206,12 +212,20 @@ namespace tmfdem
             t_damping[k]    = in.c_damp * mass[k] / in.dt * (ax * ax + ay * ay);
             t_joint[k]      = fjx * ax + fjy * ay;
             t_contact[k]    = fcx * ax + fcy * ay;
-            t_external[k]   = fgx * ax + fgy * ay;
+            if constexpr (diagnostics)
+              {
+                const Lanes ux = fx - fvx, uy = fy - fvy;
+                t_unbalanced[k] = ux * ux + uy * uy;
+                t_internal[k]   = fex * fex + fey * fey;
+              }
+            t_external[k] = fgx * ax + fgy * ay;
             scatter(vx, &m.vx[n0 + k], 3);
             scatter(vy, &m.vy[n0 + k], 3);
             scatter(X[k] + in.dt * vx, &m.x[n0 + k], 3);
             scatter(Y[k] + in.dt * vy, &m.y[n0 + k], 3);
             speed2[k] = vx * vx + vy * vy;
+            if constexpr (diagnostics)
+              t_kinetic[k] = 0.5 * mass[k] * speed2[k];
           }
         // the sums in the scalar loop's order: element by element, node by
         // node
@@ -221,7 +235,11 @@ namespace tmfdem
               sums.inverted = e0 + l;
             for (unsigned int k = 0; k < 3; ++k)
               {
+                if constexpr (diagnostics)
+                  sums.unbalanced += t_unbalanced[k][l];
                 sums.w_elastic += t_elastic[k][l];
+                if constexpr (diagnostics)
+                  sums.internal += t_internal[k][l];
                 sums.w_viscous += t_viscous[k][l];
                 if (in.c_damp > 0.)
                   sums.w_viscous -= t_damping[k][l];
@@ -230,9 +248,70 @@ namespace tmfdem
                 sums.w_external += t_external[k][l];
                 const double v2 = speed2[k][l];
                 sums.max_speed  = std::max(sums.max_speed, v2);
+                if constexpr (diagnostics)
+                  sums.kinetic += t_kinetic[k][l];
                 if (!(v2 < 1e300) && sums.bad_node < 0.)
                   sums.bad_node = n0 + 3 * l + k;
               }
+          }
+      }
+
+      /** The batch update compiled for each instruction set (with and
+       *  without the diagnostics). */
+      using FreeBatchKernel = void (*)(DiscreteModel &,
+                                       const std::size_t,
+                                       const BatchInput &,
+                                       ChunkSums &);
+
+#if defined(__x86_64__)
+      template <bool diagnostics>
+      __attribute__((target("avx512f"))) void
+      update_free_batch_avx512(DiscreteModel    &m,
+                               const std::size_t e0,
+                               const BatchInput &in,
+                               ChunkSums        &sums)
+      {
+        update_free_batch<diagnostics>(m, e0, in, sums);
+      }
+
+      template <bool diagnostics>
+      __attribute__((target("avx2"))) void
+      update_free_batch_avx2(DiscreteModel    &m,
+                             const std::size_t e0,
+                             const BatchInput &in,
+                             ChunkSums        &sums)
+      {
+        update_free_batch<diagnostics>(m, e0, in, sums);
+      }
+#endif
+
+      template <bool diagnostics>
+      void
+      update_free_batch_baseline(DiscreteModel    &m,
+                                 const std::size_t e0,
+                                 const BatchInput &in,
+                                 ChunkSums        &sums)
+      {
+        update_free_batch<diagnostics>(m, e0, in, sums);
+      }
+
+      /** The kernel of @p instructions, or nullptr (element by element). */
+      template <bool diagnostics>
+      FreeBatchKernel
+      free_batch_kernel(const VectorInstructions instructions)
+      {
+        switch (instructions)
+          {
+#if defined(__x86_64__)
+            case VectorInstructions::avx512:
+              return update_free_batch_avx512<diagnostics>;
+            case VectorInstructions::avx2:
+              return update_free_batch_avx2<diagnostics>;
+#endif
+            case VectorInstructions::none:
+              return nullptr;
+            default:
+              return update_free_batch_baseline<diagnostics>;
           }
       }
     } // namespace
@@ -266,6 +345,10 @@ namespace tmfdem
       // summary's last_relative_unbalanced_force): formed only there
       // (a compile-time flag, so that the loop without them keeps no
       // accumulators for them)
+      const FreeBatchKernel plain_batch_kernel =
+        free_batch_kernel<false>(vector_instructions);
+      const FreeBatchKernel diagnostics_batch_kernel =
+        free_batch_kernel<true>(vector_instructions);
       // are the nodes [first, last) all free (no condition, no fixed or
       // driven body)?
       const auto nodes_free = [&d](const std::size_t first,
@@ -286,7 +369,10 @@ namespace tmfdem
         double  w_elastic = 0., w_viscous = 0., w_joint = 0., w_contact = 0.,
                w_external = 0., max_speed = 0.;
         // batches of free elements: the same arithmetic, vectorised
-        // (update_free_batch()); not with the diagnostics (heat runs)
+        // (update_free_batch())
+        const FreeBatchKernel batch_kernel =
+          diagnostics ? diagnostics_batch_kernel : plain_batch_kernel;
+        double     batched = 0.; // elements updated in batches
         BatchInput batch;
         batch.lame       = element_lame.data();
         batch.anisotropy = anisotropic ? element_anisotropy.data() : nullptr;
@@ -306,37 +392,44 @@ namespace tmfdem
         double bad_node = -1., inverted = -1.;
         for (std::size_t e = begin; e < end; ++e)
           {
-            if constexpr (!diagnostics)
-              if (e + lanes <= end && nodes_free(3 * e, 3 * (e + lanes)))
-                {
-                  if (have_contact)
-                    {
-                      std::fill(batch_contact, batch_contact + 6 * lanes, 0.);
-                      for (unsigned int l = 0; l < lanes; ++l)
-                        contact.add_forces(e + l, &batch_contact[6 * l]);
-                      batch.contact_forces = batch_contact;
-                    }
-                  ChunkSums s;
-                  s.w_elastic  = w_elastic;
-                  s.w_viscous  = w_viscous;
-                  s.w_joint    = w_joint;
-                  s.w_contact  = w_contact;
-                  s.w_external = w_external;
-                  s.max_speed  = max_speed;
-                  s.bad_node   = bad_node;
-                  s.inverted   = inverted;
-                  update_free_batch(m, e, batch, s);
-                  w_elastic  = s.w_elastic;
-                  w_viscous  = s.w_viscous;
-                  w_joint    = s.w_joint;
-                  w_contact  = s.w_contact;
-                  w_external = s.w_external;
-                  max_speed  = s.max_speed;
-                  bad_node   = s.bad_node;
-                  inverted   = s.inverted;
-                  e += lanes - 1;
-                  continue;
-                }
+            if (batch_kernel != nullptr && e + lanes <= end &&
+                nodes_free(3 * e, 3 * (e + lanes)))
+              {
+                if (have_contact)
+                  {
+                    std::fill(batch_contact, batch_contact + 6 * lanes, 0.);
+                    for (unsigned int l = 0; l < lanes; ++l)
+                      contact.add_forces(e + l, &batch_contact[6 * l]);
+                    batch.contact_forces = batch_contact;
+                  }
+                ChunkSums s;
+                s.w_elastic  = w_elastic;
+                s.w_viscous  = w_viscous;
+                s.w_joint    = w_joint;
+                s.w_contact  = w_contact;
+                s.w_external = w_external;
+                s.max_speed  = max_speed;
+                s.bad_node   = bad_node;
+                s.inverted   = inverted;
+                s.unbalanced = unbalanced;
+                s.internal   = internal;
+                s.kinetic    = kinetic;
+                batch_kernel(m, e, batch, s);
+                w_elastic  = s.w_elastic;
+                w_viscous  = s.w_viscous;
+                w_joint    = s.w_joint;
+                w_contact  = s.w_contact;
+                w_external = s.w_external;
+                max_speed  = s.max_speed;
+                bad_node   = s.bad_node;
+                inverted   = s.inverted;
+                unbalanced = s.unbalanced;
+                internal   = s.internal;
+                kinetic    = s.kinetic;
+                batched += lanes;
+                e += lanes - 1;
+                continue;
+              }
             const unsigned int n0 = 3 * e;
             const double      *X = &m.x[n0], *Y = &m.y[n0];
             const double      *VX = &m.vx[n0], *VY = &m.vy[n0];
@@ -523,6 +616,7 @@ namespace tmfdem
         sums[5]  = max_speed;
         sums[6]  = bad_node;
         sums[7]  = inverted;
+        sums[12] = batched;
       };
       const bool diagnostics = with_heat;
       for_each_chunk(arena_for(n_threads),
@@ -569,6 +663,7 @@ namespace tmfdem
           unbalanced_sq += sums[8];
           internal_sq += sums[9];
           kinetic += sums[10];
+          vectorised_element_steps += sums[12];
           // chunks in element order: the first flagged is the lowest index
           if (first_nonfinite_node < 0 && sums[6] >= 0.)
             first_nonfinite_node = static_cast<long long>(sums[6]);
@@ -587,6 +682,7 @@ namespace tmfdem
                 sums[n_sums + 2 * n_bodies + 2 * k + 1];
             }
         }
+      element_steps_done += m.n_elements;
       relative_unbalanced_force =
         std::sqrt(unbalanced_sq / std::max(internal_sq, 1e-300));
       step_kinetic = kinetic;

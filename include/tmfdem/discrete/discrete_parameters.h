@@ -16,6 +16,7 @@
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/discrete/cohesive_law.h>
 #include <tmfdem/discrete/contact_heat.h>
+#include <tmfdem/discrete/vector_instructions.h>
 #include <vector>
 
 namespace dealii
@@ -57,6 +58,10 @@ namespace tmfdem
     double              contact_buffer = 0.;    ///< [m]; 0: 0.25 x smallest h
     unsigned int        threads        = 0;     ///< 0: all cores
     bool allow_oversubscription        = false; ///< threads beyond the cores
+    /** Instruction set of the explicit loop's batches, resolved from the
+     *  entry (auto: the widest this processor has). */
+    discrete::VectorInstructions vector_instructions =
+      discrete::VectorInstructions::sse2;
     /** Number the triangles along a Hilbert curve (cell_order.h); false:
      *  in the mesh's order. */
     bool hilbert_curve_numbering = true;

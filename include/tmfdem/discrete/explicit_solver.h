@@ -353,20 +353,28 @@ namespace tmfdem
       unsigned int  n_threads         = 1;
       unsigned int  threads_requested = 0; ///< Discrete mechanics/Threads
       unsigned int  threads_available = 1; ///< cores this process may use
-      unsigned int  threads_used   = 1;  ///< measured concurrency of the arena
-      double        loop_cpu_time  = 0.; ///< process CPU, time loop [s]
-      double        loop_wall_time = 0.; ///< wall, time loop, this run [s]
+      unsigned int  threads_used = 1; ///< measured concurrency of the arena
+      /** Instruction set of the loop's batches (Vector instructions). */
+      VectorInstructions vector_instructions = VectorInstructions::none;
+      /** Triangle-steps and joint-steps of this run done in vector batches
+       *  (summary.json vectorised_element_share, _joint_share). */
+      double vectorised_element_steps = 0., vectorised_joint_steps = 0.;
+      /** Triangle-steps and intact-joint-steps of this run. */
+      double element_steps_done = 0., joint_steps_done = 0.;
+      double loop_cpu_time  = 0.; ///< process CPU, time loop [s]
+      double loop_wall_time = 0.; ///< wall, time loop, this run [s]
       /// CPU time of each thread in the time loop, largest first [s]
       std::vector<double> loop_thread_cpu_times;
 
       // bookkeeping: per chunk sums, summed in chunk order (thread-count
       // independent)
       static constexpr unsigned int chunk_size = 512;
-      static constexpr unsigned int n_sums     = 12;
+      static constexpr unsigned int n_sums     = 13;
       /** n_sums + 2 bodies + 2 conditions per chunk */
       std::vector<double> chunk_sums;
       EnergyBalance       balance;
-      std::vector<char>   joint_chunk_broke; ///< scratch of the joint forces
+      /** per chunk of the joint forces: breaks, joints, batches */
+      std::vector<JointChunkTally> joint_tally;
 
       // output
       std::unique_ptr<VtuSeries>   solution_series, crack_series;

@@ -12,6 +12,7 @@
 #include <tmfdem/base/threads.h>
 #include <tmfdem/discrete/cohesive_law.h>
 #include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/vector_instructions.h>
 #include <vector>
 
 namespace tmfdem
@@ -41,22 +42,33 @@ namespace tmfdem
                           const SofteningLaw law,
                           DiscreteModel     &model);
 
+    /** What one chunk of the joint forces did. */
+    struct JointChunkTally
+    {
+      bool         broke      = false; ///< a joint of the chunk broke
+      unsigned int intact     = 0;     ///< intact joints computed
+      unsigned int vectorised = 0;     ///< of those, in vector batches
+    };
+
     /**
      * Forces of all intact joints at time @p time [s] into
      * the slots of their four nodes in model.node_joint_force [N/m]; joints
      * whose damage reaches 1 at both Gauss points break (status by mode,
      * break time @p time) and their slots are zeroed. Runs in @p arena over
-     * fixed chunks; @p broke_in_chunk is scratch. Only the joints of @p subset
-     * are computed (on several ranks those with a triangle of this rank,
-     * partition.h). Returns whether one of them broke.
+     * fixed chunks; @p tally gets what each chunk did. Only the joints of @p
+     * subset are computed (on several ranks those with a triangle of this rank,
+     * partition.h). Batches of joints on the rising branch of the law go
+     * through the vector kernel of @p instructions, bitwise the same
+     * (vector_instructions.h). Returns whether one of them broke.
      */
     bool
-    compute_joint_forces(const SofteningLaw law,
-                         DiscreteModel     &model,
-                         const double       time,
-                         tbb::task_arena   &arena,
-                         std::vector<char> &broke_in_chunk,
-                         const JointSubset &subset);
+    compute_joint_forces(const SofteningLaw            law,
+                         DiscreteModel                &model,
+                         const double                  time,
+                         tbb::task_arena              &arena,
+                         std::vector<JointChunkTally> &tally,
+                         const JointSubset            &subset,
+                         const VectorInstructions      instructions);
 
     /**
      * The largest strength utilisation over the undamaged intact joints

@@ -1,0 +1,53 @@
+/**
+ * @file
+ * The vector instructions of the explicit loop's batches (node_update.cc,
+ * joints.cc): eight triangles or joints per batch, one per lane of a GCC
+ * vector of eight doubles, compiled once per instruction set and chosen at
+ * run time. Every lane does the operations of the element-by-element loop
+ * in the same order, so the results are bitwise the same whichever is
+ * chosen (tests/discrete/vector_instructions.py).
+ */
+#ifndef tmfdem_discrete_vector_instructions_h
+#define tmfdem_discrete_vector_instructions_h
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    /** Instruction set of the batches of the explicit loop. */
+    enum class VectorInstructions
+    {
+      none,   ///< element by element (no batches)
+      sse2,   ///< 128-bit registers (every x86-64 processor)
+      avx2,   ///< 256-bit registers
+      avx512, ///< 512-bit registers (AVX-512F)
+    };
+
+    /** Names of the instruction sets (prm entry Discrete
+     *  mechanics/Vector instructions, besides "auto"). */
+    const std::vector<std::pair<std::string, VectorInstructions>> &
+    vector_instructions_registry();
+
+    /** Does this processor run @p instructions? */
+    bool
+    vector_instructions_supported(const VectorInstructions instructions);
+
+    /** The name of @p instructions in the registry. */
+    std::string
+    vector_instructions_name(const VectorInstructions instructions);
+
+    /**
+     * The instruction set of the prm entry value @p entry: "auto" is the
+     * widest this processor has; a named set it does not have is an
+     * InputError that names the entry and what is allowed here.
+     */
+    VectorInstructions
+    resolve_vector_instructions(const std::string &entry);
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif
