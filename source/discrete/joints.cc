@@ -59,33 +59,24 @@ namespace tmfdem
         return g;
       }
 
-      /** Joints per batch of the vectorised joint forces (one AVX-512
-       *  register of doubles). */
-      constexpr unsigned int joint_lanes = 8;
-
-      /** One double per joint of a batch (GCC vector extension). */
-      using JointLanes =
-        double __attribute__((vector_size(joint_lanes * sizeof(double))));
-      /** The comparison result of JointLanes. */
-      using JointMask =
-        long long __attribute__((vector_size(joint_lanes * sizeof(double))));
-
       /** Is the comparison @p mask true in some lane? */
+      template <typename Mask>
       inline bool
-      any_lane(const JointMask mask)
+      any_lane(const Mask mask)
       {
-        for (unsigned int l = 0; l < joint_lanes; ++l)
+        for (unsigned int l = 0; l < sizeof(Mask) / sizeof(long long); ++l)
           if (mask[l] != 0)
             return true;
         return false;
       }
 
       /** |v| lane by lane (the sign bit cleared, as std::abs). */
-      inline JointLanes
-      lanes_abs(const JointLanes v)
+      template <typename Lanes, typename Mask>
+      inline Lanes
+      lanes_abs(const Lanes v)
       {
-        return reinterpret_cast<JointLanes>(reinterpret_cast<JointMask>(v) &
-                                            0x7fffffffffffffffLL);
+        return reinterpret_cast<Lanes>(reinterpret_cast<Mask>(v) &
+                                       0x7fffffffffffffffLL);
       }
 
       /**
@@ -101,9 +92,12 @@ namespace tmfdem
        * loop (damaged, broken, softening). Compiled once per instruction
        * set (the wrappers below).
        */
+      template <unsigned int joint_lanes>
       __attribute__((always_inline)) inline bool
       elastic_joint_batch(DiscreteModel &m, const std::size_t j0)
       {
+        using JointLanes = typename LaneVector<joint_lanes>::type;
+        using JointMask  = typename LaneVector<joint_lanes>::mask;
         for (unsigned int l = 0; l < joint_lanes; ++l)
           if (m.joint_status[j0 + l] != JointStatus::intact ||
               m.joint_damage[2 * (j0 + l)] != 0. ||
@@ -161,7 +155,7 @@ namespace tmfdem
             const JointMask  closed      = o < 0.;
             const JointLanes compression = closed ? kn * o : zero;
             const JointLanes fs    = closed ? coh - compression * ftan : coh;
-            const JointLanes abs_s = lanes_abs(s);
+            const JointLanes abs_s = lanes_abs<JointLanes, JointMask>(s);
             const JointLanes r     = o * inv_op;
             // the division only where some joint of the batch is closed
             JointLanes r_s = abs_s * inv_sp;
@@ -232,20 +226,20 @@ namespace tmfdem
       __attribute__((target("avx512f"))) bool
       elastic_joint_batch_avx512(DiscreteModel &m, const std::size_t j0)
       {
-        return elastic_joint_batch(m, j0);
+        return elastic_joint_batch<8>(m, j0);
       }
 
       __attribute__((target("avx2"))) bool
       elastic_joint_batch_avx2(DiscreteModel &m, const std::size_t j0)
       {
-        return elastic_joint_batch(m, j0);
+        return elastic_joint_batch<4>(m, j0);
       }
 #endif
 
       bool
       elastic_joint_batch_baseline(DiscreteModel &m, const std::size_t j0)
       {
-        return elastic_joint_batch(m, j0);
+        return elastic_joint_batch<2>(m, j0);
       }
 
       /** The kernel of @p instructions, or nullptr (joint by joint). */
@@ -277,6 +271,7 @@ namespace tmfdem
                                 const VectorInstructions      instructions)
       {
         const JointBatchKernel batch_kernel = joint_batch_kernel(instructions);
+        const unsigned int     joint_lanes  = vector_lanes(instructions);
         // the joints of the subset: a range, then a list (partition.h)
         const std::size_t n_range = subset.end - subset.begin;
         const std::size_t n       = n_range + subset.others.size();

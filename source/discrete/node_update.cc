@@ -21,16 +21,6 @@ namespace tmfdem
   {
     namespace
     {
-      /**
-       * Elements per batch of the vectorised node update: eight doubles, one
-       * AVX-512 register, two AVX2 or four SSE2 registers (the kernel is
-       * compiled for each and chosen at run time).
-       */
-      constexpr unsigned int lanes = 8;
-
-      /** One double per element of a batch (GCC vector extension). */
-      using Lanes = double __attribute__((vector_size(lanes * sizeof(double))));
-
       /** The sums of one chunk of the node update, in element order. */
       struct ChunkSums
       {
@@ -55,19 +45,23 @@ namespace tmfdem
         double        dt, damp_a, damp_b, c_damp, gravity_x, gravity_y;
       };
 
+      /** The vector of p[0], p[stride], ... (one per lane). */
+      template <typename Lanes>
       inline Lanes
       gather(const double *p, const unsigned int stride)
       {
         Lanes v;
-        for (unsigned int l = 0; l < lanes; ++l)
+        for (unsigned int l = 0; l < sizeof(Lanes) / sizeof(double); ++l)
           v[l] = p[stride * l];
         return v;
       }
 
+      /** p[0], p[stride], ... = the lanes of @p v. */
+      template <typename Lanes>
       inline void
       scatter(const Lanes v, double *p, const unsigned int stride)
       {
-        for (unsigned int l = 0; l < lanes; ++l)
+        for (unsigned int l = 0; l < sizeof(Lanes) / sizeof(double); ++l)
           p[stride * l] = v[l];
       }
 
@@ -81,27 +75,28 @@ namespace tmfdem
        * are then added lane by lane, node by node, in element order as
        * there. Compiled once per instruction set (the wrappers below).
        */
-      template <bool diagnostics>
+      template <unsigned int lanes, bool diagnostics>
       __attribute__((always_inline)) inline void
       update_free_batch(DiscreteModel    &m,
                         const std::size_t e0,
                         const BatchInput &in,
                         ChunkSums        &sums)
       {
+        using Lanes          = typename LaneVector<lanes>::type;
         const std::size_t n0 = 3 * e0;
         Lanes             X[3], Y[3], VX[3], VY[3], mass[3];
         for (unsigned int k = 0; k < 3; ++k)
           {
-            X[k]    = gather(&m.x[n0 + k], 3);
-            Y[k]    = gather(&m.y[n0 + k], 3);
-            VX[k]   = gather(&m.vx[n0 + k], 3);
-            VY[k]   = gather(&m.vy[n0 + k], 3);
-            mass[k] = gather(&m.mass[n0 + k], 3);
+            X[k]    = gather<Lanes>(&m.x[n0 + k], 3);
+            Y[k]    = gather<Lanes>(&m.y[n0 + k], 3);
+            VX[k]   = gather<Lanes>(&m.vx[n0 + k], 3);
+            VY[k]   = gather<Lanes>(&m.vy[n0 + k], 3);
+            mass[k] = gather<Lanes>(&m.mass[n0 + k], 3);
           }
-        const Lanes ib0 = gather(&m.inverse_basis[4 * e0], 4),
-                    ib1 = gather(&m.inverse_basis[4 * e0 + 1], 4),
-                    ib2 = gather(&m.inverse_basis[4 * e0 + 2], 4),
-                    ib3 = gather(&m.inverse_basis[4 * e0 + 3], 4);
+        const Lanes ib0 = gather<Lanes>(&m.inverse_basis[4 * e0], 4),
+                    ib1 = gather<Lanes>(&m.inverse_basis[4 * e0 + 1], 4),
+                    ib2 = gather<Lanes>(&m.inverse_basis[4 * e0 + 2], 4),
+                    ib3 = gather<Lanes>(&m.inverse_basis[4 * e0 + 3], 4);
         // F = [x1 - x0, x2 - x0; y1 - y0, y2 - y0] Fi^-1
         const Lanes b00 = X[1] - X[0], b01 = X[2] - X[0];
         const Lanes b10 = Y[1] - Y[0], b11 = Y[2] - Y[0];
@@ -109,7 +104,7 @@ namespace tmfdem
         const Lanes F10 = b10 * ib0 + b11 * ib2, F11 = b10 * ib1 + b11 * ib3;
         const Lanes det = F00 * F11 - F10 * F01;
         // F_e = F / s (1 / 1 is 1: the scalar loop's shortcut, bit for bit)
-        const Lanes inv_s = 1. / gather(&m.thermal_stretch[e0], 1);
+        const Lanes inv_s = 1. / gather<Lanes>(&m.thermal_stretch[e0], 1);
         const Lanes f00 = F00 * inv_s, f01 = F01 * inv_s;
         const Lanes f10 = F10 * inv_s, f11 = F11 * inv_s;
         // Eq. 44 (constitutive::elastic_stress())
@@ -132,10 +127,12 @@ namespace tmfdem
         if (in.anisotropy != nullptr)
           {
             // anisotropic_stress() (solid.h)
-            const double *a  = &in.anisotropy[6 * e0];
-            const Lanes   c0 = gather(a, 6), c1 = gather(a + 1, 6),
-                        c2 = gather(a + 2, 6), c3 = gather(a + 3, 6),
-                        c4 = gather(a + 4, 6), c5 = gather(a + 5, 6);
+            const double *a = &in.anisotropy[6 * e0];
+            const Lanes c0 = gather<Lanes>(a, 6), c1 = gather<Lanes>(a + 1, 6),
+                        c2    = gather<Lanes>(a + 2, 6),
+                        c3    = gather<Lanes>(a + 3, 6),
+                        c4    = gather<Lanes>(a + 4, 6),
+                        c5    = gather<Lanes>(a + 5, 6);
             const Lanes e_0   = 0.5 * (f00 * f00 + f10 * f10 - 1.);
             const Lanes e_1   = 0.5 * (f01 * f01 + f11 * f11 - 1.);
             const Lanes e_2   = mandel_sqrt2 * 0.5 * (f00 * f01 + f10 * f11);
@@ -152,7 +149,7 @@ namespace tmfdem
             sxy += (a00 * f10 + a01 * f11) * inv_J;
           }
         // viscous stress 2 eta sym(dF/dt F^-1) where eta > 0, else 0
-        const Lanes eta = gather(&in.viscosity[e0], 1);
+        const Lanes eta = gather<Lanes>(&in.viscosity[e0], 1);
         const Lanes d00 = VX[1] - VX[0], d01 = VX[2] - VX[0];
         const Lanes d10 = VY[1] - VY[0], d11 = VY[2] - VY[0];
         const Lanes D00 = d00 * ib0 + d01 * ib2, D01 = d00 * ib1 + d01 * ib3;
@@ -186,17 +183,17 @@ namespace tmfdem
               viscous ? -0.5 * (vxx * gx[k] + vxy * gy[k]) : zero;
             const Lanes fvy =
               viscous ? -0.5 * (vxy * gx[k] + vyy * gy[k]) : zero;
-            const Lanes fjx = 0. +
-                              gather(&m.node_joint_force[4 * (n0 + k)], 12) +
-                              gather(&m.node_joint_force[4 * (n0 + k) + 2], 12);
+            const Lanes fjx =
+              0. + gather<Lanes>(&m.node_joint_force[4 * (n0 + k)], 12) +
+              gather<Lanes>(&m.node_joint_force[4 * (n0 + k) + 2], 12);
             const Lanes fjy =
-              0. + gather(&m.node_joint_force[4 * (n0 + k) + 1], 12) +
-              gather(&m.node_joint_force[4 * (n0 + k) + 3], 12);
+              0. + gather<Lanes>(&m.node_joint_force[4 * (n0 + k) + 1], 12) +
+              gather<Lanes>(&m.node_joint_force[4 * (n0 + k) + 3], 12);
             Lanes fcx = zero, fcy = zero;
             if (in.contact_forces != nullptr)
               {
-                fcx = gather(&in.contact_forces[2 * k], 6);
-                fcy = gather(&in.contact_forces[2 * k + 1], 6);
+                fcx = gather<Lanes>(&in.contact_forces[2 * k], 6);
+                fcy = gather<Lanes>(&in.contact_forces[2 * k + 1], 6);
               }
             const Lanes fgx = mass[k] * in.gravity_x;
             const Lanes fgy = mass[k] * in.gravity_y;
@@ -271,7 +268,7 @@ namespace tmfdem
                                const BatchInput &in,
                                ChunkSums        &sums)
       {
-        update_free_batch<diagnostics>(m, e0, in, sums);
+        update_free_batch<8, diagnostics>(m, e0, in, sums);
       }
 
       template <bool diagnostics>
@@ -281,7 +278,7 @@ namespace tmfdem
                              const BatchInput &in,
                              ChunkSums        &sums)
       {
-        update_free_batch<diagnostics>(m, e0, in, sums);
+        update_free_batch<4, diagnostics>(m, e0, in, sums);
       }
 #endif
 
@@ -292,7 +289,7 @@ namespace tmfdem
                                  const BatchInput &in,
                                  ChunkSums        &sums)
       {
-        update_free_batch<diagnostics>(m, e0, in, sums);
+        update_free_batch<2, diagnostics>(m, e0, in, sums);
       }
 
       /** The kernel of @p instructions, or nullptr (element by element). */
@@ -377,14 +374,15 @@ namespace tmfdem
         batch.lame       = element_lame.data();
         batch.anisotropy = anisotropic ? element_anisotropy.data() : nullptr;
         batch.viscosity  = viscosity.data();
-        batch.contact_forces = nullptr;
-        batch.dt             = dt;
-        batch.damp_a         = damp_a;
-        batch.damp_b         = damp_b;
-        batch.c_damp         = c_damp;
-        batch.gravity_x      = d.gravity[0];
-        batch.gravity_y      = d.gravity[1];
-        double batch_contact[6 * lanes];
+        batch.contact_forces     = nullptr;
+        batch.dt                 = dt;
+        batch.damp_a             = damp_a;
+        batch.damp_b             = damp_b;
+        batch.c_damp             = c_damp;
+        batch.gravity_x          = d.gravity[0];
+        batch.gravity_y          = d.gravity[1];
+        const unsigned int lanes = vector_lanes(vector_instructions);
+        double             batch_contact[6 * max_vector_lanes];
         // out-of-balance force (free components, no viscous part) and the
         // scale of the internal forces, both squared
         double unbalanced = 0., internal = 0., kinetic = 0.;

@@ -1,11 +1,11 @@
 /**
  * @file
  * The vector instructions of the explicit loop's batches (node_update.cc,
- * joints.cc): eight triangles or joints per batch, one per lane of a GCC
- * vector of eight doubles, compiled once per instruction set and chosen at
- * run time. Every lane does the operations of the element-by-element loop
- * in the same order, so the results are bitwise the same whichever is
- * chosen (tests/discrete/vector_instructions.py).
+ * joints.cc): as many triangles or joints per batch as one register holds
+ * doubles, one per lane of a GCC vector, compiled once per instruction set
+ * and chosen at run time. Every lane does the operations of the
+ * element-by-element loop in the same order, so the results are bitwise the
+ * same whichever is chosen (tests/discrete/vector_instructions.py).
  */
 #ifndef tmfdem_discrete_vector_instructions_h
 #define tmfdem_discrete_vector_instructions_h
@@ -25,6 +25,32 @@ namespace tmfdem
       sse2,   ///< 128-bit registers (every x86-64 processor)
       avx2,   ///< 256-bit registers
       avx512, ///< 512-bit registers (AVX-512F)
+    };
+
+    /**
+     * Triangles or joints per batch with @p instructions: one vector
+     * register of doubles (AVX-512 8, AVX2 4, SSE2 2), 0 with none.
+     */
+    constexpr unsigned int
+    vector_lanes(const VectorInstructions instructions)
+    {
+      return instructions == VectorInstructions::avx512 ? 8 :
+             instructions == VectorInstructions::avx2   ? 4 :
+             instructions == VectorInstructions::sse2   ? 2 :
+                                                          0;
+    }
+
+    /** The most lanes of any instruction set. */
+    constexpr unsigned int max_vector_lanes = 8;
+
+    /** A vector of @p lanes doubles (GCC vector extension; type) and the
+     *  result of comparing two (mask: all bits set where true). */
+    template <unsigned int lanes>
+    struct LaneVector
+    {
+      typedef double type __attribute__((vector_size(lanes * sizeof(double))));
+      typedef long long mask
+        __attribute__((vector_size(lanes * sizeof(double))));
     };
 
     /** Names of the instruction sets (prm entry Discrete
