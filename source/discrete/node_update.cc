@@ -337,11 +337,8 @@ namespace tmfdem
         parameters.get<DiscreteMechanicsParameters>().mass_damping;
       const double damp_a = (1. - 0.5 * c_damp * dt) / (1. + 0.5 * c_damp * dt);
       const double damp_b = dt / (1. + 0.5 * c_damp * dt);
-      // the out-of-balance force, the internal force scale and the kinetic
-      // energy are read only with heat (quasi-static relaxation, the
-      // summary's last_relative_unbalanced_force): formed only there
-      // (a compile-time flag, so that the loop without them keeps no
-      // accumulators for them)
+      // the vector kernels of this run's instruction set (nullptr: none),
+      // with and without the diagnostics below
       const FreeBatchKernel plain_batch_kernel =
         free_batch_kernel<false>(vector_instructions);
       const FreeBatchKernel diagnostics_batch_kernel =
@@ -355,6 +352,11 @@ namespace tmfdem
             return false;
         return true;
       };
+      // the out-of-balance force, the internal force scale and the kinetic
+      // energy are read only with heat (quasi-static relaxation, the
+      // summary's last_relative_unbalanced_force): formed only there
+      // (a compile-time flag, so that the loop without them keeps no
+      // accumulators for them)
       const auto chunk_update = [&](const auto        diagnostics_flag,
                                     const std::size_t local_begin,
                                     const std::size_t local_end,
@@ -400,6 +402,8 @@ namespace tmfdem
                       contact.add_forces(e + l, &batch_contact[6 * l]);
                     batch.contact_forces = batch_contact;
                   }
+                // the running sums in and out of the batch (copied: the
+                // one-at-a-time loop keeps them in registers)
                 ChunkSums s;
                 s.w_elastic  = w_elastic;
                 s.w_viscous  = w_viscous;
