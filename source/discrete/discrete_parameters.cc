@@ -13,21 +13,15 @@ namespace tmfdem
 {
   namespace
   {
+    /** The names of a registry (name, value pairs) as a
+     *  Patterns::Selection: "a|b|c". */
+    template <typename Registry>
     std::string
-    vector_instructions_selection()
+    selection_of(const Registry &registry)
     {
       std::string names;
-      for (const auto &[name, set] : discrete::vector_instructions_registry())
-        names += (names.empty() ? "" : "|") + name;
-      return names;
-    }
-
-    std::string
-    softening_selection()
-    {
-      std::string names;
-      for (const auto &[name, law] : discrete::softening_law_registry())
-        names += (names.empty() ? "" : "|") + name;
+      for (const auto &entry : registry)
+        names += (names.empty() ? "" : "|") + entry.first;
       return names;
     }
 
@@ -137,7 +131,8 @@ namespace tmfdem
                       "and bodies [-].");
     prm.declare_entry("Softening law",
                       "Munjiza",
-                      Patterns::Selection(softening_selection()),
+                      Patterns::Selection(
+                        selection_of(discrete::softening_law_registry())),
                       "Post-peak softening of the joints: Munjiza's curve "
                       "or linear; both dissipate exactly G per unit area "
                       "in pure Mode I and II.");
@@ -194,7 +189,8 @@ namespace tmfdem
     prm.declare_entry(
       "Vector instructions",
       "auto",
-      Patterns::Selection("auto|" + vector_instructions_selection()),
+      Patterns::Selection(
+        "auto|" + selection_of(discrete::vector_instructions_registry())),
       "Instruction set of the explicit loop, which takes the triangles whose "
       "nodes are all free and the joints on the rising branch of their law "
       "eight at a time, one per lane of a vector (node_update.cc, "
