@@ -31,10 +31,13 @@ most in the first round, relative to each column's largest value).
 With --reference-set "Subsection/Entry=value" (repeatable) the reference
 runs get that setting too: --against the same binary compares a setting's
 cost, e.g. --reference-set "Discrete mechanics/Anisotropic joint compliance
-compensation=false".
+compensation=false". With --against, --cells N takes plates of N x N cells
+instead of 60 x 60 (N = 354: the 250 632 triangles of the MPI benchmark, a
+mesh that does not fit in the caches) with 3000 (60 / N)^2 and 6000 (60 /
+N)^2 steps (at least 20), and --intact-only leaves out the fragmented plate.
 usage: benchmarks/discrete_mechanics_throughput.py [path/to/tmfdem [REPEATS]]
        benchmarks/discrete_mechanics_throughput.py --against REFERENCE path/to/tmfdem [REPEATS]
-                                                   [--reference-set S ...]"""
+                                                   [--reference-set S ...] [--cells N] [--intact-only]"""
 import json
 import os
 import subprocess
@@ -50,6 +53,15 @@ while "--reference-set" in arguments:
     i = arguments.index("--reference-set")
     reference_settings += ["--set", arguments[i + 1]]
     del arguments[i:i + 2]
+# --cells N, --intact-only (with --against): plate size and cases
+cells = 60
+if "--cells" in arguments:
+    i = arguments.index("--cells")
+    cells = int(arguments[i + 1])
+    del arguments[i:i + 2]
+intact_only = "--intact-only" in arguments
+if intact_only:
+    arguments.remove("--intact-only")
 reference = None
 if arguments[:1] == ["--against"]:
     if len(arguments) < 3:
@@ -217,8 +229,12 @@ def compare_builds():
           f"reference: {reference}\ncandidate: {binary}")
     print(f"{'case':>11} {'round':>5} {'build':>9} {'steps':>6} {'wall [s]':>8} "
           f"{'cpu [s]':>7} {'triangle-steps/s':>16} {'load':>5}")
-    cases = (("intact", prm(plate_msh(60, False), True, False), 3000),
-             ("fragmented", prm(plate_msh(60, True), False, True), 6000))
+    def steps(n):
+        return max(20, round(n * (60 / cells) ** 2))
+    cases = [("intact", prm(plate_msh(cells, False), True, False), steps(3000))]
+    if not intact_only:
+        cases.append(("fragmented", prm(plate_msh(cells, True), False, True),
+                      steps(6000)))
     for name, p, steps in cases:
         rates = {"reference": [], "candidate": []}
         cpus = {"reference": [], "candidate": []}

@@ -193,9 +193,12 @@ namespace tmfdem
         "auto|" + selection_of(discrete::vector_instructions_registry())),
       "Instruction set of the explicit loop, which takes the triangles whose "
       "nodes are all free and the joints on the rising branch of their law "
-      "eight at a time, one per lane of a vector (node_update.cc, "
-      "joints.cc): auto: the widest this processor has; AVX-512, AVX2, "
-      "SSE2 (every x86-64 processor); none: one at a time. Every lane does "
+      "as many at a time as one register holds doubles, one per lane "
+      "(node_update.cc, joints.cc): auto: the widest this processor has, "
+      "but AVX2 instead of AVX-512 where a process has more than "
+      "65 536 triangles (there the loop waits on memory and AVX2 was "
+      "faster, doc/performance.md); AVX-512 (8), AVX2 (4), SSE2 (2, every "
+      "x86-64 processor); none: one at a time. Every lane does "
       "the operations of the one-at-a-time loop in the same order, so "
       "results are bitwise the same with every choice; a set this processor "
       "lacks is an error.");
@@ -282,7 +285,8 @@ namespace tmfdem
     allow_oversubscription = prm.get_bool("Allow oversubscription");
     vector_instructions =
       discrete::resolve_vector_instructions(prm.get("Vector instructions"));
-    hilbert_curve_numbering = prm.get("Triangle numbering") == "Hilbert curve";
+    vector_instructions_auto = prm.get("Vector instructions") == "auto";
+    hilbert_curve_numbering  = prm.get("Triangle numbering") == "Hilbert curve";
     {
       const std::string name = prm.get("Heterogeneity");
       heterogeneity          = name == "Weibull" ? Heterogeneity::weibull :

@@ -183,8 +183,12 @@ namespace tmfdem
         }
       if (n_threads > thread_limit())
         set_thread_limit(n_threads);
-      threads_used        = measure_concurrency(arena_for(n_threads));
-      vector_instructions = dm.vector_instructions;
+      threads_used = measure_concurrency(arena_for(n_threads));
+      vector_instructions =
+        dm.vector_instructions_auto ?
+          vector_instructions_for_mesh(dm.vector_instructions,
+                                       partition.end() - partition.begin()) :
+          dm.vector_instructions;
       if (heat)
         heat->set_threads(n_threads);
 

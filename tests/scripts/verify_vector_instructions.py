@@ -16,6 +16,8 @@ tests the vector kernels and not the fallback. The cases cover what the
 kernels meet: fracture with contact and compression (Brazilian disc, two
 blocks colliding), boundary conditions (plate traction), and thermal stretch
 with the diagnostics of the heat runs (thermal shock disc, joints breaking).
+Last, `auto` must pick the widest set here, and AVX2 instead of AVX-512 for
+the plate refined to 123 904 triangles (above 65 536 per process).
 
 usage: verify_vector_instructions.py path/to/tmfdem OUTPUT_DIR"""
 import os
@@ -65,6 +67,7 @@ def same_state(a, b):
     return differ[-1] - differ[0] < 8, (f"{len(differ)} bytes differ in "
                                         f"[{differ[0]}, {differ[-1]}] of {len(a)}")
 sets = ["SSE2", "AVX2", "AVX-512"]
+have = set()  # the sets this processor ran
 ok = True
 for case, settings in cases.items():
     prm = os.path.join(prm_dir, case + ".prm")
@@ -109,4 +112,20 @@ for case, settings in cases.items():
                     f"{case} {name}: state of {newest} bitwise that of none "
                     f"apart from the wall time ({how})")
     ok &= check(ran >= 1, f"{case}: at least SSE2 ran ({ran} sets)")
+    have.update(v_name for v_name in sets
+                if os.path.exists(os.path.join(out, f"{case}_{v_name}", "summary.json")))
+
+# auto: the widest set this processor has, but AVX2 instead of AVX-512
+# above 65 536 triangles per process (vector_instructions.h)
+widest = next((name for name in reversed(sets) if name in have), "none")
+prm = os.path.join(prm_dir, "plate_traction.prm")
+for refinements, expected in ((0, widest),
+                              (4, "AVX2" if widest == "AVX-512" else widest)):
+    folder = os.path.join(out, f"auto_{refinements}")
+    run(binary, prm, folder, f"Mesh/Global refinements={refinements}",
+        "Discrete mechanics/Maximum steps=1", "Output/Write vtu=false")
+    a = summary(folder)
+    ok &= check(a["vector_instructions"] == expected,
+                f"auto with {a['elements']} triangles runs {a['vector_instructions']} "
+                f"({expected} expected; widest here {widest})")
 sys.exit(0 if ok else 1)

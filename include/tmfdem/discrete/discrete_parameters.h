@@ -62,6 +62,9 @@ namespace tmfdem
      *  entry (auto: the widest this processor has). */
     discrete::VectorInstructions vector_instructions =
       discrete::VectorInstructions::sse2;
+    /** Vector instructions = auto (the set then also depends on the mesh:
+     *  discrete::vector_instructions_for_mesh()). */
+    bool vector_instructions_auto = true;
     /** Number the triangles along a Hilbert curve (cell_order.h); false:
      *  in the mesh's order. */
     bool hilbert_curve_numbering = true;

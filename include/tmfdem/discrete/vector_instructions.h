@@ -10,6 +10,7 @@
 #ifndef tmfdem_discrete_vector_instructions_h
 #define tmfdem_discrete_vector_instructions_h
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -65,6 +66,27 @@ namespace tmfdem
     /** The name of @p instructions in the registry. */
     std::string
     vector_instructions_name(const VectorInstructions instructions);
+
+    /**
+     * Triangles per process above which `auto` takes AVX2 rather than
+     * AVX-512: the benchmark plate (doc/performance.md, "Vector batches",
+     * AMD EPYC, 32 MiB L3) ran 1.2 and 1.1 times faster with AVX-512 at
+     * 20 000 and 45 000 triangles, 1.16 and 1.28 times slower at 97 000 and
+     * 250 000, where the loop waits on memory.
+     */
+    constexpr unsigned int avx512_most_triangles = 65536;
+
+    /** The set `auto` runs for @p triangles of this process, given the
+     *  widest set @p widest the processor has. */
+    inline VectorInstructions
+    vector_instructions_for_mesh(const VectorInstructions widest,
+                                 const std::size_t        triangles)
+    {
+      return widest == VectorInstructions::avx512 &&
+                 triangles > avx512_most_triangles ?
+               VectorInstructions::avx2 :
+               widest;
+    }
 
     /**
      * The instruction set of the prm entry value @p entry: "auto" is the
