@@ -177,9 +177,10 @@ namespace tmfdem
                 }
             }
         }
-      relaxation_step           = quasi_static_ramp_steps + 1;
-      last_relaxation_steps     = i;
-      last_relaxation_converged = relaxed;
+      relaxation_step               = quasi_static_ramp_steps + 1;
+      last_relaxation_steps         = i;
+      previous_relaxation_converged = last_relaxation_converged;
+      last_relaxation_converged     = relaxed;
       if (had_event)
         ++fracture_events;
       synchronise(); // joint counts and utilisation of the whole state
@@ -372,13 +373,14 @@ namespace tmfdem
       // thermal step relaxed_thermal_step; a response linear in time goes on
       // by the same increment per unit time. Not across a relaxation that
       // damaged or broke joints (its increment holds the crack's jump), nor
-      // from one that did not converge (its increment holds motion still
-      // under way, e.g. free pieces drifting after a fracture event: pushed
-      // on, they overlap and the contact pushes them apart again)
+      // from one that did not converge or did not start from a converged
+      // state (its increment holds motion still under way, e.g. free pieces
+      // drifting or settling after a fracture event: pushed on, they
+      // overlap and the contact and the joints push them apart again)
       const unsigned int damaged = n_damaged_or_broken_joints(model);
       const bool         extrapolate =
         relaxed_thermal_step > 0. && relaxed_x.size() == model.n_nodes &&
-        last_relaxation_converged &&
+        last_relaxation_converged && previous_relaxation_converged &&
         damaged_before_relaxation == damaged_after_relaxation &&
         damaged == damaged_after_relaxation;
       if (extrapolate)

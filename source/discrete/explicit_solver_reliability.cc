@@ -143,7 +143,8 @@ namespace tmfdem
       out.put(relaxed_thermal_step);
       out.put(damaged_before_relaxation);
       out.put(damaged_after_relaxation);
-      out.put<std::uint32_t>(last_relaxation_converged ? 1 : 0);
+      out.put<std::uint32_t>((last_relaxation_converged ? 1 : 0) |
+                             (previous_relaxation_converged ? 2 : 0));
       out.put(predicted_relaxations);
       out.put(velocity_resets);
       out.put(fracture_events);
@@ -230,7 +231,8 @@ namespace tmfdem
       {
         std::uint32_t converged = 1;
         in.get(converged);
-        last_relaxation_converged = converged != 0;
+        last_relaxation_converged     = (converged & 1) != 0;
+        previous_relaxation_converged = (converged & 2) != 0;
       }
       in.get(predicted_relaxations);
       in.get(velocity_resets);
