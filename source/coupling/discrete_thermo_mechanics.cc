@@ -271,7 +271,7 @@ namespace tmfdem
           const MaterialProperties &m = parameters.materials[model.material[e]];
           const double dT = (T[3 * e] + T[3 * e + 1] + T[3 * e + 2]) / 3. -
                             reference_temperature[e];
-          const double s_new = thermal_stretch(m.thermal_expansion,
+          const double s_new = thermal_stretch(expansion_coefficient(e),
                                                m.poisson_ratio,
                                                dT,
                                                idealisation);

@@ -263,6 +263,13 @@ namespace tmfdem
       data_array(cell_data, "Float64", "joint_damage", 1, damage);
       data_array(cell_data, "Int32", "material_id", 1, material);
       data_array(cell_data, "Int32", "body", 1, body);
+      if (!model.expansion_factor.empty())
+        data_array(cell_data,
+                   "Float64",
+                   "expansion_factor",
+                   1,
+                   std::vector<double>(model.expansion_factor.begin() + first,
+                                       model.expansion_factor.begin() + end));
       return grid(points,
                   connectivity,
                   3,

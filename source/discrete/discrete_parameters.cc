@@ -236,10 +236,34 @@ namespace tmfdem
                       Patterns::Double(0.),
                       "Standard deviation / mean of normal joint strengths "
                       "[-].");
+    prm.declare_entry(
+      "Expansion heterogeneity",
+      "none",
+      Patterns::Selection("none|normal"),
+      "Per-triangle random thermal expansion coefficient, the grain-scale "
+      "mismatch of a rock made of several minerals (in granite quartz "
+      "expands about twice as much as feldspar): none, or normal (mean = "
+      "the material's coefficient, standard deviation = Expansion "
+      "coefficient of variation times the mean, truncated at 0). Each "
+      "triangle is one grain: under a uniform temperature change the "
+      "triangles then load each other and their joints, and these "
+      "mismatch stresses stay where a crack has cut the body. The field "
+      "(heterogeneity.h) is drawn from Random seed in the mesh's order of "
+      "the triangles: independent of Triangle numbering and of the joint "
+      "strengths' field.");
+    prm.declare_entry("Expansion coefficient of variation",
+                      "0.3",
+                      Patterns::Double(0.),
+                      "Standard deviation / mean of the triangles' thermal "
+                      "expansion coefficients (Expansion heterogeneity = "
+                      "normal) [-].");
     prm.declare_entry("Random seed",
                       "1",
                       Patterns::Integer(0),
-                      "Seed of the joint-strength generator.");
+                      "Seed of the random fields: the joint strengths "
+                      "(Heterogeneity) and the expansion coefficients "
+                      "(Expansion heterogeneity), each from its own "
+                      "sequence.");
     prm.declare_entry("Maximum steps",
                       "0",
                       Patterns::Integer(0),
@@ -295,8 +319,13 @@ namespace tmfdem
     }
     weibull_modulus          = prm.get_double("Weibull modulus");
     coefficient_of_variation = prm.get_double("Coefficient of variation");
-    random_seed              = prm.get_integer("Random seed");
-    max_steps                = prm.get_integer("Maximum steps");
+    expansion_heterogeneity  = prm.get("Expansion heterogeneity") == "normal" ?
+                                 ExpansionHeterogeneity::normal :
+                                 ExpansionHeterogeneity::none;
+    expansion_coefficient_of_variation =
+      prm.get_double("Expansion coefficient of variation");
+    random_seed = prm.get_integer("Random seed");
+    max_steps   = prm.get_integer("Maximum steps");
     initial_cracks.clear();
     for (const auto &text :
          Utilities::split_string_list(prm.get("Initial cracks"), ';'))

@@ -191,7 +191,7 @@ namespace tmfdem
                 edge.thermal_stretch = model.thermal_stretch[e];
                 if (with_heat)
                   edge.thermal_stretch =
-                    thermal_stretch(m.thermal_expansion,
+                    thermal_stretch(expansion_coefficient(e),
                                     m.poisson_ratio,
                                     0.5 * (heat->temperature()[a] +
                                            heat->temperature()[b]) -
@@ -393,6 +393,30 @@ namespace tmfdem
           .add("momentum_y", py)
           .add("energy", energies)
           .add("body_reactions", reactions);
+        if (!model.expansion_factor.empty())
+          {
+            // the drawn field's statistics, weighted by the triangles' areas
+            double area = 0., mean = 0., square = 0.;
+            double low = model.expansion_factor[0], high = low;
+            for (unsigned int e = 0; e < model.n_elements; ++e)
+              {
+                const double a = model.reference_area[e];
+                const double f = model.expansion_factor[e];
+                area += a;
+                mean += a * f;
+                square += a * f * f;
+                low  = std::min(low, f);
+                high = std::max(high, f);
+              }
+            mean /= area;
+            JsonObject field;
+            field.add("mean", mean)
+              .add("standard_deviation",
+                   std::sqrt(std::max(0., square / area - mean * mean)))
+              .add("min", low)
+              .add("max", high);
+            summary.add("expansion_factor", field);
+          }
         if (!stop_reason.empty())
           summary.add("stop_reason", stop_reason);
         if (with_heat)

@@ -11,6 +11,7 @@
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/threads.h>
 #include <tmfdem/discrete/explicit_solver.h>
+#include <tmfdem/discrete/heterogeneity.h>
 #include <tmfdem/discrete/joint_compliance.h>
 #include <tmfdem/discrete/joints.h>
 #include <tmfdem/discrete/stable_step.h>
@@ -45,6 +46,7 @@ namespace tmfdem
                                         model,
                                         imposed_motion_clock());
       setup_joint_constants(parameters, softening_law, model);
+      model.expansion_factor = random_expansion_factors(dm, model);
       setup_element_stiffness();
       setup_contact();
       // this rank's triangles; ghosts of the joints until the first search

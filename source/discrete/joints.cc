@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <random>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/discrete/discrete_parameters.h>
+#include <tmfdem/discrete/heterogeneity.h>
 #include <tmfdem/discrete/joints.h>
 
 namespace tmfdem
@@ -407,65 +407,6 @@ namespace tmfdem
           if (t.broke)
             return true;
         return false;
-      }
-    } // namespace
-
-    namespace
-    {
-      /**
-       * The random factor of each joint's tensile strength and cohesion
-       * (Heterogeneity; 1 for none), drawn from one mt19937_64 sequence
-       * seeded by Random seed in the mesh's order of the joints: by the
-       * mesh index of the joint's first element in the mesh and its edge
-       * there. So the same seed gives the same field whatever the numbering
-       * of the triangles (Triangle numbering).
-       */
-      std::vector<double>
-      random_strength_factors(const DiscreteMechanicsParameters &dm,
-                              const DiscreteModel               &model)
-      {
-        std::vector<double> factor(model.n_joints, 1.);
-        if (dm.heterogeneity ==
-            DiscreteMechanicsParameters::Heterogeneity::none)
-          return factor;
-        // (mesh index of the element, its edge) of each joint's first side
-        std::vector<std::pair<std::uint64_t, unsigned int>> order(
-          model.n_joints);
-        for (unsigned int e = 0; e < model.n_elements; ++e)
-          for (unsigned int k = 0; k < 3; ++k)
-            {
-              const int code = model.edge_joint[3 * e + k];
-              if (code < 0)
-                continue;
-              const unsigned int  j = code / 2;
-              const std::uint64_t key =
-                3 * std::uint64_t(model.mesh_index[e]) + k;
-              const unsigned int other =
-                model.joint_elements[2 * j + 1 - code % 2];
-              if (model.mesh_index[e] < model.mesh_index[other])
-                order[j] = {key, j};
-            }
-        std::sort(order.begin(), order.end());
-        std::mt19937_64 generator(dm.random_seed);
-        const double    m = dm.weibull_modulus;
-        for (const auto &[key, j] : order)
-          if (dm.heterogeneity ==
-              DiscreteMechanicsParameters::Heterogeneity::weibull)
-            {
-              // Weibull with mean 1: scale = 1 / Gamma(1 + 1/m)
-              std::weibull_distribution<double> weibull(m,
-                                                        1. / std::tgamma(
-                                                               1. + 1. / m));
-              factor[j] = weibull(generator);
-            }
-          else
-            {
-              std::normal_distribution<double> normal(
-                1.,
-                dm.coefficient_of_variation);
-              factor[j] = std::max(0.01, normal(generator));
-            }
-        return factor;
       }
     } // namespace
 

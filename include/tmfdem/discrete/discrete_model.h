@@ -71,6 +71,10 @@ namespace tmfdem
       /** In-plane thermal stretch s of F_T = s I per element [-]; 1 here,
        *  set by the thermal coupling. */
       std::vector<double> thermal_stretch;
+      /** Factor of the material's thermal expansion coefficient per element
+       *  [-] (Discrete mechanics/Expansion heterogeneity, heterogeneity.h);
+       *  empty: 1 everywhere. */
+      std::vector<double> expansion_factor;
       /** Cauchy stress of the last step per element (xx, yy, xy) [Pa]. */
       std::vector<double> stress;
       /**

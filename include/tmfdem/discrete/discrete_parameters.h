@@ -78,9 +78,20 @@ namespace tmfdem
     Heterogeneity heterogeneity            = Heterogeneity::none;
     double        weibull_modulus          = 10.; ///< m [-]
     double        coefficient_of_variation = 0.1; ///< normal: std/mean [-]
-    unsigned int  random_seed              = 1;
-    unsigned int  max_steps                = 0; ///< 0: no limit
-    bool          contact                  = true;
+    /** How the thermal expansion coefficient scatters from triangle to
+     *  triangle (Expansion heterogeneity). */
+    enum class ExpansionHeterogeneity
+    {
+      none,
+      normal ///< normal factors of mean 1, expansion_coefficient_of_variation
+    };
+    ExpansionHeterogeneity expansion_heterogeneity =
+      ExpansionHeterogeneity::none;
+    /** normal expansion factors: std/mean [-] */
+    double       expansion_coefficient_of_variation = 0.3;
+    unsigned int random_seed                        = 1;
+    unsigned int max_steps                          = 0; ///< 0: no limit
+    bool         contact                            = true;
     /** Pre-existing fractures: segments (x0, y0, x1, y1) [m]; the joints
      *  lying on them start broken. */
     std::vector<std::array<double, 4>> initial_cracks;

@@ -122,6 +122,17 @@ namespace tmfdem
        *  energy this changes at fixed geometry is booked as thermal work. */
       void
       update_thermal_stretch();
+      /** Thermal expansion coefficient of element @p e [1/K]: its
+       *  material's, times its random factor (Expansion heterogeneity). */
+      double
+      expansion_coefficient(const unsigned int e) const
+      {
+        const double alpha =
+          parameters.materials[model.material[e]].thermal_expansion;
+        return model.expansion_factor.empty() ?
+                 alpha :
+                 alpha * model.expansion_factor[e];
+      }
       /** When imposed motions are evaluated in the step under way. */
       ImposedMotionClock
       imposed_motion_clock() const;
