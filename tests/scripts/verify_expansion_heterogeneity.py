@@ -31,12 +31,14 @@ and temperatures (plane strain: beta = (1 + nu) alpha, Eshelby's value
 E beta dT df / (2 (1 - nu^2))).
 """
 import os
-import re
 import sys
 
 import numpy as np
 
 from common import run, summary, check
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from plot_vtu import read_vtu  # noqa: E402
 
 binary, out = sys.argv[1], sys.argv[2]
 prm = os.path.join(os.path.dirname(__file__), "..", "..", "prm", "sheet_free_expansion.prm")
@@ -68,18 +70,13 @@ def areas(t):
 
 
 def final_cells(folder):
-    """Cell arrays of the last solution vtu and the cells' reference areas."""
-    name = sorted(f for f in os.listdir(folder) if re.fullmatch(r"solution_\d+\.vtu", f))[-1]
-    with open(os.path.join(folder, name)) as f:
-        text = f.read()
+    """Cell arrays (sxx, syy, expansion_factor) of the last solution output
+    and the cells' areas in the current configuration."""
+    path = os.path.join(folder, "solution.pvd")
     cells = {}
-    for m in re.finditer(r'<DataArray type="\w+" Name="(\w+)" NumberOfComponents="1" '
-                         r'format="ascii">\n(.*?)\n</DataArray>', text, re.S):
-        cells[m.group(1)] = np.array(m.group(2).split(), dtype=float)
-    points = re.search(r'<Points>\n<DataArray[^>]*>\n(.*?)\n</DataArray>', text, re.S)
-    xyz = np.array(points.group(1).split(), dtype=float).reshape(-1, 3)
-    tri = xyz[:, :2].reshape(-1, 3, 2)
-    return cells, areas(tri)
+    for name in ("sxx", "syy", "expansion_factor"):
+        points, polygons, cells[name], _ = read_vtu(path, name)
+    return cells, areas(np.array([points[c] for c in polygons]))
 
 
 def check_case(tag, idealisation, dT, cv, h, seed, numbering="Hilbert curve"):
