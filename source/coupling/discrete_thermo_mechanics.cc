@@ -67,12 +67,136 @@ namespace tmfdem
     void
     ExplicitSolver::quasi_static_step()
     {
-      // one thermal step of physical time (M -> T: current geometry,
-      // joints, contacts) and the new thermal stretch (T -> M) ...
-      const double dt = quasi_static_thermal_step();
+      const DiscreteHeatParameters &dh =
+        parameters.get<DiscreteHeatParameters>();
+      double dt = quasi_static_thermal_step();
       // the whole state (on several ranks): the relaxation predictor
       // extrapolates every node from it; the heat reads its own part
       synchronise();
+      // the joints at the start of the step: the rise of their utilisation
+      // and the joints that start to fail in it set the next step; a step
+      // in which too many fail at once, or whose relaxation does not
+      // converge, is re-run shorter from here (theory manual 8, "Thermal
+      // steps through the fracture process")
+      const bool control_failures = dh.maximum_failing_joints > 0;
+      std::vector<double> utilisation_start, damage_start;
+      if (dh.maximum_utilisation_change > 0.)
+        joint_utilisations(model, utilisation_start);
+      if (control_failures)
+        {
+          joint_damages(model, damage_start);
+          keep_thermal_step_start();
+        }
+      const double        minimum_step = minimum_thermal_step();
+      const double        allowed      = dh.maximum_failing_joints;
+      bool                unstable     = false;
+      std::vector<double> damage_end;
+      unsigned int        failing = 0;
+      while (true)
+        {
+          advance_thermal_step(dt);
+          if (!control_failures)
+            break;
+          // joints that became damaged and joints that broke in this step
+          joint_damages(model, damage_end);
+          failing = 0;
+          for (unsigned int j = 0; j < model.n_joints; ++j)
+            failing += (damage_start[j] == 0. && damage_end[j] > 0.) +
+                       (damage_start[j] < 1. && damage_end[j] >= 1.);
+          const bool resolved =
+            failing <= 2. * allowed && last_relaxation_converged;
+          if (resolved)
+            break;
+          if (dt <= minimum_step * (1. + 1e-12))
+            {
+              // no shorter step resolves it: the crack runs at this load
+              // (unstable propagation, with inertia where Fracture event
+              // duration says so)
+              unstable = true;
+              ++unstable_thermal_steps;
+              break;
+            }
+          // re-run from the start of the step, shorter: by the factor that
+          // brings the failures to half the allowed number, were they
+          // proportional to the step (at least 4 x shorter: failures that
+          // do not become fewer with the step are an instability, whose
+          // load a few cuts then find)
+          restore_thermal_step_start();
+          ++rejected_thermal_steps;
+          const double factor =
+            failing > 2. * allowed ? 0.5 * allowed / failing : 0.25;
+          dt = std::max(minimum_step, factor * dt);
+          if (writes_files())
+            std::cerr << "[tmfdem] t = " << time << " s: thermal step re-run "
+                      << (failing > 2. * allowed ?
+                            "(" + std::to_string(failing) +
+                              " joints started to fail or broke in it)" :
+                            std::string("(the relaxation did not converge)"))
+                      << " with " << dt << " s\n";
+        }
+      last_thermal_step = dt;
+      if (control_failures)
+        failure_rate = unstable ? 0. : failing / dt;
+      if (dh.maximum_utilisation_change > 0.)
+        {
+          // the fastest rise of one joint's utilisation, over the joints
+          // undamaged at both ends of the step (a joint that became
+          // damaged leaves the set; the most loaded one before it does not
+          // stand for the others)
+          std::vector<double> utilisation_end;
+          joint_utilisations(model, utilisation_end);
+          double rise = 0., highest = 0.;
+          for (unsigned int j = 0; j < model.n_joints; ++j)
+            if (utilisation_end[j] >= 0.)
+              {
+                highest = std::max(highest, utilisation_end[j]);
+                if (utilisation_start[j] >= 0.)
+                  rise = std::max(rise, utilisation_end[j] - utilisation_start[j]);
+              }
+          joint_utilisation_rate = unstable ? 0. : rise / dt;
+          joint_utilisation      = highest;
+        }
+      if (!last_relaxation_converged)
+        {
+          ++relaxations_at_cap;
+          if (relaxations_at_cap == 1)
+            std::cerr
+              << "[tmfdem] warning: at t = " << time
+              << " s the relaxation reached its cap of "
+              << steps_per_thermal_step
+              << " mechanical steps (Discrete heat/Mechanical steps per "
+                 "thermal step) with kinetic / strain energy "
+              << last_kinetic_to_strain << " above Relaxation tolerance = "
+              << dh.relaxation_tolerance
+              << ": the state is not in equilibrium"
+              << (control_failures ? ", also with Minimum thermal step" : "")
+              << ". Raise the cap, "
+                 "add Mass damping or run the fracture with inertia "
+                 "(Relaxation damping = kinetic, Fracture event duration); "
+                 "summary.json counts these steps "
+                 "(relaxations_at_cap).\n";
+          if (dh.relaxation_cap_is_error)
+            guard_failure(
+              "guard: the relaxation at t = " + Utilities::to_string(time) +
+              " s reached its cap of " +
+              std::to_string(steps_per_thermal_step) +
+              " mechanical steps without reaching Relaxation tolerance "
+              "(Discrete heat/Relaxation cap is error = true).");
+        }
+    }
+
+    double
+    ExplicitSolver::minimum_thermal_step() const
+    {
+      const DiscreteHeatParameters &dh =
+        parameters.get<DiscreteHeatParameters>();
+      return dh.minimum_thermal_step > 0. ? dh.minimum_thermal_step :
+                                            1e-3 * parameters.time.time_step;
+    }
+
+    void
+    ExplicitSolver::advance_thermal_step(const double dt)
+    {
       check_cracks_seen_by_heat();
       update_heat_contact_pairs();
       heat->step(time, dt);
@@ -187,37 +311,6 @@ namespace tmfdem
       if (parameters.get<DiscreteHeatParameters>().relaxation_predictor ==
           DiscreteHeatParameters::RelaxationPredictor::extrapolate)
         damaged_after_relaxation = n_damaged_or_broken_joints(model);
-      if (parameters.get<DiscreteHeatParameters>().maximum_utilisation_change >
-          0.)
-        {
-          const double u         = max_joint_utilisation(model);
-          joint_utilisation_rate = (u - joint_utilisation) / dt;
-          joint_utilisation      = u;
-        }
-      if (!relaxed)
-        {
-          ++relaxations_at_cap;
-          if (relaxations_at_cap == 1)
-            std::cerr
-              << "[tmfdem] warning: at t = " << time
-              << " s the relaxation reached its cap of "
-              << steps_per_thermal_step
-              << " mechanical steps (Discrete heat/Mechanical steps per "
-                 "thermal step) with kinetic / strain energy "
-              << last_kinetic_to_strain << " above Relaxation tolerance = "
-              << parameters.get<DiscreteHeatParameters>().relaxation_tolerance
-              << ": the state is not in equilibrium. Raise the cap, "
-                 "shorten the thermal step or add Mass damping; "
-                 "summary.json counts these steps "
-                 "(relaxations_at_cap).\n";
-          if (parameters.get<DiscreteHeatParameters>().relaxation_cap_is_error)
-            guard_failure(
-              "guard: the relaxation at t = " + Utilities::to_string(time) +
-              " s reached its cap of " +
-              std::to_string(steps_per_thermal_step) +
-              " mechanical steps without reaching Relaxation tolerance "
-              "(Discrete heat/Relaxation cap is error = true).");
-        }
     }
 
     double
@@ -231,9 +324,13 @@ namespace tmfdem
       if (dh.maximum_thermal_step > 0.)
         dt = std::min(dt, dh.maximum_thermal_step);
       dt = std::max(dt, parameters.time.time_step);
+      // after a step cut short (by the controls below or a re-run), the
+      // step grows back by at most 2 per step, not to the schedule at once
+      if (last_thermal_step > 0.)
+        dt = std::min(dt, 2. * last_thermal_step);
+      const double minimum_step = minimum_thermal_step();
       // joints approaching their strength: at most the allowed rise of the
-      // utilisation per step, predicted from its last rate (no shorter than
-      // 1e-3 Time step, so that a jump cannot stall the run)
+      // utilisation per step, predicted from its last rate
       if (dh.maximum_utilisation_change > 0.)
         {
           double limit = dt;
@@ -245,11 +342,29 @@ namespace tmfdem
             limit = std::min(limit,
                              dh.maximum_utilisation_change *
                                (time - parameters.time.start_time));
-          dt = std::min(dt, std::max(1e-3 * parameters.time.time_step, limit));
+          dt = std::min(dt, std::max(minimum_step, limit));
         }
+      // joints failing: at most the allowed number per step, predicted
+      // from their rate over the last step
+      if (dh.maximum_failing_joints > 0 && failure_rate > 0.)
+        dt = std::min(dt,
+                      std::max(minimum_step,
+                               dh.maximum_failing_joints / failure_rate));
       // land on the end time instead of stepping past it
-      const double left = parameters.time.end_time - time;
-      return left < 1.5 * dt ? left : dt;
+      const double to_end = parameters.time.end_time - time;
+      if (to_end < 1.5 * dt)
+        dt = to_end;
+      // and on the next requested output time (two equal steps where one
+      // would come within half a step of it)
+      if (next_output < output_times.size())
+        {
+          const double left = output_times[next_output] - time;
+          if (left > 0. && left <= dt * (1. + 1e-9))
+            dt = left;
+          else if (left > 0. && left < 1.5 * dt)
+            dt = 0.5 * left;
+        }
+      return dt;
     }
 
     void

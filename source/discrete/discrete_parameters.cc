@@ -554,6 +554,29 @@ namespace tmfdem
       "this fraction of the elapsed time: the time of first damage is "
       "resolved to about this fraction whatever Time step and growth "
       "factor say [-]. 0: off.");
+    prm.declare_entry(
+      "Maximum failing joints per step",
+      "2",
+      Patterns::Integer(0, 1000000),
+      "Quasi-static coupling: thermal step control through the fracture "
+      "process. Counted per thermal step are the joints that start to fail "
+      "(their first damage) and the joints that break; the step shrinks so "
+      "that, at the rate of the last step, at most this many would, and a "
+      "step in which more than twice this many did, or whose relaxation "
+      "reached Mechanical steps per thermal step, is re-run from its start "
+      "with a shorter step, down to Minimum thermal step, where it is "
+      "accepted as unstable crack growth (summary.json "
+      "rejected_thermal_steps, unstable_thermal_steps). After a shortened "
+      "step the step grows back by at most a factor 2 per step [-]. 0: off "
+      "(no re-runs).");
+    prm.declare_entry(
+      "Minimum thermal step",
+      "0",
+      Patterns::Double(0.),
+      "Quasi-static coupling: the shortest thermal step of the utilisation "
+      "and damage controls; crack growth that a step this short does not "
+      "resolve runs as one event at that load (with inertia where Fracture "
+      "event duration > 0). 0: 1e-3 x Time stepping/Time step [s].");
     prm.declare_entry("Maximum thermal step",
                       "0",
                       Patterns::Double(0.),
@@ -596,6 +619,9 @@ namespace tmfdem
     thermal_step_growth     = prm.get_double("Thermal step growth factor");
     maximum_thermal_step    = prm.get_double("Maximum thermal step");
     maximum_utilisation_change = prm.get_double("Maximum utilisation change");
+    maximum_failing_joints =
+      prm.get_integer("Maximum failing joints per step");
+    minimum_thermal_step       = prm.get_double("Minimum thermal step");
     {
       const std::string name  = prm.get("Contact heat model");
       bool              found = false;

@@ -247,15 +247,31 @@ namespace tmfdem
         lines_csv = open_csv(folder + "/lines.csv", monitor_header);
 
       const double start = time, end = parameters.time.end_time;
-      // the output schedule every model uses (io/output_schedule.h); an
-      // output time is reached within half an explicit (or thermal) step,
-      // below, so the schedule itself merges nothing (tolerance 0)
+      // the output schedule every model uses (io/output_schedule.h): times
+      // within its round-off tolerance of each other are one time (the
+      // interval's accumulated sums against the end time); an output time
+      // is reached within half an explicit step, or landed on by the
+      // thermal step, below
       output_times = OutputSchedule(parameters.output.times,
                                     parameters.output.interval,
                                     start,
                                     end,
-                                    0.)
+                                    OutputSchedule::default_tolerance(end))
                        .times();
+      // explicit steps of one length write one file per step: two requested
+      // times within one step would be written as one (the quasi-static
+      // thermal step lands on each instead)
+      if (!quasi_static)
+        for (std::size_t k = 1; k < output_times.size(); ++k)
+          if (output_times[k] - output_times[k - 1] < time_step)
+            throw InputError(
+              "Output/Times (or Interval): the output times " +
+              Utilities::to_string(output_times[k - 1]) + " s and " +
+              Utilities::to_string(output_times[k]) +
+              " s lie closer than one mechanical time step (" +
+              Utilities::to_string(time_step) +
+              " s), and each step writes one file at most; allowed are times "
+              "at least one time step apart.");
       history_interval = (end - start) / 1000.;
       next_history     = start + history_interval;
 

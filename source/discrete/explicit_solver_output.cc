@@ -435,6 +435,10 @@ namespace tmfdem
               .add("thermal_steps", static_cast<long long>(n_thermal_steps))
               .add("last_relaxation_steps", last_relaxation_steps)
               .add("relaxations_at_cap", relaxations_at_cap)
+              .add("rejected_thermal_steps",
+                   static_cast<long long>(rejected_thermal_steps))
+              .add("unstable_thermal_steps",
+                   static_cast<long long>(unstable_thermal_steps))
               .add("predicted_relaxations", predicted_relaxations)
               .add("velocity_resets", static_cast<long long>(velocity_resets))
               .add("fracture_events", static_cast<long long>(fracture_events))

@@ -111,6 +111,33 @@ namespace tmfdem
       out.put<std::uint32_t>(model.n_elements);
       out.put<std::uint32_t>(model.n_nodes);
       out.put<std::uint32_t>(model.n_joints);
+      out.put(time_step);
+      put_state(out);
+      // output counters and series
+      out.put(next_output);
+      out.put(next_history);
+      out.put(history_interval);
+      out.put(output_times);
+      put_records(out, solution_series->get_records());
+      put_records(out, crack_series->get_records());
+      out.put<std::uint64_t>(history_csv->size());
+      out.put<std::uint64_t>(probes_csv ? probes_csv->size() : 0);
+      out.put<std::uint64_t>(lines_csv ? lines_csv->size() : 0);
+      out.put(wall_time);
+      const std::size_t bytes = write_checkpoint(parameters, step_number, out);
+      const double      seconds_taken =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+      std::ostringstream line;
+      line << "[tmfdem] checkpoint at step " << step_number
+           << ", t = " << seconds(time) << ": " << bytes << " bytes in "
+           << std::setprecision(3) << seconds_taken << " s\n";
+      std::cerr << line.str();
+    }
+
+    void
+    ExplicitSolver::put_state(CheckpointWriter &out) const
+    {
       // clocks
       out.put(time);
       out.put<std::uint64_t>(step_number);
@@ -121,7 +148,10 @@ namespace tmfdem
       out.put<std::uint64_t>(relaxations_at_cap);
       out.put(joint_utilisation);
       out.put(joint_utilisation_rate);
-      out.put(time_step);
+      out.put(failure_rate);
+      out.put(last_thermal_step);
+      out.put<std::uint64_t>(rejected_thermal_steps);
+      out.put<std::uint64_t>(unstable_thermal_steps);
       // state of the nodes, elements and joints
       out.put(model.x);
       out.put(model.y);
@@ -151,44 +181,14 @@ namespace tmfdem
       out.put(fracture_event_steps);
       // contact candidates with their friction history
       contact.save(out);
-      // output counters and series
-      out.put(next_output);
-      out.put(next_history);
-      out.put(history_interval);
-      out.put(output_times);
-      put_records(out, solution_series->get_records());
-      put_records(out, crack_series->get_records());
-      out.put<std::uint64_t>(history_csv->size());
-      out.put<std::uint64_t>(probes_csv ? probes_csv->size() : 0);
-      out.put<std::uint64_t>(lines_csv ? lines_csv->size() : 0);
-      out.put(wall_time);
       out.put<std::uint8_t>(with_heat);
       if (with_heat)
         heat->save(out);
-      const std::size_t bytes = write_checkpoint(parameters, step_number, out);
-      const double      seconds_taken =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-          .count();
-      std::ostringstream line;
-      line << "[tmfdem] checkpoint at step " << step_number
-           << ", t = " << seconds(time) << ": " << bytes << " bytes in "
-           << std::setprecision(3) << seconds_taken << " s\n";
-      std::cerr << line.str();
     }
 
     void
-    ExplicitSolver::load_checkpoint()
+    ExplicitSolver::get_state(CheckpointReader &in)
     {
-      const std::string file = newest_checkpoint(parameters);
-      CheckpointReader  in(file, checkpoint_kind(), parameters.input_digest);
-      std::uint32_t     sizes[3];
-      for (auto &n : sizes)
-        in.get(n);
-      if (sizes[0] != model.n_elements || sizes[1] != model.n_nodes ||
-          sizes[2] != model.n_joints)
-        throw InputError("the checkpoint '" + file + "' is of another mesh (" +
-                         std::to_string(sizes[0]) + " elements, this run " +
-                         std::to_string(model.n_elements) + ").");
       std::uint64_t count = 0;
       in.get(time);
       in.get(count);
@@ -202,12 +202,12 @@ namespace tmfdem
       relaxations_at_cap = count;
       in.get(joint_utilisation);
       in.get(joint_utilisation_rate);
-      double saved_time_step = 0.;
-      in.get(saved_time_step);
-      if (saved_time_step != time_step)
-        throw InputError("the checkpoint '" + file + "' has the time step " +
-                         seconds(saved_time_step) + ", this run " +
-                         seconds(time_step) + ".");
+      in.get(failure_rate);
+      in.get(last_thermal_step);
+      in.get(count);
+      rejected_thermal_steps = count;
+      in.get(count);
+      unstable_thermal_steps = count;
       const std::size_t n = model.n_nodes, e = model.n_elements,
                         j = model.n_joints;
       in.get(model.x, n);
@@ -239,6 +239,57 @@ namespace tmfdem
       in.get(fracture_events);
       in.get(fracture_event_steps);
       contact.load(in, e);
+      std::uint8_t flag = 0;
+      in.get(flag);
+      if ((flag != 0) != with_heat)
+        throw InputError("the checkpoint '" + in.name() +
+                         "' does not match the model (heat).");
+      if (with_heat)
+        heat->load(in);
+    }
+
+    void
+    ExplicitSolver::keep_thermal_step_start()
+    {
+      // this rank's whole state, synchronised by the caller, and its own
+      // contact pairs with their friction history: every rank returns to
+      // the same state without a message
+      thermal_step_start =
+        std::make_unique<CheckpointWriter>("thermal step", "");
+      put_state(*thermal_step_start);
+    }
+
+    void
+    ExplicitSolver::restore_thermal_step_start()
+    {
+      CheckpointReader in(*thermal_step_start, "start of the thermal step");
+      get_state(in);
+      in.finish();
+      synchronised_step      = step_number;
+      thermal_state_gathered = true;
+      partition.build_ghost_plan(model, contact.pairs());
+    }
+
+    void
+    ExplicitSolver::load_checkpoint()
+    {
+      const std::string file = newest_checkpoint(parameters);
+      CheckpointReader  in(file, checkpoint_kind(), parameters.input_digest);
+      std::uint32_t     sizes[3];
+      for (auto &n : sizes)
+        in.get(n);
+      if (sizes[0] != model.n_elements || sizes[1] != model.n_nodes ||
+          sizes[2] != model.n_joints)
+        throw InputError("the checkpoint '" + file + "' is of another mesh (" +
+                         std::to_string(sizes[0]) + " elements, this run " +
+                         std::to_string(model.n_elements) + ").");
+      double saved_time_step = 0.;
+      in.get(saved_time_step);
+      if (saved_time_step != time_step)
+        throw InputError("the checkpoint '" + file + "' has the time step " +
+                         seconds(saved_time_step) + ", this run " +
+                         seconds(time_step) + ".");
+      get_state(in);
       in.get(next_output);
       in.get(next_history);
       in.get(history_interval);
@@ -264,14 +315,7 @@ namespace tmfdem
       for (auto &b : csv_bytes)
         in.get(b);
       in.get(resumed_wall_time);
-      wall_time         = resumed_wall_time;
-      std::uint8_t flag = 0;
-      in.get(flag);
-      if ((flag != 0) != with_heat)
-        throw InputError("the checkpoint '" + file +
-                         "' does not match the model (heat).");
-      if (with_heat)
-        heat->load(in);
+      wall_time = resumed_wall_time;
       in.finish();
 
       // every rank has the whole state; the ghost plan of its pairs

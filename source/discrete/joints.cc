@@ -502,10 +502,11 @@ namespace tmfdem
       return false;
     }
 
-    double
-    max_joint_utilisation(const DiscreteModel &model)
+    void
+    joint_utilisations(const DiscreteModel &model,
+                       std::vector<double> &utilisation)
     {
-      double highest = 0.;
+      utilisation.assign(model.n_joints, -1.);
       for (unsigned int j = 0; j < model.n_joints; ++j)
         {
           if (model.joint_status[j] != JointStatus::intact ||
@@ -514,6 +515,7 @@ namespace tmfdem
             continue;
           const JointFrame      g = joint_frame(model, j);
           const JointConstants &k = model.joint_constants[j];
+          double                highest = 0.;
           for (const double u : {gauss_0, gauss_1})
             {
               const double dx = (1. - u) * g.d0x + u * g.d1x;
@@ -528,8 +530,19 @@ namespace tmfdem
                           o * k.normal_stiffness / (2. * k.tensile_strength),
                           std::abs(s) * k.tangential_stiffness / (2. * fs)});
             }
+          utilisation[j] = std::min(highest, 1.);
         }
-      return std::min(highest, 1.);
+    }
+
+    void
+    joint_damages(const DiscreteModel &model, std::vector<double> &damage)
+    {
+      damage.resize(model.n_joints);
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        damage[j] = model.joint_status[j] != JointStatus::intact ?
+                      1. :
+                      std::max(model.joint_damage[2 * j],
+                               model.joint_damage[2 * j + 1]);
     }
 
     unsigned int

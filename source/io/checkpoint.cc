@@ -38,7 +38,7 @@ namespace tmfdem
     }
 
     constexpr char          magic[8] = {'T', 'M', 'F', 'D', 'E', 'M', 'C', 'K'};
-    constexpr std::uint32_t format_version = 3;
+    constexpr std::uint32_t format_version = 4;
     constexpr std::size_t   header_bytes   = 32;
 
     std::uint64_t
@@ -179,6 +179,16 @@ namespace tmfdem
         "Output/Directory, Output/Progress interval, Discrete "
         "mechanics/Threads and Time stepping/End time may change), or start "
         "afresh without --resume.");
+  }
+
+  CheckpointReader::CheckpointReader(const CheckpointWriter &writer,
+                                     const std::string      &name)
+    : file_name(name)
+    , payload(writer.payload)
+  {
+    std::string kind, digest;
+    get(kind);
+    get(digest);
   }
 
   void

@@ -26,6 +26,10 @@
       stress of their centroids);
       radial cracks from the rim; more cracks at 500 C than at 300 C; heat
       balance 1e-6.
+  verify_discrete_thermal_cracking.py TMFDEM OUT pattern
+      prm/thermal_shock_disc.prm at 400 C to 100 ms with maximum thermal
+      steps of 20 ms and 2 ms: the same crack count (10 % or one crack) and
+      crack length (10 %), no relaxation at the cap.
 """
 import os
 import sys
@@ -389,9 +393,41 @@ def step(binary, out):
     return ok
 
 
+def pattern(binary, out):
+    """The crack pattern after the onset does not depend on the thermal
+    step: prm/thermal_shock_disc.prm at T0 = 400 C (the showcase) to 100 ms
+    with the prm's maximum thermal step (20 ms) and with 2 ms: crack counts
+    within 10 % of each other or one crack, whichever is more; summed
+    lengths of the broken joints within 10 %; no relaxation at the cap."""
+    ok = True
+    found = {}
+    for name, step in (("max_20ms", "0.02"), ("max_2ms", "0.002")):
+        folder = f"{out}/{name}"
+        run(binary, os.path.join(PRM, "thermal_shock_disc.prm"), folder,
+            "Initial conditions/Temperature=400", "Time stepping/End time=0.1",
+            f"Discrete heat/Maximum thermal step={step}", "Output/Times=0.1")
+        s = summary(folder)
+        pts, lines, _, _ = read_vtu(series(folder, "cracks")[-1][1], "break_time")
+        length = sum(float(np.linalg.norm(pts[a] - pts[b])) for a, b in lines)
+        found[name] = (s["cracks"], length)
+        print(f"  {name}: {s['broken_joints']} broken joints, {s['cracks']} cracks, "
+              f"length {length * 1e3:.2f} mm, {s['thermal_steps']} thermal steps "
+              f"({s['rejected_thermal_steps']} re-run, {s['unstable_thermal_steps']} "
+              f"unstable), {s['fracture_events']} fracture events", flush=True)
+        ok &= check(s["relaxations_at_cap"] == 0,
+                    f"{name}: relaxations at the cap {s['relaxations_at_cap']} (0)")
+    (n1, l1), (n2, l2) = found["max_20ms"], found["max_2ms"]
+    ok &= check(abs(n1 - n2) <= max(1, 0.1 * max(n1, n2)),
+                f"cracks {n1} (20 ms) and {n2} (2 ms): within 10 % or one crack")
+    ok &= check(l1 > 0 and l2 > 0 and abs(l1 - l2) <= 0.1 * max(l1, l2),
+                f"crack length {l1 * 1e3:.2f} mm (20 ms) and {l2 * 1e3:.2f} mm (2 ms): "
+                f"{100 * abs(l1 - l2) / max(l1, l2, 1e-30):.1f} % apart (<= 10 %)")
+    return ok
+
+
 if __name__ == "__main__":
     binary, out, case = sys.argv[1:4]
     sys.exit(0 if {"hollow": hollow, "event": event, "event_capped": event_capped,
                    "fast_event": fast_event,
                    "shock": shock,
-                   "step": step}[case](binary, out) else 1)
+                   "step": step, "pattern": pattern}[case](binary, out) else 1)

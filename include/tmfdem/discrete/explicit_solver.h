@@ -36,6 +36,9 @@
 
 namespace tmfdem
 {
+  class CheckpointWriter;
+  class CheckpointReader;
+
   class CsvSeries;
   class CheckpointSchedule;
 
@@ -263,6 +266,45 @@ namespace tmfdem
        *  event paused the velocity resets, and their mechanical steps. */
       unsigned long fracture_events = 0, fracture_event_steps = 0;
       /**
+       * Quasi-static coupling, thermal step control through the fracture
+       * process (Discrete heat/Maximum failing joints per step): the joints
+       * that started to fail (first damage) or broke per unit time over the
+       * last accepted thermal step that was resolved (not an unstable
+       * event) [1/s].
+       */
+      double failure_rate = 0.;
+      /** The last accepted thermal step [s]; 0 before the first. */
+      double last_thermal_step = 0.;
+      /** Thermal steps re-run shorter: more than twice Maximum failing
+       *  joints per step started to fail or broke in them, or their
+       *  relaxation did not converge. */
+      unsigned long rejected_thermal_steps = 0;
+      /** Thermal steps accepted at Minimum thermal step although too many
+       *  joints failed in them or the relaxation reached its cap: crack
+       *  growth that no shorter step resolves (unstable propagation, run as
+       *  a fracture event). */
+      unsigned long unstable_thermal_steps = 0;
+      /** The state at the start of the thermal step under way (a step that
+       *  is re-run starts from it again); null when not kept. */
+      std::unique_ptr<CheckpointWriter> thermal_step_start;
+      /** Keeps the whole state of this rank (synchronised) in
+       *  thermal_step_start. */
+      void
+      keep_thermal_step_start();
+      /** Returns to the state of keep_thermal_step_start(). */
+      void
+      restore_thermal_step_start();
+      /** The thermal step @p dt [s] and its relaxation, without the
+       *  step control (source/coupling/discrete_thermo_mechanics.cc). */
+      void
+      advance_thermal_step(const double dt);
+      /** The clocks, counters and state that a thermal step changes (the
+       *  part that a checkpoint and a re-run step share). */
+      void
+      put_state(CheckpointWriter &out) const;
+      void
+      get_state(CheckpointReader &in);
+      /**
        * Relaxation predictor = extrapolate, before the relaxation of a
        * thermal step @p dt [s]: moves the free node components by the last
        * relaxation's increment times dt / (its thermal step), booking the
@@ -302,6 +344,10 @@ namespace tmfdem
        * and landing on the end time. */
       double
       quasi_static_thermal_step() const;
+      /** Quasi-static coupling: the shortest thermal step the step control
+       *  takes (Discrete heat/Minimum thermal step) [s]. */
+      double
+      minimum_thermal_step() const;
       /** One explicit mechanical step without advancing the clock. */
       void
       mechanical_step();

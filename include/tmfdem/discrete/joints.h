@@ -71,12 +71,22 @@ namespace tmfdem
                          const VectorInstructions      instructions);
 
     /**
-     * The largest strength utilisation over the undamaged intact joints
-     * [-]: max over their Gauss points of opening / peak opening and
-     * |slip| / peak slip (1 at the peak of the cohesive law).
+     * The strength utilisation of every joint into @p utilisation (one
+     * value per joint) [-]: for an undamaged intact joint the largest over
+     * its Gauss points of opening / peak opening and |slip| / peak slip (1
+     * at the peak of the cohesive law, capped there); -1 for a damaged or
+     * broken joint, whose state the damage measures instead.
      */
-    double
-    max_joint_utilisation(const DiscreteModel &model);
+    void
+    joint_utilisations(const DiscreteModel &model,
+                       std::vector<double> &utilisation);
+
+    /**
+     * The damage of every joint's more damaged Gauss point into @p damage
+     * (one value per joint, 1 for a broken joint) [-].
+     */
+    void
+    joint_damages(const DiscreteModel &model, std::vector<double> &damage);
 
     /** Joints that are damaged or broken [-]. */
     unsigned int

@@ -119,6 +119,7 @@ namespace tmfdem
     file_content() const;
 
   private:
+    friend class CheckpointReader;
     void
                 append(const void *data, const std::size_t bytes);
     std::string payload;
@@ -137,6 +138,13 @@ namespace tmfdem
     CheckpointReader(const std::string &file_name,
                      const std::string &kind,
                      const std::string &digest);
+
+    /**
+     * Reads the payload of @p writer in memory (a state kept for a while,
+     * e.g. the start of a thermal step that may be re-run); @p name names it
+     * in messages. Kind and digest are read past unchecked.
+     */
+    CheckpointReader(const CheckpointWriter &writer, const std::string &name);
 
     /** Reads a plain value. */
     template <typename T>

@@ -1,0 +1,39 @@
+#!/usr/bin/env python3
+"""Every shipped quasi-static case converges: each prm file of prm/ and
+doc/tutorial/prm/ with `Coupling = quasi-static`, run as shipped to its End
+time, has no relaxation that reached its cap (summary.json
+relaxations_at_cap = 0: every thermal step ends in equilibrium, also where
+cracks run unstably, which the step control finds and the fracture event
+runs with inertia).
+
+    verify_relaxations_converge.py TMFDEM OUT [PRM ...]
+
+Without PRM arguments it finds the files itself; it prints per file the
+thermal steps, the re-run and unstable steps, the fracture events and the
+broken joints.
+"""
+import glob
+import os
+import re
+import sys
+
+from common import run, summary, check
+
+binary, out = sys.argv[1], sys.argv[2]
+root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+files = sys.argv[3:] or sorted(glob.glob(os.path.join(root, "prm", "*.prm")) +
+                               glob.glob(os.path.join(root, "doc", "tutorial", "prm", "*.prm")))
+quasi_static = [f for f in files
+                if re.search(r"^\s*set\s+Coupling\s*=\s*quasi-static", open(f).read(), re.M)]
+ok = check(len(quasi_static) >= 6, f"{len(quasi_static)} quasi-static prm files found (>= 6)")
+for prm in quasi_static:
+    name = os.path.splitext(os.path.basename(prm))[0]
+    folder = os.path.join(out, name)
+    run(binary, prm, folder, "Output/Write vtu=false")
+    s = summary(folder)
+    ok &= check(s["finished"] and s["relaxations_at_cap"] == 0,
+                f"{name}: relaxations at the cap {s['relaxations_at_cap']} (0) in "
+                f"{s['thermal_steps']} thermal steps ({s.get('rejected_thermal_steps')} re-run, "
+                f"{s.get('unstable_thermal_steps')} unstable, {s.get('fracture_events')} "
+                f"fracture events, {s['broken_joints']} broken joints)")
+sys.exit(0 if ok else 1)
