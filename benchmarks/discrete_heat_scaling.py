@@ -182,6 +182,7 @@ def main():
     # --- discrete thermo-mechanics, explicit heat, multi-rate
     prm = os.path.join(root, "prm", "thermal_shock_disc.prm")
     sets = ["Discrete heat/Time integration=explicit", "Discrete heat/Coupling=dynamic",
+            "Discrete heat/Fracture event duration=0", "Discrete heat/Relaxation damping=mass",
             "Discrete heat/Mechanical steps per thermal step=0",
             "Discrete heat/Thermal step growth factor=1",
             "Time stepping/End time=1e-2", "Discrete mechanics/Maximum steps=4000"]

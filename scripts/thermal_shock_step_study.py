@@ -90,8 +90,7 @@ def main():
                     "Discrete heat/Mechanical steps per thermal step=1000",
                     "Discrete heat/Thermal step growth factor=1",
                     "Discrete heat/Relaxation damping=mass",
-                    "Discrete heat/Fracture event duration=0",
-                    "Discrete mechanics/Mass damping=0"]))
+                    "Discrete heat/Fracture event duration=0"]))
     with ThreadPoolExecutor(args.jobs) as pool:
         list(pool.map(lambda r: run(args.binary, r[1], r[2]), runs))
     print("| run | broken joints | cracks | deep cracks | crack length [mm] | "

@@ -74,8 +74,8 @@ namespace tmfdem
       // extrapolates every node from it; the heat reads its own part
       synchronise();
       // the joints at the start of the step: the rise of their utilisation
-      // and the joints that start to fail in it set the next step; a step
-      // in which too many fail at once, or whose relaxation does not
+      // and the joints that break in it set the next step; a step in which
+      // too many break at once, or whose relaxation does not
       // converge, is re-run shorter from here (theory manual 8, "Thermal
       // steps through the fracture process")
       const bool control_failures = dh.maximum_failing_joints > 0;
@@ -97,12 +97,12 @@ namespace tmfdem
           advance_thermal_step(dt);
           if (!control_failures)
             break;
-          // joints that became damaged and joints that broke in this step
+          // joints that broke in this step (their onset of damage is
+          // resolved by the utilisation control above)
           joint_damages(model, damage_end);
           failing = 0;
           for (unsigned int j = 0; j < model.n_joints; ++j)
-            failing += (damage_start[j] == 0. && damage_end[j] > 0.) +
-                       (damage_start[j] < 1. && damage_end[j] >= 1.);
+            failing += damage_start[j] < 1. && damage_end[j] >= 1.;
           const bool resolved =
             failing <= 2. * allowed && last_relaxation_converged;
           if (resolved)
@@ -117,10 +117,10 @@ namespace tmfdem
               break;
             }
           // re-run from the start of the step, shorter: by the factor that
-          // brings the failures to half the allowed number, were they
-          // proportional to the step (at least 4 x shorter: failures that
-          // do not become fewer with the step are an instability, whose
-          // load a few cuts then find)
+          // brings the breaks to half the allowed number, were they
+          // proportional to the step (at least 4 x shorter: breaks that do
+          // not become fewer with the step are an instability, whose load
+          // a few cuts then find)
           restore_thermal_step_start();
           ++rejected_thermal_steps;
           const double factor =
@@ -130,13 +130,15 @@ namespace tmfdem
             std::cerr << "[tmfdem] t = " << time << " s: thermal step re-run "
                       << (failing > 2. * allowed ?
                             "(" + std::to_string(failing) +
-                              " joints started to fail or broke in it)" :
+                              " joints broke in it)" :
                             std::string("(the relaxation did not converge)"))
                       << " with " << dt << " s\n";
         }
       last_thermal_step = dt;
+      // the next step shrinks by allowed / failing where more broke than
+      // allowed (a single break in a short step says nothing of a rate)
       if (control_failures)
-        failure_rate = unstable ? 0. : failing / dt;
+        failure_rate = unstable || failing <= allowed ? 0. : failing / dt;
       if (dh.maximum_utilisation_change > 0.)
         {
           // the fastest rise of one joint's utilisation, over the joints
@@ -344,8 +346,8 @@ namespace tmfdem
                                (time - parameters.time.start_time));
           dt = std::min(dt, std::max(minimum_step, limit));
         }
-      // joints failing: at most the allowed number per step, predicted
-      // from their rate over the last step
+      // joints breaking: at most the allowed number per step, from their
+      // rate over the last step where it had more
       if (dh.maximum_failing_joints > 0 && failure_rate > 0.)
         dt = std::min(dt,
                       std::max(minimum_step,

@@ -555,20 +555,20 @@ namespace tmfdem
       "resolved to about this fraction whatever Time step and growth "
       "factor say [-]. 0: off.");
     prm.declare_entry(
-      "Maximum failing joints per step",
+      "Maximum broken joints per step",
       "2",
       Patterns::Integer(0, 1000000),
       "Quasi-static coupling: thermal step control through the fracture "
-      "process. Counted per thermal step are the joints that start to fail "
-      "(their first damage) and the joints that break; the step shrinks so "
-      "that, at the rate of the last step, at most this many would, and a "
-      "step in which more than twice this many did, or whose relaxation "
-      "reached Mechanical steps per thermal step, is re-run from its start "
-      "with a shorter step, down to Minimum thermal step, where it is "
-      "accepted as unstable crack growth (summary.json "
+      "process. Counted per thermal step are the joints that break; where "
+      "more broke than this, the next step is shorter by this number over "
+      "theirs, and a step in which more than twice this many broke, or whose "
+      "relaxation reached Mechanical steps per thermal step, is re-run from "
+      "its start with a shorter step, down to Minimum thermal step, where it "
+      "is accepted as unstable crack growth (summary.json "
       "rejected_thermal_steps, unstable_thermal_steps). After a shortened "
-      "step the step grows back by at most a factor 2 per step [-]. 0: off "
-      "(no re-runs).");
+      "step the step grows back by at most a factor 2 per step. The onset "
+      "of damage is resolved by Maximum utilisation change [-]. 0: off (no "
+      "re-runs).");
     prm.declare_entry(
       "Minimum thermal step",
       "0",
@@ -620,7 +620,7 @@ namespace tmfdem
     maximum_thermal_step    = prm.get_double("Maximum thermal step");
     maximum_utilisation_change = prm.get_double("Maximum utilisation change");
     maximum_failing_joints =
-      prm.get_integer("Maximum failing joints per step");
+      prm.get_integer("Maximum broken joints per step");
     minimum_thermal_step       = prm.get_double("Minimum thermal step");
     {
       const std::string name  = prm.get("Contact heat model");

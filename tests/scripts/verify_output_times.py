@@ -46,6 +46,7 @@ requested = [2e-6, 4e-6, 5e-6, 6e-6, 8e-6, 1e-5, 1.2e-5, 1.5e-5, 1.8e-5]
 folder = os.path.join(out, "multi_rate")
 run(binary, prm, folder, "Mesh/Element size=0.8e-3", "Initial conditions/Temperature=400",
     "Discrete heat/Coupling=dynamic", "Discrete heat/Thermal step growth factor=1",
+    "Discrete heat/Fracture event duration=0", "Discrete heat/Relaxation damping=mass",
     "Discrete heat/Mechanical steps per thermal step=50", "Discrete mechanics/Mass damping=0",
     "Time stepping/End time=2e-5", "Output/Times=" + ", ".join(str(t) for t in requested))
 dt = summary(folder)["time_step"]

@@ -168,9 +168,9 @@ namespace tmfdem
     /** Quasi-static: largest predicted rise of the joints' strength
      *  utilisation per thermal step [-]; 0: off. */
     double maximum_utilisation_change = 0.01;
-    /** Quasi-static: most joints that may start to fail (first damage)
-     *  or break in one thermal step, predicted from their last rate; a
-     *  step with more than twice this many is re-run shorter [-]; 0: off. */
+    /** Quasi-static: most joints that may break in one thermal step (the
+     *  next step shrinks where more did; a step with more than twice this
+     *  many is re-run shorter) [-]; 0: off. */
     unsigned int maximum_failing_joints = 2;
     /** Quasi-static: shortest thermal step of the step control; 0: 1e-3
      *  Time step [s]. */

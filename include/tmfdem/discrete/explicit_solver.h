@@ -267,17 +267,17 @@ namespace tmfdem
       unsigned long fracture_events = 0, fracture_event_steps = 0;
       /**
        * Quasi-static coupling, thermal step control through the fracture
-       * process (Discrete heat/Maximum failing joints per step): the joints
-       * that started to fail (first damage) or broke per unit time over the
-       * last accepted thermal step that was resolved (not an unstable
-       * event) [1/s].
+       * process (Discrete heat/Maximum broken joints per step): the joints
+       * that broke per unit time over the last accepted thermal step, where
+       * more broke than allowed and the step was resolved (not an unstable
+       * event); 0 otherwise [1/s].
        */
       double failure_rate = 0.;
       /** The last accepted thermal step [s]; 0 before the first. */
       double last_thermal_step = 0.;
-      /** Thermal steps re-run shorter: more than twice Maximum failing
-       *  joints per step started to fail or broke in them, or their
-       *  relaxation did not converge. */
+      /** Thermal steps re-run shorter: more than twice Maximum broken
+       *  joints per step broke in them, or their relaxation did not
+       *  converge. */
       unsigned long rejected_thermal_steps = 0;
       /** Thermal steps accepted at Minimum thermal step although too many
        *  joints failed in them or the relaxation reached its cap: crack
