@@ -232,6 +232,24 @@ namespace tmfdem
       double
       stored_energy(const DiscreteModel    &model,
                     const ElementPartition &partition) const;
+      /** The pair of largest overlap (largest_overlap()). */
+      struct Overlap
+      {
+        /** Overlap area / the smaller triangle's area [-]; 0 if none. */
+        double       fraction = 0.;
+        double       area     = 0.;         ///< [m^2 per m]
+        unsigned int first = 0, second = 0; ///< the two triangles
+      };
+      /**
+       * The force-carrying pair of the current pair list (this rank's
+       * pairs) whose triangles overlap most, relative to the smaller
+       * triangle's area (triangle_overlap.h), in the current geometry of
+       * @p model. Pairs within one rigid group are skipped. Not
+       * collective.
+       */
+      Overlap
+      largest_overlap(const DiscreteModel &model) const;
+
       unsigned long
       n_searches() const
       {
