@@ -4,6 +4,7 @@
 
 #include <bitset>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -178,8 +179,9 @@ namespace tmfdem
                     const std::vector<std::string> &overrides)
     {
       std::bitset<MaterialParameters::max_materials> given;
-      const auto extension = Utilities::split_string_list(prm_file, '.').back();
-      if (extension == "json" || extension == "xml")
+      const std::string                              extension =
+        std::filesystem::path(prm_file).extension().string();
+      if (extension == ".json" || extension == ".xml")
         return given.set();
       // "Material  2" and "Material 2" name the same subsection
       const auto normalised = [](const std::string &text) {

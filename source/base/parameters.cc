@@ -107,7 +107,9 @@ namespace tmfdem
                       "0",
                       Patterns::Integer(0,
                                         MaterialParameters::max_materials - 1),
-                      "Material id of the cells of a generated mesh [-].");
+                      "Material id of the cells of a generated mesh [-]; "
+                      "like every id of a mesh file's cells, it needs its "
+                      "subsection Materials/Material <id> in the input.");
     prm.enter_subsection("Block heap");
     {
       const BlockHeap d;
