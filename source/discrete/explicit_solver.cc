@@ -265,8 +265,8 @@ namespace tmfdem
                                        static_cast<unsigned int>(all[r + 2]),
                                        static_cast<unsigned int>(all[r + 3])};
         }
-      // beyond round-off at the start; beyond max_contact_overlap later
-      if (worst.fraction <= (initial ? 1e-9 : max_contact_overlap))
+      if (worst.fraction <=
+          (initial ? max_initial_overlap : max_contact_overlap))
         return;
 
       const auto &bodies = parameters.get<DiscreteBodyParameters>().bodies;
@@ -299,11 +299,13 @@ namespace tmfdem
             << "the triangles " << a << " and " << b << " overlap by "
             << worst.area << " m^2 at Time stepping/Start time, "
             << 100. * worst.fraction
-            << " % of the smaller one's area: bodies, and disconnected "
-               "pieces of one body, must not overlap at the start (contact "
-               "would push them apart violently and invert elements). Move "
-               "them apart in the mesh (Mesh/File name, the .geo file) or "
-               "leave a gap.";
+            << " % of the smaller one's area (allowed at the start: "
+            << 100. * max_initial_overlap
+            << " %, a press of about 5 % of the altitude): bodies, and "
+               "disconnected pieces of one body, must not overlap at the "
+               "start (contact would push them apart violently and invert "
+               "elements). Move them apart in the mesh (Mesh/File name, the "
+               ".geo file) or leave a gap.";
           throw InputError(message.str());
         }
       const auto &dm = parameters.get<DiscreteMechanicsParameters>();

@@ -51,19 +51,6 @@ namespace tmfdem
       setup_contact();
       // this rank's triangles; ghosts of the joints until the first search
       partition.setup(communicator, model, chunk_size);
-      {
-        // ranks advance whole chunks of chunk_size triangles
-        const unsigned int n_chunks =
-          (model.n_elements + chunk_size - 1) / chunk_size;
-        if (partition.distributed() && n_chunks < partition.n_processes() &&
-            partition.rank() == 0)
-          std::cerr << "[tmfdem] note: the discrete mesh has "
-                    << model.n_elements << " triangles; each rank advances "
-                    << "whole chunks of " << chunk_size << ", so " << n_chunks
-                    << " of the " << partition.n_processes()
-                    << " MPI ranks do the work and the others wait (fewer "
-                       "ranks, or a finer mesh, use them)\n";
-      }
       partition.build_ghost_plan(model, contact.pairs());
       compute_stable_time_step();
 

@@ -125,7 +125,12 @@ namespace tmfdem
           error = "cannot create the output folder '" + folder +
                   "': " + code.message();
         else
-          remove_stray_temporaries(folder);
+          {
+            remove_stray_temporaries(folder);
+            // and in the default checkpoint folder (Checkpoint/Directory)
+            if (std::filesystem::is_directory(folder + "/checkpoints", code))
+              remove_stray_temporaries(folder + "/checkpoints");
+          }
       }
     error = Utilities::MPI::broadcast(communicator, error, 0);
     if (!error.empty())

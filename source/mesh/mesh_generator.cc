@@ -248,7 +248,7 @@ namespace tmfdem
     {
       std::ifstream in(file_name);
       const auto fail = [&](const std::size_t line, const std::string &what) {
-        throw InputError("Mesh file '" + file_name + "', line " +
+        throw InputError("Mesh file '" + file_name + "' cannot be read: line " +
                          std::to_string(line) + ": " + what);
       };
       std::vector<std::string> lines;
