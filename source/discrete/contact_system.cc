@@ -17,9 +17,10 @@ namespace tmfdem
       rigid_group = rigid_groups;
       pair_list.clear();
       index_pairs(0);
-      travel_since_search = 0.;
-      search_is_needed    = true;
-      searches            = 0;
+      travel_since_search        = 0.;
+      travel_since_overlap_check = 0.;
+      search_is_needed           = true;
+      searches                   = 0;
     }
 
     double

@@ -222,7 +222,13 @@ namespace tmfdem
           contact.search(model, arena_for(n_threads), partition);
           partition.build_ghost_plan(model, contact.pairs());
         }
-      check_contact_overlap(false);
+      // the overlap guard after the travel of a search (not after every
+      // search that breaking joints ask for)
+      if (contact.overlap_check_due())
+        {
+          check_contact_overlap(false);
+          contact.overlap_checked();
+        }
     }
 
     void

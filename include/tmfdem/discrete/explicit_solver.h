@@ -355,13 +355,13 @@ namespace tmfdem
       void
       search_contacts();
       /**
-       * The overlap guard, after every contact search (the travel since
-       * the last is at most the search buffer, so no pair passes through
-       * unseen): the largest overlap of a force-carrying pair against the
-       * smaller triangle's area. With @p initial (set-up): an overlap of
-       * two triangles not joined beyond max_initial_overlap is bad input
-       * (InputError naming them and their bodies); later, an overlap beyond
-       * max_contact_overlap stops the run (guard: the contact penalty is
+       * The overlap guard, after a contact search once the fastest node
+       * has travelled half the search buffer since the last check (so no
+       * pair passes through unseen): the largest overlap of a force-carrying
+       * pair against the smaller triangle's area. With @p initial (set-up): an
+       * overlap of two triangles not joined beyond max_initial_overlap is bad
+       * input (InputError naming them and their bodies); later, an overlap
+       * beyond max_contact_overlap stops the run (guard: the contact penalty is
        * too soft for the impact).
        */
       void
