@@ -234,42 +234,48 @@ namespace tmfdem
     void
     ExplicitSolver::check_contact_overlap(const bool initial)
     {
-      ContactSystem::Overlap local;
+      ContactSystem::Overlap worst;
       if (initial)
         {
-          // the pairs of the first search, in a copy: the run's own
-          // search, counters and pair list stay as they were
+          // the pairs of a first search, in a copy and on a partition of
+          // this rank alone (every rank holds the whole model at set-up):
+          // the run's own search, counters, pair list and ghost plan stay
+          // as they were, and every rank finds the same pair
+          ElementPartition whole;
+          whole.setup(MPI_COMM_SELF, model, chunk_size);
           ContactSystem probe = contact;
           probe.update_active_elements(model);
-          probe.search(model, arena_for(n_threads), partition);
-          local = probe.largest_overlap(model);
+          probe.search(model, arena_for(n_threads), whole);
+          worst = probe.largest_overlap(model);
         }
       else
-        local = contact.largest_overlap(model);
-      // the largest of all ranks (the first rank's on a tie)
-      ContactSystem::Overlap worst = local;
-      if (partition.distributed())
         {
-          const double        mine[4] = {local.fraction,
-                                         local.area,
-                                         static_cast<double>(local.first),
-                                         static_cast<double>(local.second)};
-          std::vector<double> all(
-            4 * Utilities::MPI::n_mpi_processes(communicator));
-          MPI_Allgather(mine,
-                        4,
-                        MPI_DOUBLE,
-                        all.data(),
-                        4,
-                        MPI_DOUBLE,
-                        communicator);
-          for (std::size_t r = 0; r < all.size(); r += 4)
-            if (all[r] > worst.fraction || r == 0)
-              worst =
-                ContactSystem::Overlap{all[r],
-                                       all[r + 1],
-                                       static_cast<unsigned int>(all[r + 2]),
-                                       static_cast<unsigned int>(all[r + 3])};
+          const ContactSystem::Overlap local = contact.largest_overlap(model);
+          worst                              = local;
+          // the largest of all ranks (the first rank's on a tie)
+          if (partition.distributed())
+            {
+              const double        mine[4] = {local.fraction,
+                                             local.area,
+                                             static_cast<double>(local.first),
+                                             static_cast<double>(local.second)};
+              std::vector<double> all(
+                4 * Utilities::MPI::n_mpi_processes(communicator));
+              MPI_Allgather(mine,
+                            4,
+                            MPI_DOUBLE,
+                            all.data(),
+                            4,
+                            MPI_DOUBLE,
+                            communicator);
+              for (std::size_t r = 0; r < all.size(); r += 4)
+                if (all[r] > worst.fraction || r == 0)
+                  worst = ContactSystem::Overlap{
+                    all[r],
+                    all[r + 1],
+                    static_cast<unsigned int>(all[r + 2]),
+                    static_cast<unsigned int>(all[r + 3])};
+            }
         }
       if (worst.fraction <=
           (initial ? max_initial_overlap : max_contact_overlap))
