@@ -4,8 +4,9 @@ second, at 1 and 2 threads:
   intact:     a 1 m square plate of 60 x 60 cells, two triangles each (7200
               triangles, 10680 joints), bottom on rollers, top pulled at
               0.1 m/s, strong joints (nothing breaks), contact on;
-  fragmented: the same plate with weak joints dropped at 20 m/s onto a fixed
-              floor: it shatters, and most of the run has thousands of
+  fragmented: the same plate with weak joints, 2 mm above a fixed floor,
+              thrown down at 20 m/s: it hits the floor after about 250
+              steps and shatters, and most of the run has thousands of
               active contact pairs.
 Memory: bytes per triangle of the discrete state from the peak resident
 memory of two intact plates (200 x 200 and 100 x 100 cells), their
@@ -35,48 +36,77 @@ compensation=false". With --against, --cells N takes plates of N x N cells
 instead of 60 x 60 (N = 354: the 250 632 triangles of the MPI benchmark, a
 mesh that does not fit in the caches) with 3000 (60 / N)^2 and 6000 (60 /
 N)^2 steps (at least 20), and --intact-only leaves out the fragmented plate.
+The fragmented runs must end with at least MIN_BROKEN_JOINTS broken joints
+and MIN_CONTACT_PAIRS contact pairs (summary.json), else the benchmark fails.
+The temporary folder of the runs is removed at the end (--keep keeps it).
 usage: benchmarks/discrete_mechanics_throughput.py [path/to/tmfdem [REPEATS]]
        benchmarks/discrete_mechanics_throughput.py --against REFERENCE path/to/tmfdem [REPEATS]
                                                    [--reference-set S ...] [--cells N] [--intact-only]"""
+import argparse
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
 
 here = os.path.dirname(os.path.abspath(__file__))
-arguments = sys.argv[1:]
-# --reference-set "Subsection/Entry=value": one more --set for the
-# reference runs only (e.g. the same binary with a feature off)
-reference_settings = []
-while "--reference-set" in arguments:
-    i = arguments.index("--reference-set")
-    reference_settings += ["--set", arguments[i + 1]]
-    del arguments[i:i + 2]
-# --cells N, --intact-only (with --against): plate size and cases
-cells = 60
-if "--cells" in arguments:
-    i = arguments.index("--cells")
-    cells = int(arguments[i + 1])
-    del arguments[i:i + 2]
-intact_only = "--intact-only" in arguments
-if intact_only:
-    arguments.remove("--intact-only")
-reference = None
-if arguments[:1] == ["--against"]:
-    if len(arguments) < 3:
-        sys.exit(__doc__)
-    reference = arguments[1]
-    arguments = arguments[2:]
-binary = arguments[0] if arguments else os.path.join(here, "..", "build-release", "tmfdem")
-repeats = int(arguments[1]) if len(arguments) > 1 else 3
-work = tempfile.mkdtemp(prefix="tmfdem-bench-")
+
+# the fragmented plate must shatter: at least these many broken joints and
+# contact pairs at the end of every fragmented run (summary.json), else the
+# benchmark fails (it would measure an intact plate in free flight)
+MIN_BROKEN_JOINTS = 1000
+MIN_CONTACT_PAIRS = 1000
+# gap between the plate and the floor [m]: at 20 m/s the plate reaches the
+# floor after 1e-4 s, about 250 of its 6000 steps of 4.1e-7 s
+FLOOR_GAP = 0.002
+
+
+def parse_arguments():
+    parser = argparse.ArgumentParser(
+        description=__doc__.split("\nusage:")[0],
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("binary", nargs="?",
+                        default=os.path.join(here, "..", "build-release", "tmfdem"),
+                        help="the tmfdem binary (default: build-release/tmfdem)")
+    parser.add_argument("repeats", nargs="?", type=int, default=3,
+                        help="pairs or rounds per case (default 3)")
+    parser.add_argument("--against", metavar="REFERENCE",
+                        help="compare with this second tmfdem binary, 1 thread")
+    parser.add_argument("--reference-set", action="append", default=[],
+                        metavar="Subsection/Entry=value",
+                        help="a --set for the reference runs only (repeatable)")
+    parser.add_argument("--cells", type=int, default=60,
+                        help="with --against: plates of N x N cells (default 60)")
+    parser.add_argument("--intact-only", action="store_true",
+                        help="with --against: leave out the fragmented plate")
+    parser.add_argument("--keep", action="store_true",
+                        help="keep the temporary folder of the runs")
+    arguments = parser.parse_args()
+    if not os.path.isfile(arguments.binary):
+        parser.error(f"no tmfdem binary at '{arguments.binary}'")
+    if arguments.against is not None and not os.path.isfile(arguments.against):
+        parser.error(f"no reference binary at '{arguments.against}'")
+    if arguments.repeats < 1 or arguments.cells < 1:
+        parser.error("repeats and --cells must be >= 1")
+    return arguments
+
+
+options = parse_arguments() if __name__ == "__main__" else None
+binary = options.binary if options else None
+repeats = options.repeats if options else 3
+reference = options.against if options else None
+reference_settings = [a for s in (options.reference_set if options else [])
+                      for a in ("--set", s)]
+cells = options.cells if options else 60
+intact_only = options.intact_only if options else False
+work = None
 
 
 def plate_msh(n, with_floor):
     """n x n cells on [0,1]^2, each cut into two triangles (counter-clockwise);
     boundary ids 2 bottom, 3 top (physical lines); material 1. With a floor:
-    a fixed slab (material 2) 0.05 m below the plate."""
+    a fixed slab (material 2) FLOOR_GAP below the plate."""
     nodes, triangles, lines = [], [], []
     def nid(i, j):
         return j * (n + 1) + i + 1
@@ -92,7 +122,7 @@ def plate_msh(n, with_floor):
     if with_floor:
         base = len(nodes)
         fx = [-0.5 + 2.0 * k / 20 for k in range(21)]
-        for y in (-0.15, -0.05):
+        for y in (-0.1 - FLOOR_GAP, -FLOOR_GAP):
             for x in fx:
                 nodes.append((x, y))
         for k in range(20):
@@ -189,9 +219,22 @@ def run(prm_file, threads, steps, out, program=None, extra=()):
     if os.path.exists(os.path.join(folder, "libtmfdem.so")):
         # a copied build: tmfdem with its own libtmfdem.so beside it
         env["LD_LIBRARY_PATH"] = folder + os.pathsep + env.get("LD_LIBRARY_PATH", "")
-    subprocess.run(cmd, check=True, capture_output=True, env=env)
+    result = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    if result.returncode != 0:
+        sys.exit(f"{' '.join(cmd)} failed (exit status {result.returncode}):\n"
+                 f"{result.stderr[-2000:]}")
     with open(os.path.join(out, "summary.json")) as f:
         return json.load(f)
+
+
+def check_fragmented(summary, label):
+    """Fails the benchmark unless the fragmented plate really shattered."""
+    broken, pairs = summary["broken_joints"], summary["contact_pairs"]
+    if broken < MIN_BROKEN_JOINTS or pairs < MIN_CONTACT_PAIRS:
+        sys.exit(f"FAILED: the fragmented plate ({label}) did not fragment: "
+                 f"{broken} broken joints (at least {MIN_BROKEN_JOINTS} "
+                 f"expected) and {pairs} contact pairs (at least "
+                 f"{MIN_CONTACT_PAIRS}) at the end of its run")
 
 
 def identical(a, b):
@@ -246,6 +289,8 @@ def compare_builds():
                 folders[build] = folder
                 s = run(p, 1, steps, folder, program,
                         reference_settings if build == "reference" else ())
+                if name == "fragmented":
+                    check_fragmented(s, f"{build}, round {r + 1}")
                 rates[build].append(s["element_steps_per_second"])
                 cpus[build].append(s["cpu_time_s"])
                 print(f"{name:>11} {r + 1:>5} {build:>9} {s['steps']:>6} "
@@ -271,7 +316,7 @@ def compare_builds():
 def main():
     if reference is not None:
         compare_builds()
-        sys.exit(0)
+        return
 
     print(f"cores: {os.cpu_count()}, load average before: "
           f"{' '.join(f'{x:.2f}' for x in os.getloadavg())}; {repeats} paired "
@@ -288,6 +333,8 @@ def main():
             for threads in (1, 2):
                 folder = os.path.join(work, f"{name}_{pair}_{threads}")
                 s = run(p, threads, steps, folder)
+                if name == "fragmented":
+                    check_fragmented(s, f"pair {pair + 1}, {threads} thread(s)")
                 rate = s["element_steps_per_second"]
                 rates[threads] = rate
                 cpu[threads] = s["cpu_time_s"]
@@ -324,4 +371,11 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    work = tempfile.mkdtemp(prefix="tmfdem-bench-")
+    try:
+        main()
+    finally:
+        if options.keep:
+            print(f"runs kept in {work}")
+        else:
+            shutil.rmtree(work, ignore_errors=True)

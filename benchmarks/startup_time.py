@@ -9,8 +9,10 @@ singleton, see source/main.cc) and with `tmfdem --help` (loading the
 libraries and MPI_Init only).
 
 usage: benchmarks/startup_time.py [path/to/tmfdem [REPEATS]]"""
+import argparse
 import os
 import resource
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -18,8 +20,20 @@ import time
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..")
-binary = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "build-release", "tmfdem")
-repeats = int(sys.argv[2]) if len(sys.argv) > 2 else 5
+parser = argparse.ArgumentParser(
+    description=__doc__.split("\nusage:")[0],
+    formatter_class=argparse.RawDescriptionHelpFormatter)
+parser.add_argument("binary", nargs="?",
+                    default=os.path.join(root, "build-release", "tmfdem"),
+                    help="the tmfdem binary (default: build-release/tmfdem)")
+parser.add_argument("repeats", nargs="?", type=int, default=5,
+                    help="runs of each case and start-up (default 5)")
+options = parser.parse_args()
+if not os.path.isfile(options.binary):
+    parser.error(f"no tmfdem binary at '{options.binary}'")
+binary, repeats = options.binary, options.repeats
+# every output (and the mesh that --validate writes) goes here, removed
+# at the end: nothing is left in the working directory
 work = tempfile.mkdtemp(prefix="tmfdem-startup-")
 
 # Open MPI's defaults for a process started without mpirun, set explicitly
@@ -35,7 +49,8 @@ cases = {
     "help": [binary, "--help"],
     "joint_pull": [binary, os.path.join(root, "prm", "joint_pull.prm"),
                    "--set", f"Output/Directory={os.path.join(work, 'joint_pull')}"],
-    "validate": [binary, "--validate", os.path.join(root, "prm", "thermal_shock_disc.prm")],
+    "validate": [binary, "--validate", os.path.join(root, "prm", "thermal_shock_disc.prm"),
+                 "--set", f"Output/Directory={os.path.join(work, 'validate')}"],
 }
 
 
@@ -52,23 +67,26 @@ def timed(command, env):
     return wall, cpu
 
 
-print(f"cores: {os.cpu_count()}, load average before: "
-      f"{' '.join(f'{x:.2f}' for x in os.getloadavg())}; {repeats} interleaved runs each")
-print(f"{'case':>11} {'start-up':>17} {'wall mean':>9} {'wall min':>8} {'cpu mean':>8}")
-for name, command in cases.items():
-    samples = {"isolated": [], "default": []}
-    for r in range(repeats):
+try:
+    print(f"cores: {os.cpu_count()}, load average before: "
+          f"{' '.join(f'{x:.2f}' for x in os.getloadavg())}; {repeats} interleaved runs each")
+    print(f"{'case':>11} {'start-up':>17} {'wall mean':>9} {'wall min':>8} {'cpu mean':>8}")
+    for name, command in cases.items():
+        samples = {"isolated": [], "default": []}
+        for r in range(repeats):
+            for mode in ("isolated", "default"):
+                env = dict(os.environ)
+                for key in default_singleton:
+                    env.pop(key, None)
+                if mode == "default":
+                    env.update(default_singleton)
+                samples[mode].append(timed(command, env))
         for mode in ("isolated", "default"):
-            env = dict(os.environ)
-            for key in default_singleton:
-                env.pop(key, None)
-            if mode == "default":
-                env.update(default_singleton)
-            samples[mode].append(timed(command, env))
-    for mode in ("isolated", "default"):
-        walls = [w for w, _ in samples[mode]]
-        cpus = [c for _, c in samples[mode]]
-        label = "tmfdem (isolated)" if mode == "isolated" else "Open MPI default"
-        print(f"{name:>11} {label:>17} {sum(walls) / len(walls):>9.3f} {min(walls):>8.3f} "
-              f"{sum(cpus) / len(cpus):>8.3f}")
-print(f"load average after: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+            walls = [w for w, _ in samples[mode]]
+            cpus = [c for _, c in samples[mode]]
+            label = "tmfdem (isolated)" if mode == "isolated" else "Open MPI default"
+            print(f"{name:>11} {label:>17} {sum(walls) / len(walls):>9.3f} {min(walls):>8.3f} "
+                  f"{sum(cpus) / len(cpus):>8.3f}")
+    print(f"load average after: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+finally:
+    shutil.rmtree(work, ignore_errors=True)

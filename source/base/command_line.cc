@@ -2,7 +2,9 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
 
+#include <bitset>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -78,6 +80,7 @@ namespace tmfdem
     /**
      * FNV-1a 64 digest (hex) of the parameters that decide the results: all
      * entries, with those that do not (Checkpoint, Output/Directory,
+     * Mesh/Gmsh time limit,
      * Output/Progress interval, Discrete mechanics/Threads and Allow
      * oversubscription: results do not depend on the thread count) reset to
      * fixed values first, and Time stepping/End time, which --resume may
@@ -93,6 +96,7 @@ namespace tmfdem
                    {{"Checkpoint", "Directory"}, ""},
                    {{"Checkpoint", "Keep"}, "2"},
                    {{"Output", "Directory"}, ""},
+                   {{"Mesh", "Gmsh time limit"}, "300"},
                    {{"Output", "Progress interval"}, "2"},
                    {{"Discrete mechanics", "Threads"}, "1"},
                    {{"Discrete mechanics", "Allow oversubscription"}, "false"},
@@ -161,6 +165,69 @@ namespace tmfdem
             }
         }
       return changed;
+    }
+
+    /**
+     * The `Materials/Material <id>` subsections the input defines: those
+     * the prm file @p prm_file names (even empty) and those --set
+     * @p overrides set an entry of. deal.II fills every declared subsection
+     * with defaults, so only the text tells an absent material from one
+     * given at its defaults. A .json or .xml input counts as defining all.
+     */
+    std::bitset<MaterialParameters::max_materials>
+    materials_given(const std::string              &prm_file,
+                    const std::vector<std::string> &overrides)
+    {
+      std::bitset<MaterialParameters::max_materials> given;
+      const std::string                              extension =
+        std::filesystem::path(prm_file).extension().string();
+      if (extension == ".json" || extension == ".xml")
+        return given.set();
+      // "Material  2" and "Material 2" name the same subsection
+      const auto normalised = [](const std::string &text) {
+        std::string result;
+        for (const char c : Utilities::trim(text))
+          if (!(c == ' ' || c == '\t') ||
+              (!result.empty() && result.back() != ' '))
+            result += (c == '\t' ? ' ' : c);
+        return result;
+      };
+      const auto mark = [&](const std::string &materials,
+                            const std::string &material) {
+        if (normalised(materials) != "Materials")
+          return;
+        const std::string name = normalised(material);
+        for (unsigned int id = 0; id < given.size(); ++id)
+          if (name == "Material " + std::to_string(id))
+            given.set(id);
+      };
+      std::ifstream            in(prm_file);
+      std::vector<std::string> path;
+      for (std::string line; std::getline(in, line);)
+        {
+          const auto hash = line.find('#');
+          if (hash != std::string::npos)
+            line.erase(hash);
+          line = normalised(line);
+          if (line.rfind("subsection ", 0) == 0)
+            {
+              path.push_back(line.substr(11));
+              if (path.size() == 2)
+                mark(path[0], path[1]);
+            }
+          else if (line == "end" && !path.empty())
+            path.pop_back();
+        }
+      for (const std::string &assignment : overrides)
+        {
+          std::vector<std::string> parts;
+          std::istringstream text(assignment.substr(0, assignment.find('=')));
+          for (std::string part; std::getline(text, part, '/');)
+            parts.push_back(part);
+          if (parts.size() >= 3)
+            mark(parts[0], parts[1]);
+        }
+      return given;
     }
   } // namespace
 
@@ -268,6 +335,32 @@ namespace tmfdem
                              "into the file (or use --set).");
         }
     }
+    {
+      // an empty file would run the built-in default case
+      std::ifstream probe(prm_file);
+      bool          sets = !overrides.empty();
+      for (std::string line; !sets && std::getline(probe, line);)
+        {
+          const std::string text = Utilities::trim(line);
+          sets = text.rfind("set ", 0) == 0 || text.rfind("set\t", 0) == 0;
+        }
+      if (!sets)
+        throw InputError(
+          "parameter file '" + prm_file +
+          "' sets no entries (it is empty or holds only comments or empty "
+          "subsections); tmfdem does not run a built-in default case. Needed "
+          "are at least 'set Model = ...' (one of: " +
+          [] {
+            std::string names;
+            for (const std::string &name : registered_simulation_names())
+              names += (names.empty() ? "" : ", ") + name;
+            return names;
+          }() +
+          "), the Mesh, a subsection Materials/Material <id> for each "
+          "material id of the mesh, Time stepping and the boundary "
+          "conditions of the case. prm/*.prm are complete examples; tmfdem "
+          "--print-parameters prints every entry with its documentation.");
+    }
     ParameterHandler prm;
     Parameters::declare_parameters(prm);
     try
@@ -282,7 +375,8 @@ namespace tmfdem
     for (const auto &assignment : overrides)
       apply_override(prm, assignment);
     Parameters parameters;
-    parameters.prm_file = prm_file;
+    parameters.prm_file        = prm_file;
+    parameters.materials.given = materials_given(prm_file, overrides);
     try
       {
         parameters.parse_parameters(prm);

@@ -84,6 +84,15 @@ namespace tmfdem
                       "or a gmsh .geo script that tmfdem meshes with the "
                       "gmsh program (2D, into <output>/mesh.msh); relative "
                       "to the folder of the prm file.");
+    prm.declare_entry(
+      "Gmsh time limit",
+      "300",
+      Patterns::Double(0.),
+      "Wall-clock limit of one gmsh run [s], > 0: gmsh meshes a .geo "
+      "File name, a triangle mesh of a rectangle, annulus or disc, and the "
+      "block heap. Past it gmsh is stopped and the run refused (exit status "
+      "1: the mesh asked for is too fine for the limit; coarsen it or raise "
+      "the limit).");
     prm.declare_entry("Expected area",
                       "0",
                       Patterns::Double(0.),
@@ -98,7 +107,9 @@ namespace tmfdem
                       "0",
                       Patterns::Integer(0,
                                         MaterialParameters::max_materials - 1),
-                      "Material id of the cells of a generated mesh [-].");
+                      "Material id of the cells of a generated mesh [-]; "
+                      "like every id of a mesh file's cells, it needs its "
+                      "subsection Materials/Material <id> in the input.");
     prm.enter_subsection("Block heap");
     {
       const BlockHeap d;
@@ -176,6 +187,11 @@ namespace tmfdem
     material_id        = prm.get_integer("Material id");
     file_name          = prm.get("File name");
     expected_area      = prm.get_double("Expected area");
+    gmsh_time_limit    = prm.get_double("Gmsh time limit");
+    if (!(gmsh_time_limit > 0.) || !std::isfinite(gmsh_time_limit))
+      throw InputError(
+        "Mesh/Gmsh time limit = " + Utilities::to_string(gmsh_time_limit) +
+        ": allowed is a finite time > 0 [s].");
     prm.enter_subsection("Block heap");
     block_heap.container_width  = prm.get_double("Container width");
     block_heap.container_height = prm.get_double("Container height");
@@ -428,6 +444,30 @@ namespace tmfdem
     return materials[id];
   }
 
+  void
+  MaterialParameters::require_given(const types::material_id id,
+                                    const std::string       &where) const
+  {
+    (*this)[id]; // ids beyond the subsections
+    if (given[id])
+      return;
+    std::string defined;
+    for (unsigned int other = 0; other < max_materials; ++other)
+      if (given[other])
+        defined += (defined.empty() ? "" : ", ") + std::to_string(other);
+    throw InputError(
+      "material id " + std::to_string(id) + " is used by " + where +
+      ", but the input has no subsection Materials/Material " +
+      std::to_string(id) +
+      ": it would run on built-in default properties. Define it (subsection "
+      "Materials, subsection Material " +
+      std::to_string(id) + ": Density, Young's modulus, ...)" +
+      (defined.empty() ?
+         std::string("; the input defines no Materials/Material <id>.") :
+         "; the input defines Material " + defined + ".") +
+      " (tmfdem --print-parameters lists the entries.)");
+  }
+
   // --------------------------------------------------- Initial conditions
   void
   InitialConditionParameters::declare_parameters(ParameterHandler &prm)
@@ -654,6 +694,15 @@ namespace tmfdem
       sections.find(type.type).parse(prm);
     checkpoint.parse_parameters(prm);
     guards.parse_parameters(prm);
+    // an output time before the start is never reached
+    for (const double t : output.times)
+      if (t < time.start_time)
+        throw InputError("Output/Times: " + Utilities::to_string(t) +
+                         " s is before Time stepping/Start time = " +
+                         Utilities::to_string(time.start_time) +
+                         " s and would never be written; allowed are times "
+                         ">= Start time (negative times only with a negative "
+                         "Start time).");
 
     // what the registered sections add to the shared ones (initial
     // temperatures of bodies), and their checks across sections

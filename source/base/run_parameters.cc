@@ -86,6 +86,16 @@ namespace tmfdem
             "Time stepping/End time = " + Utilities::to_string(end_time) +
             ": must be later than Start time = " +
             Utilities::to_string(start_time) + " [s].");
+        // the models stop within 1e-10 max(1, |End time|) of End time
+        // (OutputSchedule::default_tolerance()): a shorter span runs none
+        if (end_time - start_time <= 1e-10 * std::max(1., std::abs(end_time)))
+          throw InputError(
+            "Time stepping/End time = " + Utilities::to_string(end_time) +
+            " s lies within round-off (1e-10 max(1, |End time|)) of Start "
+            "time = " +
+            Utilities::to_string(start_time) +
+            " s: no step would be computed. Allowed is an End time later "
+            "than Start time by at least one time step.");
         if ((end_time - start_time) / time_step > 1e9)
           throw InputError("Time stepping: (End time - Start time) / Time step "
                            "exceeds 1e9 steps.");

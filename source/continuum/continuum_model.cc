@@ -144,8 +144,14 @@ namespace tmfdem
   void
   ContinuumModel::check_material_ids() const
   {
+    // ids without a subsection (or beyond them) are refused
     for (const auto id : mesh_material_ids)
-      parameters.materials[id]; // throws for ids without a subsection
+      parameters.materials.require_given(
+        id,
+        "cells of the " +
+          std::string(parameters.mesh.source == MeshParameters::Source::file ?
+                        "mesh file '" + parameters.mesh.file_name + "'" :
+                        "generated mesh (Mesh/Material id)"));
   }
 
   void

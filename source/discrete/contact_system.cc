@@ -2,6 +2,7 @@
 #include <string>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/discrete/contact_system.h>
+#include <tmfdem/discrete/triangle_overlap.h>
 #include <tmfdem/io/checkpoint.h>
 
 namespace tmfdem
@@ -16,9 +17,10 @@ namespace tmfdem
       rigid_group = rigid_groups;
       pair_list.clear();
       index_pairs(0);
-      travel_since_search = 0.;
-      search_is_needed    = true;
-      searches            = 0;
+      travel_since_search        = 0.;
+      travel_since_overlap_check = 0.;
+      search_is_needed           = true;
+      searches                   = 0;
     }
 
     double
@@ -151,6 +153,34 @@ namespace tmfdem
           pair_is_rigid[p] =
             a != no_body && a == rigid_group[pair_list[p].second];
         }
+    }
+
+    ContactSystem::Overlap
+    ContactSystem::largest_overlap(const DiscreteModel &model) const
+    {
+      Overlap        largest;
+      OverlapPolygon polygon;
+      for (std::size_t p = 0; p < pair_list.size(); ++p)
+        {
+          const unsigned int a = pair_list[p].first, b = pair_list[p].second;
+          // no force within one rigid group, none between two bodies that
+          // do not move (fixed or driven)
+          if (pair_is_rigid[p] ||
+              (rigid_group[a] != no_body && rigid_group[b] != no_body))
+            continue;
+          if (!triangle_overlap(&model.x[3 * a],
+                                &model.y[3 * a],
+                                &model.x[3 * b],
+                                &model.y[3 * b],
+                                polygon))
+            continue;
+          const double fraction =
+            polygon.area /
+            std::min(model.reference_area[a], model.reference_area[b]);
+          if (fraction > largest.fraction)
+            largest = Overlap{fraction, polygon.area, a, b};
+        }
+      return largest;
     }
 
     unsigned int

@@ -38,6 +38,14 @@ namespace tmfdem
                    domain_area(parameters.mesh),
                    parameters.mesh.source == MeshParameters::Source::annulus ||
                      parameters.mesh.source == MeshParameters::Source::disc);
+      // ids without a subsection (or beyond them) are refused
+      for (const auto id : report.material_ids)
+        parameters.materials.require_given(id,
+                                           "cells of the " + source +
+                                             (parameters.mesh.source ==
+                                                  MeshParameters::Source::file ?
+                                                "" :
+                                                " (Mesh/Material id)"));
       if (report.n_quadrilaterals > 0)
         throw InputError(source +
                          " has quadrilaterals; the discrete layer needs "

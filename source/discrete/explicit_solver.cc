@@ -16,7 +16,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <iostream>
+#include <limits>
+#include <sstream>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/threads.h>
 #include <tmfdem/discrete/discrete_output.h>
@@ -212,11 +215,127 @@ namespace tmfdem
                          &extent);
           partition.build_ghost_plan(model, contact.pairs());
           partition.exchange_new_ghosts(model);
-          return;
         }
-      contact.update_active_elements(model);
-      contact.search(model, arena_for(n_threads), partition);
-      partition.build_ghost_plan(model, contact.pairs());
+      else
+        {
+          contact.update_active_elements(model);
+          contact.search(model, arena_for(n_threads), partition);
+          partition.build_ghost_plan(model, contact.pairs());
+        }
+      // the overlap guard after the travel of a search (not after every
+      // search that breaking joints ask for)
+      if (contact.overlap_check_due())
+        {
+          check_contact_overlap(false);
+          contact.overlap_checked();
+        }
+    }
+
+    void
+    ExplicitSolver::check_contact_overlap(const bool initial)
+    {
+      ContactSystem::Overlap worst;
+      if (initial)
+        {
+          // the pairs of a first search, in a copy and on a partition of
+          // this rank alone (every rank holds the whole model at set-up):
+          // the run's own search, counters, pair list and ghost plan stay
+          // as they were, and every rank finds the same pair
+          ElementPartition whole;
+          whole.setup(MPI_COMM_SELF, model, chunk_size);
+          ContactSystem probe = contact;
+          probe.update_active_elements(model);
+          probe.search(model, arena_for(n_threads), whole);
+          worst = probe.largest_overlap(model);
+        }
+      else
+        {
+          const ContactSystem::Overlap local = contact.largest_overlap(model);
+          worst                              = local;
+          // the largest of all ranks (the first rank's on a tie)
+          if (partition.distributed())
+            {
+              const double        mine[4] = {local.fraction,
+                                             local.area,
+                                             static_cast<double>(local.first),
+                                             static_cast<double>(local.second)};
+              std::vector<double> all(
+                4 * Utilities::MPI::n_mpi_processes(communicator));
+              MPI_Allgather(mine,
+                            4,
+                            MPI_DOUBLE,
+                            all.data(),
+                            4,
+                            MPI_DOUBLE,
+                            communicator);
+              for (std::size_t r = 0; r < all.size(); r += 4)
+                if (all[r] > worst.fraction || r == 0)
+                  worst = ContactSystem::Overlap{
+                    all[r],
+                    all[r + 1],
+                    static_cast<unsigned int>(all[r + 2]),
+                    static_cast<unsigned int>(all[r + 3])};
+            }
+        }
+      if (worst.fraction <=
+          (initial ? max_initial_overlap : max_contact_overlap))
+        return;
+
+      const auto &bodies = parameters.get<DiscreteBodyParameters>().bodies;
+      double      smallest_altitude = std::numeric_limits<double>::max();
+      const auto  describe          = [&](const unsigned int e) {
+        const double *x = &model.x_ref[3 * e], *y = &model.y_ref[3 * e];
+        double        longest = 0.;
+        for (unsigned int k = 0; k < 3; ++k)
+          longest =
+            std::max(longest,
+                     std::hypot(x[(k + 1) % 3] - x[k], y[(k + 1) % 3] - y[k]));
+        smallest_altitude =
+          std::min(smallest_altitude, 2. * model.reference_area[e] / longest);
+        const unsigned char b = model.body[e];
+        std::ostringstream  text;
+        text << std::setprecision(6) << "element " << e << " ("
+             << (b != no_body && b < bodies.size() ? bodies[b].name :
+                                                               std::string("no body"))
+             << ", material id " << static_cast<unsigned int>(model.material[e])
+             << ", reference centroid (" << (x[0] + x[1] + x[2]) / 3. << ", "
+             << (y[0] + y[1] + y[2]) / 3. << ") m)";
+        return text.str();
+      };
+      const std::string  a = describe(worst.first), b = describe(worst.second);
+      std::ostringstream message;
+      message << std::setprecision(6);
+      if (initial)
+        {
+          message
+            << "the triangles " << a << " and " << b << " overlap by "
+            << worst.area << " m^2 at Time stepping/Start time, "
+            << 100. * worst.fraction
+            << " % of the smaller one's area (allowed at the start: "
+            << 100. * max_initial_overlap
+            << " %, a press of about 5 % of the altitude): bodies, and "
+               "disconnected pieces of one body, must not overlap at the "
+               "start (contact would push them apart violently and invert "
+               "elements). Move them apart in the mesh (Mesh/File name, the "
+               ".geo file) or leave a gap.";
+          throw InputError(message.str());
+        }
+      const auto &dm = parameters.get<DiscreteMechanicsParameters>();
+      message << "guard: contact failed: the triangles " << a << " and " << b
+              << " overlap by " << worst.area << " m^2, "
+              << 100. * worst.fraction
+              << " % of the smaller one's area (allowed: "
+              << 100. * max_contact_overlap
+              << " %, about a quarter of the smaller altitude "
+              << smallest_altitude * 0.25
+              << " m pressed flat in) at t = " << time << " s (step "
+              << step_number
+              << "): the contact penalty is too soft for the impact, and the "
+                 "bodies pass through each other. Raise Discrete "
+                 "mechanics/Contact penalty factor (now "
+              << dm.contact_penalty_factor
+              << " x Young's modulus) or lower the impact velocity or load.";
+      guard_failure(message.str());
     }
 
     void

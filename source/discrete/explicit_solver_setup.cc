@@ -163,6 +163,17 @@ namespace tmfdem
       const bool   quasi_static_run =
         with_heat && parameters.get<DiscreteHeatParameters>().coupling ==
                        DiscreteHeatParameters::Coupling::quasi_static;
+      // explicit steps are all of one length and the run stops within half
+      // of one of End time: a shorter span computes nothing
+      if (!quasi_static_run && n_steps < 1.)
+        throw InputError(
+          "Time stepping/End time - Start time = " +
+          Utilities::to_string(parameters.time.end_time - time) +
+          " s is shorter than one explicit step of " +
+          Utilities::to_string(time_step) +
+          " s (Discrete mechanics/Time step, or Safety factor x the stable "
+          "step): no step would be computed. Allowed is an End time at "
+          "least one step after Start time.");
       if (n_steps > 1e10 && !quasi_static_run)
         throw InputError(
           "Time stepping/End time: " + Utilities::to_string(n_steps) +
@@ -195,6 +206,9 @@ namespace tmfdem
         heat->set_threads(n_threads);
 
       locate_monitors(parameters.monitors, model, probe_samples, line_samples);
+      // bodies that overlap at the start: refused (InputError)
+      if (contact.enabled())
+        check_contact_overlap(true);
       input_checked = true;
     }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iostream>
 #include <iterator>
 #include <tmfdem/discrete/partition.h>
 
@@ -124,6 +125,13 @@ namespace tmfdem
       n_ranks        = Utilities::MPI::n_mpi_processes(comm);
       const std::size_t n_chunks =
         (model.n_elements + chunk_size - 1) / chunk_size;
+      if (n_ranks > n_chunks && this_rank == 0)
+        std::cerr << "[tmfdem] note: the discrete mesh has " << model.n_elements
+                  << " triangles; each rank advances "
+                  << "whole chunks of " << chunk_size << ", so " << n_chunks
+                  << " of the " << n_ranks
+                  << " MPI ranks do the work and the others wait (fewer "
+                     "ranks, or a finer mesh, use them)\n";
       element_begin.assign(n_ranks + 1, model.n_elements);
       for (unsigned int r = 0; r < n_ranks; ++r)
         element_begin[r] = static_cast<unsigned int>(

@@ -3,6 +3,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <fcntl.h>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 #include <unistd.h>
+#include <vector>
 
 namespace tmfdem
 {
@@ -65,6 +67,52 @@ namespace tmfdem
       }
   }
 
+  namespace
+  {
+    /**
+     * Removes the temporaries of write_file_atomically() and of checkpoints
+     * ("<file>.tmp<pid>") in @p folder that a run which is no longer alive
+     * left behind (killed while writing); says so on stderr. Those of live
+     * processes (other ranks, this one) stay.
+     */
+    void
+    remove_stray_temporaries(const std::string &folder)
+    {
+      std::vector<std::string> removed;
+      std::error_code          code;
+      for (const auto &entry :
+           std::filesystem::directory_iterator(folder, code))
+        {
+          if (!entry.is_regular_file(code))
+            continue;
+          const std::string name = entry.path().filename().string();
+          const auto        tmp  = name.rfind(".tmp");
+          if (tmp == std::string::npos || tmp == 0 || tmp + 4 == name.size() ||
+              name.size() - tmp - 4 > 9 ||
+              name.find_first_not_of("0123456789", tmp + 4) !=
+                std::string::npos)
+            continue;
+          const pid_t pid = std::stoi(name.substr(tmp + 4));
+          if (pid == ::getpid() || (::kill(pid, 0) == 0 || errno == EPERM))
+            continue; // a live process's file
+          if (std::filesystem::remove(entry.path(), code))
+            removed.push_back(name);
+        }
+      if (removed.empty())
+        return;
+      std::ostringstream line;
+      line << "[tmfdem] removed " << removed.size()
+           << " temporary file(s) that an earlier run, stopped while writing, "
+              "left in "
+           << folder << ":";
+      for (unsigned int i = 0; i < removed.size() && i < 5; ++i)
+        line << " " << removed[i];
+      if (removed.size() > 5)
+        line << " ...";
+      std::cerr << line.str() << std::endl;
+    }
+  } // namespace
+
   void
   create_output_folder(const std::string &folder, MPI_Comm communicator)
   {
@@ -76,6 +124,13 @@ namespace tmfdem
         if (code || !std::filesystem::is_directory(folder))
           error = "cannot create the output folder '" + folder +
                   "': " + code.message();
+        else
+          {
+            remove_stray_temporaries(folder);
+            // and in the default checkpoint folder (Checkpoint/Directory)
+            if (std::filesystem::is_directory(folder + "/checkpoints", code))
+              remove_stray_temporaries(folder + "/checkpoints");
+          }
       }
     error = Utilities::MPI::broadcast(communicator, error, 0);
     if (!error.empty())

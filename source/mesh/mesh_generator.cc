@@ -10,7 +10,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
+#include <sys/wait.h>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/mesh/block_generator.h>
 #include <tmfdem/mesh/mesh_generator.h>
@@ -108,16 +110,48 @@ namespace tmfdem
       return geo.str();
     }
 
-    /** Meshes @p geo_file with gmsh into @p msh_file; with an empty
-     *  @p script the .geo file is the user's own. */
+    /** The "Error" lines of gmsh's log @p log_file, without its summary,
+     *  at most 4, joined by "; ". */
+    std::string
+    gmsh_errors(const std::string &log_file)
+    {
+      std::ifstream log(log_file);
+      std::string   errors;
+      unsigned int  n = 0;
+      for (std::string line; std::getline(log, line) && n < 4;)
+        {
+          if (line.rfind("Error", 0) != 0)
+            continue;
+          const auto        colon = line.find(':');
+          const std::string text  = Utilities::trim(
+            colon == std::string::npos ? line : line.substr(colon + 1));
+          if (text.empty() || text.find("------") == 0 ||
+              text.find("error summary") != std::string::npos)
+            break;
+          errors += (errors.empty() ? "" : "; ") + text;
+          ++n;
+        }
+      return errors;
+    }
+
+    /**
+     * Meshes @p geo_file with gmsh into @p msh_file, stopping gmsh after
+     * @p time_limit seconds (Mesh/Gmsh time limit). With an empty @p script
+     * the .geo file is the user's own: gmsh's errors in it and a mesh that
+     * takes longer than the limit are bad input (InputError with gmsh's
+     * own error lines); with a script of tmfdem's they are failures
+     * (RunError).
+     */
     void
     run_gmsh(const std::string &script,
              const std::string &geo_file,
              const std::string &work_folder,
              const std::string &msh_file,
+             const double       time_limit,
              MPI_Comm           communicator)
     {
       std::string error;
+      bool        bad_input = false;
       if (Utilities::MPI::this_mpi_process(communicator) == 0)
         {
           if (!script.empty())
@@ -130,20 +164,193 @@ namespace tmfdem
           if (error.empty())
             {
               std::filesystem::remove(msh_file);
+              const std::string  log = work_folder + "/gmsh.log";
+              std::ostringstream limit;
+              limit << std::setprecision(17) << time_limit;
+              // timeout(1): TERM at the limit, KILL 5 s later
               const std::string command =
-                "gmsh \"" + geo_file + "\" -2 -format msh22 -nt 1 -v 2 -o \"" +
-                msh_file + "\" > \"" + work_folder + "/gmsh.log\" 2>&1";
-              const int status = std::system(command.c_str());
-              if (status != 0 || !std::filesystem::exists(msh_file))
-                error = "gmsh failed to mesh " + geo_file + " (exit status " +
-                        std::to_string(status) + "; see " + work_folder +
-                        "/gmsh.log). Is gmsh installed (apt-get install "
-                        "gmsh)?";
+                "command -v gmsh > /dev/null 2>&1 || exit 127; timeout -k 5 " +
+                limit.str() + " gmsh \"" + geo_file +
+                "\" -2 -format msh22 -nt 1 -v 2 -o \"" + msh_file + "\" > \"" +
+                log + "\" 2>&1";
+              const int         status = std::system(command.c_str());
+              const int         code   = status == -1 ?
+                                           -1 :
+                                           (WIFEXITED(status) ? WEXITSTATUS(status) :
+                                                                128 + WTERMSIG(status));
+              const std::string errors = gmsh_errors(log);
+              if (code == 127)
+                error = "gmsh is not installed (not on PATH), which Mesh "
+                        "needs to mesh " +
+                        geo_file + " (apt-get install gmsh).";
+              else if (code == 124 || code == 137)
+                {
+                  bad_input = true;
+                  error     = "gmsh did not finish meshing " + geo_file +
+                          " within Mesh/Gmsh time limit = " + limit.str() +
+                          " s and was stopped (log: " + log +
+                          "). Coarsen the mesh (Mesh/Element size or the "
+                          "sizes in the .geo file) or raise Mesh/Gmsh time "
+                          "limit.";
+                }
+              else if (code != 0 || !std::filesystem::exists(msh_file))
+                {
+                  bad_input = script.empty();
+                  error = "gmsh failed to mesh " + geo_file + " (exit status " +
+                          std::to_string(code) + ")" +
+                          (errors.empty() ? std::string() : ": " + errors) +
+                          " (full log: " + log + ")";
+                }
             }
         }
-      error = Utilities::MPI::broadcast(communicator, error, 0);
+      error     = Utilities::MPI::broadcast(communicator, error, 0);
+      bad_input = Utilities::MPI::broadcast(communicator, bad_input, 0);
+      if (!error.empty() && bad_input)
+        throw InputError(error);
       if (!error.empty())
         throw RunError(error);
+    }
+
+    /** Largest physical tag of a .msh element: it becomes a material id
+     *  (cells) or a boundary id (lines). */
+    constexpr long long max_physical_tag = 65535;
+
+    /** @p text as a whole integer, or false. */
+    bool
+    parse_integer(const std::string &text, long long &value)
+    {
+      if (text.empty() || text.size() > 18)
+        return false;
+      std::size_t used = 0;
+      try
+        {
+          value = std::stoll(text, &used);
+        }
+      catch (const std::exception &)
+        {
+          return false;
+        }
+      return used == text.size();
+    }
+
+    /**
+     * Checks the $Nodes and $Elements sections of the gmsh 2.x ASCII file
+     * @p file_name before deal.II reads it (its reader trusts the counts
+     * and tags: a negative count allocates without bound, a negative or
+     * huge physical tag crashes): each count a non-negative integer equal
+     * to the lines of its section, each node "id x y z" with finite
+     * coordinates, each element "id type n_tags tags... nodes" with
+     * 0 <= physical tag <= max_physical_tag. InputError naming the file,
+     * the line and what is allowed.
+     */
+    void
+    check_msh2_sections(const std::string &file_name)
+    {
+      std::ifstream in(file_name);
+      const auto fail = [&](const std::size_t line, const std::string &what) {
+        throw InputError("Mesh file '" + file_name + "' cannot be read: line " +
+                         std::to_string(line) + ": " + what);
+      };
+      std::vector<std::string> lines;
+      for (std::string line; std::getline(in, line);)
+        {
+          if (!line.empty() && line.back() == '\r')
+            line.pop_back();
+          lines.push_back(line);
+        }
+      const auto tokens = [](const std::string &line) {
+        std::vector<std::string> result;
+        std::istringstream       text(line);
+        for (std::string token; text >> token;)
+          result.push_back(token);
+        return result;
+      };
+      for (std::size_t i = 0; i < lines.size(); ++i)
+        {
+          const std::string section = Utilities::trim(lines[i]);
+          if (section != "$Nodes" && section != "$Elements")
+            continue;
+          const bool        nodes = section == "$Nodes";
+          const std::string end   = nodes ? "$EndNodes" : "$EndElements";
+          std::size_t       last  = i + 2;
+          while (last < lines.size() && Utilities::trim(lines[last]) != end)
+            ++last;
+          if (last >= lines.size())
+            fail(i + 1, section + " has no " + end + ".");
+          const std::size_t present = last - (i + 2);
+          const auto        count =
+            tokens(i + 1 < lines.size() ? lines[i + 1] : std::string());
+          long long n = -1;
+          if (count.size() != 1 || !parse_integer(count[0], n) || n < 0 ||
+              static_cast<std::size_t>(n) != present)
+            fail(i + 2,
+                 "the number of " + std::string(nodes ? "nodes" : "elements") +
+                   " '" + Utilities::trim(lines[i + 1]) + "' after " + section +
+                   " is not allowed: it must be a non-negative "
+                   "integer equal to the lines up to " +
+                   end + " (" + std::to_string(present) + ").");
+          for (std::size_t l = i + 2; l < last; ++l)
+            {
+              const auto t = tokens(lines[l]);
+              long long  id;
+              if (t.empty() || !parse_integer(t[0], id) || id < 1)
+                fail(l + 1,
+                     std::string(nodes ? "node" : "element") + " number '" +
+                       (t.empty() ? "" : t[0]) +
+                       "': allowed are integers >= 1.");
+              if (nodes)
+                {
+                  bool finite = t.size() == 4;
+                  for (unsigned int k = 1; finite && k < 4; ++k)
+                    {
+                      char  *stop = nullptr;
+                      double x    = std::strtod(t[k].c_str(), &stop);
+                      finite      = *stop == '\0' && std::isfinite(x);
+                    }
+                  if (!finite)
+                    fail(l + 1,
+                         "node " + t[0] +
+                           ": expected 'number x y z' with finite "
+                           "coordinates; got '" +
+                           Utilities::trim(lines[l]) + "'.");
+                  continue;
+                }
+              long long type = -1, n_tags = -1;
+              if (t.size() < 3 || !parse_integer(t[1], type) || type < 1 ||
+                  !parse_integer(t[2], n_tags) || n_tags < 0 || n_tags > 64 ||
+                  t.size() < 3 + static_cast<std::size_t>(n_tags) + 1)
+                fail(l + 1,
+                     "element " + t[0] +
+                       ": expected 'number type n_tags tags... nodes' with "
+                       "0 <= n_tags <= 64; got '" +
+                       Utilities::trim(lines[l]) + "'.");
+              for (long long k = 0; k < n_tags && k < 2; ++k)
+                {
+                  long long tag = -1;
+                  if (!parse_integer(t[3 + k], tag) || tag < 0 ||
+                      (k == 0 && tag > max_physical_tag) ||
+                      (k == 1 && tag > 2147483647LL))
+                    fail(l + 1,
+                         "element " + t[0] + ": " +
+                           (k == 0 ? "physical" : "elementary") + " tag '" +
+                           t[3 + k] + "' is not allowed: allowed are 0 ... " +
+                           (k == 0 ? std::to_string(max_physical_tag) +
+                                       " (it becomes the material id of a "
+                                       "cell or the boundary id of a line)" :
+                                     std::string("2147483647")) +
+                           ".");
+                }
+              for (std::size_t k = 3 + n_tags; k < t.size(); ++k)
+                {
+                  long long node = -1;
+                  if (!parse_integer(t[k], node) || node < 1)
+                    fail(l + 1,
+                         "element " + t[0] + ": node number '" + t[k] +
+                           "': allowed are the numbers of $Nodes (>= 1).");
+                }
+            }
+          i = last;
+        }
     }
 
     void
@@ -215,6 +422,7 @@ namespace tmfdem
       throw InputError("Mesh file '" + file_name +
                        "' has gmsh format version '" + version +
                        "'; allowed are 2.x and 4.x (ASCII).");
+    check_msh2_sections(file_name);
     in.seekg(0);
     GridIn<2> grid_in;
     grid_in.attach_triangulation(triangulation);
@@ -274,7 +482,12 @@ namespace tmfdem
               throw InputError("Mesh/File name: cannot open '" + name +
                                "' (missing or unreadable).");
             const std::string msh_file = work_folder + "/mesh.msh";
-            run_gmsh("", name, work_folder, msh_file, communicator);
+            run_gmsh("",
+                     name,
+                     work_folder,
+                     msh_file,
+                     parameters.gmsh_time_limit,
+                     communicator);
             read_gmsh_file(msh_file, triangulation);
           }
         else
@@ -292,6 +505,7 @@ namespace tmfdem
                  work_folder + "/mesh.geo",
                  work_folder,
                  msh_file,
+                 parameters.gmsh_time_limit,
                  communicator);
         read_gmsh_file(msh_file, triangulation);
         return;
@@ -304,6 +518,7 @@ namespace tmfdem
                  work_folder + "/mesh.geo",
                  work_folder,
                  msh_file,
+                 parameters.gmsh_time_limit,
                  communicator);
         read_gmsh_file(msh_file, triangulation);
         for (const auto &cell : triangulation.active_cell_iterators())

@@ -20,7 +20,8 @@ cases = [
 ]
 prm = os.path.join(out, "mesh_only.prm")
 with open(prm, "w") as f:
-    f.write("set Model = continuum heat\nsubsection Mesh\n  set Element type = triangles\nend\n")
+    f.write("set Model = continuum heat\nsubsection Mesh\n  set Element type = triangles\nend\n"
+            "subsection Materials\n  subsection Material 0\n  end\nend\n")
 ok = True
 print(f"{'case':40s} {'paper':>6s} {'tmfdem':>7s} {'diff':>7s}")
 for name, settings, paper in cases:

@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bitset>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -74,6 +75,9 @@ namespace tmfdem
     double outer_radius = 0.15;
     /** gmsh `.msh` file, resolved against the prm file's folder. */
     std::string file_name;
+    /** Wall-clock limit of one gmsh run of a `.geo` file [s] (Gmsh time
+     *  limit); gmsh is stopped past it. */
+    double gmsh_time_limit = 300.;
     /** Area an imported mesh must cover [m^2]; 0: not checked. */
     double expected_area = 0.;
     /** Uniform refinements applied after generation or import. */
@@ -194,6 +198,10 @@ namespace tmfdem
   {
     static constexpr unsigned int                 max_materials = 8;
     std::array<MaterialProperties, max_materials> materials;
+    /** Which `Material <id>` subsections the input defines (the prm file
+     *  names the subsection, or --set sets one of its entries); all when
+     *  the parameters do not come from a file. */
+    std::bitset<max_materials> given = std::bitset<max_materials>().set();
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -202,6 +210,11 @@ namespace tmfdem
     /** Properties of material @p id; InputError if @p id is not allowed. */
     const MaterialProperties &
     operator[](const types::material_id id) const;
+    /** InputError naming material @p id and @p where it is used (e.g.
+     *  "cells of the mesh", "Discrete bodies/Body 2") if the input does not
+     *  define its subsection (given): it would run on built-in defaults. */
+    void
+    require_given(const types::material_id id, const std::string &where) const;
   };
 
   /** One thermal boundary condition on a set of boundary ids. */

@@ -176,8 +176,23 @@ namespace tmfdem
       add_travel(const double distance)
       {
         travel_since_search += distance;
+        travel_since_overlap_check += distance;
         if (2. * travel_since_search > contact.buffer)
           search_is_needed = true;
+      }
+      /** Whether the overlap guard is due (ExplicitSolver::
+       *  check_contact_overlap()): the fastest node has travelled half the
+       *  buffer since its last check, as for a search. Searches that joints
+       *  breaking ask for come far more often and need no check. */
+      bool
+      overlap_check_due() const
+      {
+        return 2. * travel_since_overlap_check > contact.buffer;
+      }
+      void
+      overlap_checked()
+      {
+        travel_since_overlap_check = 0.;
       }
       /** Asks for a search before the next force computation (joints broke,
        *  nodes jumped). */
@@ -232,6 +247,24 @@ namespace tmfdem
       double
       stored_energy(const DiscreteModel    &model,
                     const ElementPartition &partition) const;
+      /** The pair of largest overlap (largest_overlap()). */
+      struct Overlap
+      {
+        /** Overlap area / the smaller triangle's area [-]; 0 if none. */
+        double       fraction = 0.;
+        double       area     = 0.;         ///< [m^2 per m]
+        unsigned int first = 0, second = 0; ///< the two triangles
+      };
+      /**
+       * The force-carrying pair of the current pair list (this rank's
+       * pairs) whose triangles overlap most, relative to the smaller
+       * triangle's area (triangle_overlap.h), in the current geometry of
+       * @p model. Pairs within one rigid group are skipped. Not
+       * collective.
+       */
+      Overlap
+      largest_overlap(const DiscreteModel &model) const;
+
       unsigned long
       n_searches() const
       {
@@ -293,10 +326,11 @@ namespace tmfdem
       /** Several ranks: all pairs (all_pairs()), gathered for the search
        *  numbered all_pairs_of_search - 1. */
       std::vector<ContactPair> all_pair_list;
-      unsigned long            all_pairs_of_search = 0;
-      double                   travel_since_search = 0.; ///< [m]
-      bool                     search_is_needed    = true;
-      unsigned long            searches            = 0;
+      unsigned long            all_pairs_of_search        = 0;
+      double                   travel_since_search        = 0.; ///< [m]
+      double                   travel_since_overlap_check = 0.; ///< [m]
+      bool                     search_is_needed           = true;
+      unsigned long            searches                   = 0;
     };
   } // namespace discrete
 } // namespace tmfdem

@@ -400,6 +400,25 @@ namespace tmfdem
        *  pairs. */
       void
       search_contacts();
+      /**
+       * The overlap guard, after a contact search once the fastest node
+       * has travelled half the search buffer since the last check (so no
+       * pair passes through unseen): the largest overlap of a force-carrying
+       * pair against the smaller triangle's area. With @p initial (set-up): an
+       * overlap of two triangles not joined beyond max_initial_overlap is bad
+       * input (InputError naming them and their bodies); later, an overlap
+       * beyond max_contact_overlap stops the run (guard: the contact penalty is
+       * too soft for the impact).
+       */
+      void
+      check_contact_overlap(const bool initial);
+      /** Overlap area / smaller triangle area beyond which contact has
+       *  failed: about a quarter of the smaller altitude pressed flat in. */
+      static constexpr double max_contact_overlap = 0.5;
+      /** The same at the start: about 5 % of the altitude pressed flat in;
+       *  a deliberate press (prm/contact_conduction.prm: 10 micrometres
+       *  at element sizes of millimetres) stays below it. */
+      static constexpr double max_initial_overlap = 0.1;
       /** Broken joints on all ranks (collective; no synchronisation). */
       unsigned int
       n_broken_joints() const;
