@@ -27,7 +27,6 @@ import glob
 import json
 import math
 import os
-import re
 import subprocess
 import sys
 
@@ -36,6 +35,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_vtu import grid_arrays, read_grid  # noqa: E402
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 BINARY = os.environ.get("TMFDEM", os.path.join(ROOT, "build-release", "tmfdem"))
@@ -53,17 +55,11 @@ def read_summary(folder):
 
 def read_vtu(path):
     """Points (n x 3), connectivity per cell (list of arrays) and the
-    DataArrays by name, from the ASCII vtu tmfdem writes."""
-    text = open(path).read()
-    points = np.array(re.search(r"<Points>\s*<DataArray[^>]*>(.*?)</DataArray>", text,
-                                re.S).group(1).split(), float).reshape(-1, 3)
-    arrays = {}
-    for name, body in re.findall(r'<DataArray[^>]*Name="([^"]+)"[^>]*>(.*?)</DataArray>',
-                                 text, re.S):
-        arrays[name] = np.array(body.split(), float)
-    conn = arrays.get("connectivity", np.zeros(0)).astype(int)
-    offsets = arrays.get("offsets", np.zeros(0)).astype(int)
-    cells = np.split(conn, offsets[:-1]) if len(offsets) else []
+    DataArrays by name (point and cell data, connectivity, offsets, types),
+    read by VTK (plot_vtu.read_grid: either Output/Vtu format)."""
+    points, conn, offsets, types, point_data, cell_data = grid_arrays(read_grid(path))
+    cells = [conn[s:e] for s, e in zip(offsets[:-1], offsets[1:])]
+    arrays = dict(point_data, **cell_data, connectivity=conn, offsets=offsets[1:], types=types)
     return points, cells, arrays
 
 

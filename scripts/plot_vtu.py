@@ -5,19 +5,20 @@
                 [--title "..."] [--cmap inferno] [--label "T [C]"] [--edges]
 
 A .pvd is resolved to its last DataSet (relative to the .pvd's folder); a
-.pvtu is resolved to all its Piece sources. DataArrays may be ascii, base64
-binary, or base64 binary compressed with zlib (vtkZLibDataCompressor), with
-UInt32 or UInt64 headers. Cells must be triangles (VTK type 5) or quads
-(type 9; deal.II writes higher-order patches as subdivided quads); Lagrange
-cells (types 69, 70) are drawn through their corner vertices. Point data is
-drawn with Gouraud shading, cell data flat. Needs only numpy and matplotlib.
+.pvtu is resolved to all its Piece sources. Files are read by VTK's own XML
+reader (python3-vtk9), so every encoding VTK writes or reads works: ascii,
+binary (zlib-compressed or not), appended. Cells must be triangles (VTK
+type 5) or quads (type 9; deal.II writes higher-order patches as subdivided
+quads); Lagrange cells (types 69, 70) are drawn through their corner
+vertices; lines (type 3, the crack files) are returned as pairs; the
+placeholder of a crack file without cracks (a poly-vertex of no points,
+type 2) is left out, and so are its cell data. Point data
+is drawn with Gouraud shading, cell data flat.
 """
 import argparse
-import base64
 import os
 import sys
 import xml.etree.ElementTree as ET
-import zlib
 
 import numpy as np
 import matplotlib
@@ -27,92 +28,84 @@ from matplotlib.collections import PolyCollection  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 from mpl_toolkits.axes_grid1 import make_axes_locatable  # noqa: E402
 
-VTK_TYPES = {"Int8": "i1", "UInt8": "u1", "Int16": "i2", "UInt16": "u2",
-             "Int32": "i4", "UInt32": "u4", "Int64": "i8", "UInt64": "u8",
-             "Float32": "f4", "Float64": "f8"}
 # VTK cell type -> number of corner vertices used for drawing (3: line)
 CORNERS = {3: 2, 5: 3, 9: 4, 69: 3, 70: 4}
+# the placeholder cell of a crack file without cracks: a poly-vertex of no
+# points (meshio reads no vtu without cells)
+PLACEHOLDER = 2
 
 
-def _split_b64(text, n_header_bytes):
-    """Decode a header of n_header_bytes and the data that follows it. The
-    two may be base64-encoded separately (deal.II, VTK) or as one stream."""
-    n_chars = -(-n_header_bytes // 3) * 4
-    if n_header_bytes % 3 and not text[:n_chars].endswith("="):
-        raw = base64.b64decode(text)  # one stream: split the bytes
-        return raw[:n_header_bytes], raw[n_header_bytes:]
-    return base64.b64decode(text[:n_chars])[:n_header_bytes], base64.b64decode(text[n_chars:])
+def read_grid(path):
+    """The vtkUnstructuredGrid of a .vtu file, or of all pieces of a .pvtu,
+    read by VTK's XML readers (python3-vtk9)."""
+    try:
+        from vtkmodules.vtkIOXML import (vtkXMLPUnstructuredGridReader,
+                                         vtkXMLUnstructuredGridReader)
+    except ImportError:
+        sys.exit("reading vtu files needs VTK's Python module: apt-get install python3-vtk9 "
+                 "(scripts/install-dependencies.sh)")
+    if not os.path.isfile(path):
+        sys.exit(f"{path}: no such file")
+    reader = (vtkXMLPUnstructuredGridReader() if path.endswith(".pvtu")
+              else vtkXMLUnstructuredGridReader())
+    reader.SetFileName(path)
+    reader.Update()
+    if reader.GetErrorCode() != 0:
+        sys.exit(f"{path}: VTK could not read it")
+    return reader.GetOutput()
 
 
-def read_dataarray(elem, compressed, header, order):
-    """Return the DataArray element's values as a flat numpy array."""
-    dtype = np.dtype(order + VTK_TYPES[elem.get("type")])
-    text = "".join((elem.text or "").split())
-    fmt = elem.get("format", "ascii")
-    if fmt == "ascii":
-        return np.array((elem.text or "").split(), dtype=dtype)
-    if fmt != "binary":
-        sys.exit(f"unsupported DataArray format '{fmt}' (appended data is not handled)")
-    hsize = header.itemsize
-    if compressed:
-        # header: [n_blocks, block_size, last_block_size, comp_size_1 .. comp_size_n]
-        first = base64.b64decode(text[:-(-hsize // 3) * 4])[:hsize]
-        n_blocks = int(np.frombuffer(first, header)[0])
-        head, data = _split_b64(text, (3 + n_blocks) * hsize)
-        sizes = np.frombuffer(head, header)[3:]
-        blocks, pos = [], 0
-        for size in sizes:
-            blocks.append(zlib.decompress(data[pos:pos + int(size)]))
-            pos += int(size)
-        raw = b"".join(blocks)
-    else:
-        head, raw = _split_b64(text, hsize)
-        raw = raw[:int(np.frombuffer(head, header)[0])]
-    return np.frombuffer(raw, dtype)
+def grid_arrays(grid):
+    """(points (n,3), connectivity, offsets (n_cells + 1), types, point
+    data, cell data) of a vtkUnstructuredGrid as numpy arrays; the data as
+    {name: flat array}."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    def flat(array):
+        return np.zeros(0) if array is None else vtk_to_numpy(array).ravel().copy()
+    points = (vtk_to_numpy(grid.GetPoints().GetData()).reshape(-1, 3)
+              if grid.GetPoints() is not None else np.zeros((0, 3)))
+    cells = grid.GetCells()
+    conn = (flat(cells.GetConnectivityArray()) if cells is not None else np.zeros(0)).astype(np.int64)
+    offs = (flat(cells.GetOffsetsArray()) if cells is not None else np.zeros(1)).astype(np.int64)
+    if len(offs) == 0:
+        offs = np.zeros(1, np.int64)
+    types = (flat(grid.GetCellTypesArray()) if grid.GetCellTypesArray() is not None
+             else np.zeros(0)).astype(np.int64)
+    data = []
+    for attributes in (grid.GetPointData(), grid.GetCellData()):
+        data.append({attributes.GetArrayName(i): flat(attributes.GetArray(i))
+                     for i in range(attributes.GetNumberOfArrays())})
+    return points, conn, offs, types, data[0], data[1]
 
 
 def read_vtu(path, field):
     """Return (points (n,2), polygons as list of index arrays, values, is_point_data).
     A .pvtu (one piece per MPI rank) or .pvd (its last output) is read as
     the union of its pieces."""
-    if path.endswith(".pvtu") or path.endswith(".pvd"):
+    if path.endswith(".pvd"):
         parts = [read_vtu(p, field) for p in resolve(path)]
         offsets = np.cumsum([0] + [len(p[0]) for p in parts])
         return (np.vstack([p[0] for p in parts]),
                 [c + o for p, o in zip(parts, offsets) for c in p[1]],
                 np.concatenate([p[2] for p in parts]), parts[0][3])
-    root = ET.parse(path).getroot()
-    compressed = root.get("compressor") is not None
-    header = np.dtype(VTK_TYPES[root.get("header_type", "UInt32")])
-    order = ">" if root.get("byte_order", "LittleEndian") == "BigEndian" else "<"
-    header = header.newbyteorder(order)
-    pts_all, cells_all, vals_all, point_data = [], [], [], True
-    offset = 0
-    for piece in root.iter("Piece"):
-        def arr(e):
-            return read_dataarray(e, compressed, header, order)
-        pts = arr(piece.find("Points/DataArray")).astype(float).reshape(-1, 3)[:, :2]
-        cell_arrays = {e.get("Name"): arr(e) for e in piece.find("Cells")}
-        conn, offs, types = (cell_arrays[k].astype(np.int64)
-                             for k in ("connectivity", "offsets", "types"))
-        starts = np.concatenate(([0], offs[:-1]))
-        for s, t in zip(starts, types):
-            if t not in CORNERS:
-                sys.exit(f"{path}: unsupported VTK cell type {t}")
-            cells_all.append(conn[s:s + CORNERS[t]] + offset)
-        found = None
-        for section, is_point in (("PointData", True), ("CellData", False)):
-            for e in piece.findall(f"{section}/DataArray"):
-                if e.get("Name") == field:
-                    found, point_data = arr(e).astype(float), is_point
-        if found is None:
-            names = [e.get("Name") for sec in ("PointData", "CellData")
-                     for e in piece.findall(f"{sec}/DataArray")]
-            sys.exit(f"{path}: no field '{field}' (have: {', '.join(names)})")
-        pts_all.append(pts)
-        vals_all.append(found)
-        offset += len(pts)
-    return np.vstack(pts_all), cells_all, np.concatenate(vals_all), point_data
+    points, conn, offs, types, point_data, cell_data = grid_arrays(read_grid(path))
+    cells = []
+    for s, t in zip(offs[:-1], types):
+        if t not in CORNERS and t != PLACEHOLDER:
+            sys.exit(f"{path}: unsupported VTK cell type {t}")
+        if t != PLACEHOLDER:
+            cells.append(conn[s:s + CORNERS[t]])
+    if field in point_data:
+        values, point = point_data[field], True
+    elif field in cell_data:
+        # the placeholder cell of a crack file without cracks left out
+        values, point = cell_data[field], False
+        if len(types):
+            values = values.reshape(len(types), -1)[types != PLACEHOLDER].ravel()
+    else:
+        sys.exit(f"{path}: no field '{field}' (have: {', '.join(list(point_data) + list(cell_data))})")
+    return points[:, :2].astype(float), cells, values.astype(float), point
 
 
 def resolve(path):

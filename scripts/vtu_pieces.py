@@ -5,33 +5,113 @@ On P > 1 ranks every output of the discrete layer is one piece per rank
 (`solution_NNNNN.RRRR.vtu`: the rank's triangles and their nodes, in index
 order; `cracks_NNNNN.RRRR.vtu`: its broken joints) and a
 `solution_NNNNN.pvtu` record that the pvd lists. merge_pvtu() rebuilds from
-the pieces the single `solution_NNNNN.vtu` that one rank writes, token by
-token in tmfdem's ascii layout (9 values per line), so that outputs of
-runs on different rank counts can be compared bitwise
-(scripts/rank_independence.py, tests/scripts/mpi_resume_other_ranks.py).
+the pieces the single `solution_NNNNN.vtu` that one rank writes, byte for
+byte in tmfdem's layout (Output/Vtu format: binary, every DataArray one
+zlib block at level 1 with a UInt64 header, each base64-encoded; ascii, the
+pieces' tokens 9 values a line), so that outputs of runs on different rank
+counts can be compared bitwise (scripts/rank_independence.py,
+tests/scripts/mpi_resume_other_ranks.py). read_arrays() decodes every
+DataArray of a tmfdem vtu file (either format) to numpy.
 
     vtu_pieces.py OUTPUT_FOLDER MERGED_FOLDER   writes the merged view
 """
+import base64
 import glob
 import os
 import re
 import shutil
+import struct
 import sys
 import xml.etree.ElementTree as ET
+import zlib
 
-ARRAY = re.compile(r'<DataArray ([^>]*)>\n(.*?)</DataArray>\n', re.S)
+import numpy as np
+
+ARRAY = re.compile(r'<DataArray ([^>]*)>\n(.*?)\n?</DataArray>\n', re.S)
 PIECE = re.compile(r'\.\d{4}\.vtu$')
+DTYPES = {"Int8": "i1", "UInt8": "u1", "Int16": "i2", "UInt16": "u2",
+          "Int32": "i4", "UInt32": "u4", "Int64": "i8", "UInt64": "u8",
+          "Float32": "f4", "Float64": "f8"}
+
+
+def _attribute(attributes, name):
+    m = re.search(f'{name}="([^"]*)"', attributes)
+    return m.group(1) if m else None
+
+
+def _decode(attributes, body):
+    """The values of one DataArray: a numpy array for a binary one (UInt64
+    header, zlib blocks, as tmfdem writes), the text tokens for an ascii
+    one."""
+    if _attribute(attributes, "format") != "binary":
+        return body.split()
+    dtype = np.dtype("<" + DTYPES[_attribute(attributes, "type")])
+    text = "".join(body.split())
+    n_blocks = struct.unpack("<Q", base64.b64decode(text[:12])[:8])[0]
+    header_chars = 4 * -(-8 * (3 + n_blocks) // 3)
+    header = struct.unpack(f"<{3 + n_blocks}Q", base64.b64decode(text[:header_chars]))
+    data, raw, at = base64.b64decode(text[header_chars:]), [], 0
+    for size in header[3:]:
+        raw.append(zlib.decompress(data[at:at + size]))
+        at += size
+    return np.frombuffer(b"".join(raw), dtype)
+
+
+def _encode(attributes, values):
+    """The body of one DataArray in the encoding its attributes name."""
+    if _attribute(attributes, "format") != "binary":
+        return "".join(t + ("\n" if (k + 1) % 9 == 0 else " ")
+                       for k, t in enumerate(values))
+    raw = np.ascontiguousarray(values, "<" + DTYPES[_attribute(attributes, "type")]).tobytes()
+    block = zlib.compress(raw, 1)
+    return (base64.b64encode(struct.pack("<4Q", 1, len(raw), len(raw), len(block))).decode()
+            + base64.b64encode(block).decode())
 
 
 def _arrays(text, start, end):
-    """(attributes, tokens) of the DataArrays between two markers."""
+    """(attributes, values) of the DataArrays between two markers."""
     i, j = text.index(start), text.index(end)
-    return [(m.group(1), m.group(2).split()) for m in ARRAY.finditer(text, i, j)]
+    return [(m.group(1), _decode(m.group(1), m.group(2))) for m in ARRAY.finditer(text, i, j)]
 
 
-def _data_array(attributes, tokens):
-    body = "".join(t + ("\n" if (k + 1) % 9 == 0 else " ") for k, t in enumerate(tokens))
-    return f"<DataArray {attributes}>\n{body}\n</DataArray>\n"
+def _data_array(attributes, values):
+    return f"<DataArray {attributes}>\n{_encode(attributes, values)}\n</DataArray>\n"
+
+
+def read_arrays(path):
+    """Every DataArray of the tmfdem vtu file @p path in document order:
+    list of (section, attributes without format, values as numpy array);
+    section is Points, Cells, PointData or CellData."""
+    with open(path) as f:
+        text = f.read()
+    out = []
+    for section in ("Points", "Cells", "PointData", "CellData"):
+        for attributes, values in _arrays(text, f"<{section}>", f"</{section}>"):
+            dtype = np.dtype("<" + DTYPES[_attribute(attributes, "type")])
+            if not isinstance(values, np.ndarray):
+                values = np.array(values, dtype=float if dtype.kind == "f" else int).astype(dtype)
+            out.append((section, re.sub(r' format="[^"]*"', "", attributes), values))
+    return out
+
+
+def _concatenate(parts):
+    """Values of one array from every piece, joined: token lists or numpy."""
+    if parts and isinstance(parts[0], np.ndarray):
+        return np.concatenate(parts)
+    return [t for p in parts for t in p]
+
+
+def _kept(values, keep):
+    """The entries of @p values where @p keep is true."""
+    if isinstance(values, np.ndarray):
+        return values[np.array(keep, bool)] if len(values) else values
+    return [v for v, k in zip(values, keep) if k]
+
+
+def _shifted(values, shift):
+    if isinstance(values, np.ndarray):
+        return values + values.dtype.type(shift)
+    return [str(int(v) + shift) for v in values]
 
 
 def merge_pvtu(path):
@@ -41,41 +121,59 @@ def merge_pvtu(path):
     points, cells, point_data, cell_data = [], {}, {}, {}
     conn_offset = point_offset = 0
     order_point, order_cell = [], []
+    head = attr_points = None
+    empty_cell = {}  # cell data of a placeholder cell, by array
     for source in sources:
         with open(os.path.join(folder, source)) as f:
             text = f.read()
+        if head is None:
+            head = text[:text.index("<UnstructuredGrid>")]
         (attr_points, pts), = _arrays(text, "<Points>", "</Points>")
         n_points = len(pts) // 3
-        points += pts
-        cell_arrays = {re.search(r'Name="([^"]*)"', a).group(1): (a, t)
+        points.append(pts)
+        cell_arrays = {_attribute(a, "Name"): (a, t)
                        for a, t in _arrays(text, "<Cells>", "</Cells>")}
-        conn = [str(int(v) + point_offset) for v in cell_arrays["connectivity"][1]]
-        offs = [str(int(v) + conn_offset) for v in cell_arrays["offsets"][1]]
+        # a crack piece without cracks holds one placeholder cell (a
+        # poly-vertex of no points, VTK type 2): left out here, put back
+        # below if the whole has no cells
+        types = cell_arrays["types"][1]
+        keep = [int(t) != 2 for t in types]
+        conn = _shifted(cell_arrays["connectivity"][1], point_offset)
+        offs = _shifted(_kept(cell_arrays["offsets"][1], keep), conn_offset)
         for name, values in (("connectivity", conn), ("offsets", offs),
-                             ("types", cell_arrays["types"][1])):
-            cells.setdefault(name, (cell_arrays[name][0], []))[1].extend(values)
+                             ("types", _kept(types, keep))):
+            cells.setdefault(name, (cell_arrays[name][0], []))[1].append(values)
         for target, order, start, end in ((point_data, order_point, "<PointData>", "</PointData>"),
                                           (cell_data, order_cell, "<CellData>", "</CellData>")):
             for a, t in _arrays(text, start, end):
                 if a not in target:
                     target[a] = []
                     order.append(a)
-                target[a].extend(t)
+                if target is cell_data:
+                    if not all(keep) and a not in empty_cell:
+                        empty_cell[a] = _kept(t, [not k for k in keep])[:1]
+                    t = _kept(t, keep)
+                target[a].append(t)
         point_offset += n_points
         conn_offset += len(cell_arrays["connectivity"][1])
+    points = _concatenate(points)
+    cells = {name: (a, _concatenate(v)) for name, (a, v) in cells.items()}
+    if len(cells["types"][1]) == 0 and empty_cell:
+        for name, value in (("offsets", 0), ("types", 2)):
+            a, v = cells[name]
+            cells[name] = (a, np.array([value], v.dtype) if isinstance(v, np.ndarray)
+                           else [str(value)])
+        for a in order_cell:
+            cell_data[a] = [empty_cell[a]]
     n_cells = len(cells["types"][1])
-    out = ['<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="0.1" '
-           'byte_order="LittleEndian">\n<UnstructuredGrid>\n'
+    out = [head, '<UnstructuredGrid>\n'
            f'<Piece NumberOfPoints="{len(points) // 3}" NumberOfCells="{n_cells}">\n'
-           '<Points>\n<DataArray type="Float64" NumberOfComponents="3" format="ascii">\n']
-    out += [f"{points[3 * i]} {points[3 * i + 1]} {points[3 * i + 2]}\n"
-            for i in range(len(points) // 3)]
-    out.append("</DataArray>\n</Points>\n<Cells>\n")
+           '<Points>\n', _data_array(attr_points, points), "</Points>\n<Cells>\n"]
     out += [_data_array(*cells[name]) for name in ("connectivity", "offsets", "types")]
     out.append("</Cells>\n<PointData>\n")
-    out += [_data_array(a, point_data[a]) for a in order_point]
+    out += [_data_array(a, _concatenate(point_data[a])) for a in order_point]
     out.append("</PointData>\n<CellData>\n")
-    out += [_data_array(a, cell_data[a]) for a in order_cell]
+    out += [_data_array(a, _concatenate(cell_data[a])) for a in order_cell]
     out.append("</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n")
     return "".join(out)
 

@@ -384,6 +384,17 @@ namespace tmfdem
                       Patterns::Bool(),
                       "Write solution.pvd and the vtu/pvtu files for "
                       "ParaView.");
+    prm.declare_entry(
+      "Vtu format",
+      "binary",
+      Patterns::Selection("binary|ascii"),
+      "Encoding of the vtu files of both layers (solution, cracks, their "
+      "MPI pieces, failure_state.vtu and last_good_state.vtu): binary: VTK "
+      "XML binary, every array zlib-compressed and base64-encoded (a "
+      "fraction of the size, read by ParaView, VTK and meshio); ascii: "
+      "plain text, every value written as the shortest number that reads "
+      "back as exactly the same value. Both hold the same arrays and "
+      "values.");
     prm.declare_entry("Write final mesh",
                       "false",
                       Patterns::Bool(),
@@ -412,6 +423,7 @@ namespace tmfdem
       Utilities::split_string_list(prm.get("Times"), ','));
     interval          = prm.get_double("Interval");
     write_vtu         = prm.get_bool("Write vtu");
+    binary_vtu        = prm.get("Vtu format") == "binary";
     write_final_mesh  = prm.get_bool("Write final mesh");
     progress_interval = prm.get_double("Progress interval");
     prm.leave_subsection();

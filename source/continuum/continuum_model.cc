@@ -247,7 +247,8 @@ namespace tmfdem
     solution_series =
       std::make_unique<SolutionSeries>(parameters.output.directory,
                                        "solution",
-                                       communicator);
+                                       communicator,
+                                       parameters.output.binary_vtu);
   }
 
   void

@@ -148,11 +148,15 @@ namespace tmfdem
             std::vector<double> T(heat->temperature().begin(),
                                   heat->temperature().end());
             if (!distributed)
-              series.write(time, discrete_solution_vtu(model, {{"T", &T}}));
+              series.write(time,
+                           discrete_solution_vtu(model,
+                                                 parameters.output.binary_vtu,
+                                                 {{"T", &T}}));
             else
               {
                 const std::string piece =
                   discrete_solution_vtu(model,
+                                        parameters.output.binary_vtu,
                                         {{"T", &T}},
                                         partition.begin(),
                                         partition.end());

@@ -1,11 +1,17 @@
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <iomanip>
+#include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/temperature_source.h>
 #include <tmfdem/io/output_files.h>
+#include <zlib.h>
 
 namespace tmfdem
 {
@@ -13,55 +19,195 @@ namespace tmfdem
   {
     namespace
     {
-      /** A DataArray element with @p values written with 9 digits. */
+      /** Appends the shortest text that reads back as exactly @p value. */
       template <typename T>
       void
-      data_array(std::ostringstream   &out,
-                 const std::string    &type,
-                 const std::string    &name,
-                 const unsigned int    components,
-                 const std::vector<T> &values)
+      append_number(std::string &out, const T value)
       {
-        out << "<DataArray type=\"" << type << "\" Name=\"" << name
-            << "\" NumberOfComponents=\"" << components
-            << "\" format=\"ascii\">\n";
-        for (std::size_t i = 0; i < values.size(); ++i)
-          out << values[i] << ((i + 1) % 9 == 0 ? '\n' : ' ');
-        out << "\n</DataArray>\n";
+        char       text[32];
+        const auto result = std::to_chars(text, text + sizeof(text), value);
+        out.append(text, result.ptr);
       }
 
+      /** Appends @p bytes base64-encoded (RFC 4648, with padding). */
+      void
+      append_base64(std::string         &out,
+                    const unsigned char *bytes,
+                    const std::size_t    n)
+      {
+        static const char digits[] =
+          "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        out.reserve(out.size() + 4 * ((n + 2) / 3));
+        std::size_t i = 0;
+        for (; i + 2 < n; i += 3)
+          {
+            const std::uint32_t v =
+              (bytes[i] << 16) | (bytes[i + 1] << 8) | bytes[i + 2];
+            out += digits[v >> 18];
+            out += digits[(v >> 12) & 63];
+            out += digits[(v >> 6) & 63];
+            out += digits[v & 63];
+          }
+        if (i < n)
+          {
+            const std::uint32_t v =
+              (bytes[i] << 16) | (i + 1 < n ? bytes[i + 1] << 8 : 0);
+            out += digits[v >> 18];
+            out += digits[(v >> 12) & 63];
+            out += i + 1 < n ? digits[(v >> 6) & 63] : '=';
+            out += '=';
+          }
+      }
+
+      /**
+       * The body of a binary DataArray as VTK's XML readers expect it with
+       * compressor="vtkZLibDataCompressor" and header_type="UInt64": the
+       * header [number of blocks, block size, size of the last block,
+       * compressed size of each block] and the zlib-compressed values, each
+       * base64-encoded. Always one block (zlib's fastest level), also for an
+       * empty array (header [1, 0, 0, size of an empty zlib stream]: meshio
+       * cannot read a header without blocks).
+       */
+      void
+      append_compressed(std::string &out, const void *data, const std::size_t n)
+      {
+        uLongf                     size = compressBound(n);
+        std::vector<unsigned char> compressed(size);
+        const int                  status = compress2(compressed.data(),
+                                     &size,
+                                     static_cast<const Bytef *>(data),
+                                     n,
+                                     Z_BEST_SPEED);
+        if (status != Z_OK)
+          throw std::runtime_error("zlib failed to compress a vtu array");
+        const std::uint64_t header[4] = {1, n, n, size};
+        append_base64(out,
+                      reinterpret_cast<const unsigned char *>(header),
+                      sizeof(header));
+        append_base64(out, compressed.data(), size);
+      }
+
+      /**
+       * One VTK XML UnstructuredGrid piece written as text: every DataArray
+       * either ascii (the shortest text that reads back as the same value,
+       * 9 values a line) or binary (append_compressed()), the same arrays,
+       * names and values in either.
+       */
+      class VtuText
+      {
+      public:
+        explicit VtuText(const bool binary)
+          : binary(binary)
+        {}
+
+        /** A DataArray of VTK type @p type (Float64, Int64, Int32, UInt8)
+         *  holding @p values converted to the C++ type @p Stored of that
+         *  VTK type. */
+        template <typename Stored, typename T>
+        void
+        data_array(const std::string    &type,
+                   const std::string    &name,
+                   const unsigned int    components,
+                   const std::vector<T> &values)
+        {
+          text += "<DataArray type=\"" + type + "\"";
+          if (!name.empty())
+            text += " Name=\"" + name + "\"";
+          text += " NumberOfComponents=\"" + std::to_string(components) +
+                  "\" format=\"" + (binary ? "binary" : "ascii") + "\">\n";
+          if (binary)
+            {
+              const std::vector<Stored> stored(values.begin(), values.end());
+              append_compressed(text,
+                                stored.data(),
+                                stored.size() * sizeof(Stored));
+            }
+          else
+            for (std::size_t i = 0; i < values.size(); ++i)
+              {
+                // UInt8 as a number, not as a character
+                if constexpr (sizeof(Stored) == 1)
+                  append_number(text, static_cast<int>(values[i]));
+                else
+                  append_number(text, static_cast<Stored>(values[i]));
+                text += (i + 1) % 9 == 0 ? '\n' : ' ';
+              }
+          text += "\n</DataArray>\n";
+        }
+
+        void
+        add(const std::string &markup)
+        {
+          text += markup;
+        }
+
+        /** The document, the header naming the compressor if binary. */
+        std::string
+        document() const
+        {
+          // binary values are the machine's bytes
+          const std::uint16_t one = 1;
+          const bool          little_endian =
+            *reinterpret_cast<const unsigned char *>(&one) == 1;
+          return std::string("<?xml version=\"1.0\"?>\n<VTKFile "
+                             "type=\"UnstructuredGrid\" version=\"1.0\" "
+                             "byte_order=\"") +
+                 (little_endian ? "LittleEndian" : "BigEndian") + "\"" +
+                 (binary ? " header_type=\"UInt64\" "
+                           "compressor=\"vtkZLibDataCompressor\"" :
+                           "") +
+                 ">\n<UnstructuredGrid>\n" + text +
+                 "</UnstructuredGrid>\n</VTKFile>\n";
+        }
+
+      private:
+        bool        binary;
+        std::string text;
+      };
+
+      /** The point and cell data arrays of a piece: added to a VtuText in
+       *  order. */
+      using ArrayWriter = std::function<void(VtuText &)>;
+
+      /** A piece of @p n_cells cells of VTK type @p vtk_type with
+       *  @p nodes_per_cell nodes each. */
       std::string
-      grid(const std::vector<double>       &points_xy,
+      grid(const bool                       binary,
+           const std::vector<double>       &points_xy,
            const std::vector<unsigned int> &connectivity,
+           const std::size_t                n_cells,
            const unsigned int               nodes_per_cell,
            const unsigned int               vtk_type,
-           const std::string               &point_data,
-           const std::string               &cell_data)
+           const ArrayWriter               &point_data,
+           const ArrayWriter               &cell_data)
       {
-        const std::size_t  n_points = points_xy.size() / 2;
-        const std::size_t  n_cells  = connectivity.size() / nodes_per_cell;
-        std::ostringstream out;
-        out << std::setprecision(9);
-        out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" "
-               "version=\"0.1\" byte_order=\"LittleEndian\">\n"
-               "<UnstructuredGrid>\n<Piece NumberOfPoints=\""
-            << n_points << "\" NumberOfCells=\"" << n_cells << "\">\n";
-        out << "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" "
-               "format=\"ascii\">\n";
+        const std::size_t n_points = points_xy.size() / 2;
+        VtuText           out(binary);
+        out.add("<Piece NumberOfPoints=\"" + std::to_string(n_points) +
+                "\" NumberOfCells=\"" + std::to_string(n_cells) +
+                "\">\n<Points>\n");
+        std::vector<double> points(3 * n_points, 0.);
         for (std::size_t i = 0; i < n_points; ++i)
-          out << points_xy[2 * i] << ' ' << points_xy[2 * i + 1] << " 0\n";
-        out << "</DataArray>\n</Points>\n<Cells>\n";
-        data_array(out, "Int64", "connectivity", 1, connectivity);
-        std::vector<unsigned int> offsets(n_cells), types(n_cells, vtk_type);
+          {
+            points[3 * i]     = points_xy[2 * i];
+            points[3 * i + 1] = points_xy[2 * i + 1];
+          }
+        out.data_array<double>("Float64", "", 3, points);
+        out.add("</Points>\n<Cells>\n");
+        out.data_array<std::int64_t>("Int64", "connectivity", 1, connectivity);
+        std::vector<std::size_t>  offsets(n_cells);
+        std::vector<unsigned int> types(n_cells, vtk_type);
         for (std::size_t c = 0; c < n_cells; ++c)
           offsets[c] = (c + 1) * nodes_per_cell;
-        data_array(out, "Int64", "offsets", 1, offsets);
-        data_array(out, "UInt8", "types", 1, types);
-        out << "</Cells>\n<PointData>\n"
-            << point_data << "</PointData>\n<CellData>\n"
-            << cell_data << "</CellData>\n</Piece>\n</UnstructuredGrid>\n"
-            << "</VTKFile>\n";
-        return out.str();
+        out.data_array<std::int64_t>("Int64", "offsets", 1, offsets);
+        out.data_array<std::uint8_t>("UInt8", "types", 1, types);
+        out.add("</Cells>\n<PointData>\n");
+        if (point_data)
+          point_data(out);
+        out.add("</PointData>\n<CellData>\n");
+        cell_data(out);
+        out.add("</CellData>\n</Piece>\n");
+        return out.document();
       }
     } // namespace
 
@@ -144,7 +290,7 @@ namespace tmfdem
       const std::string  stem = next_stem();
       std::ostringstream pvtu;
       pvtu << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" "
-              "version=\"0.1\" byte_order=\"LittleEndian\">\n"
+              "version=\"1.0\" byte_order=\"LittleEndian\">\n"
               "<PUnstructuredGrid GhostLevel=\"0\">\n<PPointData>\n"
            << parallel_declarations(piece_text, "<PointData>", "</PointData>")
            << "</PPointData>\n<PCellData>\n"
@@ -191,6 +337,7 @@ namespace tmfdem
     std::string
     discrete_solution_vtu(
       const DiscreteModel &model,
+      const bool           binary,
       const std::vector<std::pair<std::string, const std::vector<double> *>>
                         &extra_point_fields,
       const unsigned int first_element,
@@ -217,17 +364,17 @@ namespace tmfdem
           velocity[3 * i + 1]     = model.vy[n];
           velocity[3 * i + 2]     = 0.;
         }
-      std::ostringstream point_data;
-      point_data << std::setprecision(9);
-      data_array(point_data, "Float64", "displacement", 3, displacement);
-      data_array(point_data, "Float64", "velocity", 3, velocity);
-      for (const auto &[name, values] : extra_point_fields)
-        data_array(point_data,
-                   "Float64",
-                   name,
-                   1,
-                   std::vector<double>(values->begin() + node0,
-                                       values->begin() + node0 + n_points));
+      const auto point_data = [&](VtuText &out) {
+        out.data_array<double>("Float64", "displacement", 3, displacement);
+        out.data_array<double>("Float64", "velocity", 3, velocity);
+        for (const auto &[name, values] : extra_point_fields)
+          out.data_array<double>("Float64",
+                                 name,
+                                 1,
+                                 std::vector<double>(values->begin() + node0,
+                                                     values->begin() + node0 +
+                                                       n_points));
+      };
 
       std::vector<double> sxx(n_cells), syy(n_cells), sxy(n_cells),
         damage(n_cells, 0.);
@@ -255,31 +402,34 @@ namespace tmfdem
                 }
             }
         }
-      std::ostringstream cell_data;
-      cell_data << std::setprecision(9);
-      data_array(cell_data, "Float64", "sxx", 1, sxx);
-      data_array(cell_data, "Float64", "syy", 1, syy);
-      data_array(cell_data, "Float64", "sxy", 1, sxy);
-      data_array(cell_data, "Float64", "joint_damage", 1, damage);
-      data_array(cell_data, "Int32", "material_id", 1, material);
-      data_array(cell_data, "Int32", "body", 1, body);
-      if (!model.expansion_factor.empty())
-        data_array(cell_data,
-                   "Float64",
-                   "expansion_factor",
-                   1,
-                   std::vector<double>(model.expansion_factor.begin() + first,
-                                       model.expansion_factor.begin() + end));
-      return grid(points,
+      const auto cell_data = [&](VtuText &out) {
+        out.data_array<double>("Float64", "sxx", 1, sxx);
+        out.data_array<double>("Float64", "syy", 1, syy);
+        out.data_array<double>("Float64", "sxy", 1, sxy);
+        out.data_array<double>("Float64", "joint_damage", 1, damage);
+        out.data_array<std::int32_t>("Int32", "material_id", 1, material);
+        out.data_array<std::int32_t>("Int32", "body", 1, body);
+        if (!model.expansion_factor.empty())
+          out.data_array<double>(
+            "Float64",
+            "expansion_factor",
+            1,
+            std::vector<double>(model.expansion_factor.begin() + first,
+                                model.expansion_factor.begin() + end));
+      };
+      return grid(binary,
+                  points,
                   connectivity,
+                  n_cells,
                   3,
                   5,
-                  point_data.str(),
-                  cell_data.str());
+                  point_data,
+                  cell_data);
     }
 
     std::string
     crack_vtu(const DiscreteModel &model,
+              const bool           binary,
               const unsigned int   first_joint,
               const unsigned int   end_joint)
     {
@@ -302,11 +452,28 @@ namespace tmfdem
             mode.push_back(static_cast<int>(model.joint_status[j]));
             break_time.push_back(model.joint_break_time[j]);
           }
-      std::ostringstream cell_data;
-      cell_data << std::setprecision(9);
-      data_array(cell_data, "Int32", "failure_mode", 1, mode);
-      data_array(cell_data, "Float64", "break_time", 1, break_time);
-      return grid(points, connectivity, 2, 3, "", cell_data.str());
+      // no broken joint: one placeholder cell, a poly-vertex (VTK type 2)
+      // of no points, mode 0 (intact), break time NaN. meshio reads no vtu
+      // without cells (nor VTK_EMPTY_CELL); it skips this type with a
+      // warning, and ParaView draws nothing for it
+      const bool none = mode.empty();
+      if (none)
+        {
+          mode.push_back(static_cast<int>(JointStatus::intact));
+          break_time.push_back(std::numeric_limits<double>::quiet_NaN());
+        }
+      const auto cell_data = [&](VtuText &out) {
+        out.data_array<std::int32_t>("Int32", "failure_mode", 1, mode);
+        out.data_array<double>("Float64", "break_time", 1, break_time);
+      };
+      return grid(binary,
+                  points,
+                  connectivity,
+                  mode.size(),
+                  none ? 0 : 2,
+                  none ? 2 : 3,
+                  {},
+                  cell_data);
     }
 
     std::string

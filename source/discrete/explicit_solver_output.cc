@@ -75,13 +75,17 @@ namespace tmfdem
           fields.emplace_back("T", &T);
         }
       // this rank's triangles (their nodes) and joints
-      const std::string solution = discrete_solution_vtu(model,
-                                                         fields,
-                                                         partition.begin(),
-                                                         partition.end());
-      const std::string cracks =
-        crack_vtu(model, partition.first_joint(), partition.end_joint());
-      std::string failure;
+      const std::string solution =
+        discrete_solution_vtu(model,
+                              parameters.output.binary_vtu,
+                              fields,
+                              partition.begin(),
+                              partition.end());
+      const std::string cracks = crack_vtu(model,
+                                           parameters.output.binary_vtu,
+                                           partition.first_joint(),
+                                           partition.end_joint());
+      std::string       failure;
       try
         {
           solution_series->write_piece(partition.rank(), solution);
@@ -124,12 +128,18 @@ namespace tmfdem
             {
               std::vector<double> T(heat->temperature().begin(),
                                     heat->temperature().end());
-              solution_series->write(time,
-                                     discrete_solution_vtu(model, {{"T", &T}}));
+              solution_series->write(
+                time,
+                discrete_solution_vtu(model,
+                                      parameters.output.binary_vtu,
+                                      {{"T", &T}}));
             }
           else
-            solution_series->write(time, discrete_solution_vtu(model));
-          crack_series->write(time, crack_vtu(model));
+            solution_series->write(
+              time,
+              discrete_solution_vtu(model, parameters.output.binary_vtu));
+          crack_series->write(time,
+                              crack_vtu(model, parameters.output.binary_vtu));
         }
       // monitor stresses: recovered at the mesh vertices (vtu files hold
       // the raw element values); stress_recovery.h. What is known on each

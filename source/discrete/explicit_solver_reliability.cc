@@ -577,10 +577,13 @@ namespace tmfdem
           {
             const auto solution_vtu = [&]() {
               if (!with_heat)
-                return discrete_solution_vtu(model);
+                return discrete_solution_vtu(model,
+                                             parameters.output.binary_vtu);
               std::vector<double> T(heat->temperature().begin(),
                                     heat->temperature().end());
-              return discrete_solution_vtu(model, {{"T", &T}});
+              return discrete_solution_vtu(model,
+                                           parameters.output.binary_vtu,
+                                           {{"T", &T}});
             };
             write_file_atomically(folder + "/failure_state.vtu",
                                   solution_vtu());

@@ -140,10 +140,12 @@ namespace tmfdem
   // ------------------------------------------------------- SolutionSeries
   SolutionSeries::SolutionSeries(const std::string &folder,
                                  const std::string &base_name,
-                                 MPI_Comm           communicator)
+                                 MPI_Comm           communicator,
+                                 const bool         binary)
     : folder(folder)
     , base_name(base_name)
     , communicator(communicator)
+    , binary(binary)
   {}
 
   void
@@ -155,9 +157,11 @@ namespace tmfdem
       base_name + "_" + Utilities::int_to_string(records.size(), 5);
 
     DataOutBase::VtkFlags flags;
-    flags.time              = time;
-    flags.cycle             = records.size();
-    flags.compression_level = DataOutBase::VtkFlags::best_speed;
+    flags.time  = time;
+    flags.cycle = records.size();
+    // deal.II writes ascii without compression
+    flags.compression_level = binary ? DataOutBase::VtkFlags::best_speed :
+                                       DataOutBase::VtkFlags::no_compression;
     data_out.set_flags(flags);
 
     const std::string piece =

@@ -91,7 +91,6 @@ elif which == "threads":
     skipped = parallel == "skip"
 elif which == "brazilian":
     import glob
-    import re
     folder = os.path.join(out, "brazilian")
     run(binary, os.path.join(prm_dir, "brazilian_disc.prm"), folder)
     d = np.genfromtxt(os.path.join(folder, "history.csv"), delimiter=",", names=True)
@@ -103,12 +102,14 @@ elif which == "brazilian":
     error = abs(peak / expected - 1.0)
     ok &= check(error < 0.15, f"peak load {peak / 1e3:.1f} kN/m vs pi D f_t / 2 = "
                 f"{expected / 1e3:.1f} kN/m, error {100 * error:.1f} % (< 15 %, h = 1.5 mm)")
-    text = open(sorted(glob.glob(os.path.join(folder, "cracks_*.vtu")))[-1]).read()
-    points = np.array(re.search(r"<Points>\s*<DataArray[^>]*>(.*?)</DataArray>", text,
-                                re.S).group(1).split(), float).reshape(-1, 3)
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                    "scripts"))
+    from plot_vtu import grid_arrays, read_grid  # noqa: E402
+    points, _, _, _, _, cell_arrays = grid_arrays(
+        read_grid(sorted(glob.glob(os.path.join(folder, "cracks_*.vtu")))[-1]))
+
     def array(name):
-        return np.array(re.search(f'Name="{name}"[^>]*>(.*?)</DataArray>', text,
-                                  re.S).group(1).split(), float)
+        return cell_arrays[name].astype(float)
     mid = 0.5 * (points[0::2] + points[1::2])
     order = np.argsort(array("break_time"))
     first = mid[order[:10]]

@@ -428,6 +428,9 @@ namespace tmfdem
     std::vector<double> times;            ///< output times [s]
     double              interval  = 0.;   ///< output every ... [s], 0: off
     bool                write_vtu = true; ///< solution.pvd and vtu files
+    /** Vtu format: VTK XML binary (zlib-compressed, base64) if true, plain
+     *  ascii text otherwise. */
+    bool binary_vtu = true;
     /** Discrete mechanics: write the deformed mesh at the end as
      *  <directory>/final_mesh.msh (gmsh 2.2, ASCII). */
     bool   write_final_mesh  = false;

@@ -74,13 +74,17 @@ namespace tmfdem
       std::vector<std::pair<double, std::string>> records;
     };
 
-    /** The exploded mesh as a VTK UnstructuredGrid document. Extra nodal
-     *  scalar fields (name, values per node) are added as point data. Only
-     *  the triangles [@p first_element, @p end_element) and their nodes
-     *  (one rank's piece); end_element = -1: to the last. */
+    /** The exploded mesh as a VTK UnstructuredGrid document, @p binary:
+     *  every DataArray zlib-compressed and base64-encoded (VTK XML binary,
+     *  UInt64 headers), otherwise ascii (doubles with 17 significant
+     *  digits, so both hold the same values). Extra nodal scalar fields
+     *  (name, values per node) are added as point data. Only the triangles
+     *  [@p first_element, @p end_element) and their nodes (one rank's
+     *  piece); end_element = -1: to the last. */
     std::string
     discrete_solution_vtu(
       const DiscreteModel &model,
+      const bool           binary,
       const std::vector<std::pair<std::string, const std::vector<double> *>>
                         &extra_point_fields = {},
       const unsigned int first_element      = 0,
@@ -88,9 +92,14 @@ namespace tmfdem
 
     /** Broken joints as line cells (one per joint, between the midpoints
      *  of its two faces' end nodes), of the joints [@p first_joint,
-     *  @p end_joint) (one rank's piece); end_joint = -1: to the last. */
+     *  @p end_joint) (one rank's piece); end_joint = -1: to the last.
+     *  Without broken joints the piece holds one placeholder cell, a
+     *  poly-vertex (VTK type 2) of no points with failure_mode 0 and
+     *  break_time NaN, as meshio reads no vtu file without cells (it skips
+     *  this cell type). @p binary as in discrete_solution_vtu(). */
     std::string
     crack_vtu(const DiscreteModel &model,
+              const bool           binary,
               const unsigned int   first_joint = 0,
               const unsigned int   end_joint   = static_cast<unsigned int>(-1));
 

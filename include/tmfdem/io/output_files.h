@@ -50,9 +50,12 @@ namespace tmfdem
   class SolutionSeries
   {
   public:
+    /** @p binary: VTK XML binary (zlib-compressed) vtu files, otherwise
+     *  ascii. */
     SolutionSeries(const std::string &folder,
                    const std::string &base_name,
-                   MPI_Comm           communicator);
+                   MPI_Comm           communicator,
+                   const bool         binary = true);
 
     /** Writes the patches built in @p data_out as the output at @p time [s]. */
     void
@@ -62,6 +65,7 @@ namespace tmfdem
     std::string                                 folder;
     std::string                                 base_name;
     MPI_Comm                                    communicator;
+    bool                                        binary;
     std::vector<std::pair<double, std::string>> records;
   };
 

@@ -1,0 +1,82 @@
+"""Render one field of a tmfdem output series with ParaView, to a PNG.
+
+    xvfb-run -a pvbatch scripts/render_paraview.py OUTPUT/solution.pvd out.png
+        [--field T] [--time 0.01] [--size 1200x900] [--cmap "Inferno (matplotlib)"]
+
+Opens the .pvd (or a .vtu / .pvtu) with ParaView's own readers, goes to the
+output time nearest --time (default: the last), colours by --field (point
+or cell data; a vector by its magnitude; default: T, else the first array)
+and saves the picture with a colour bar. pvbatch renders off screen through
+an X display: on a machine without one (a server, CI), run it under
+`xvfb-run -a` (Debian packages paraview, python3-paraview, xvfb).
+Prints the time, the field's range there and the number of cells.
+"""
+import argparse
+import sys
+
+from paraview.simple import (ColorBy, CreateView, GetColorTransferFunction, GetScalarBar,
+                             OpenDataFile, SaveScreenshot, Show, UpdatePipeline)
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("input", help=".pvd, .pvtu or .vtu file")
+    ap.add_argument("output", help="PNG file to write")
+    ap.add_argument("--field", default=None, help="array to colour by (default: T, else the first)")
+    ap.add_argument("--time", type=float, default=None, help="output time [s] (default: the last)")
+    ap.add_argument("--size", default="1200x900", help="picture size WIDTHxHEIGHT in pixels")
+    ap.add_argument("--cmap", default="Inferno (matplotlib)", help="ParaView colour map preset")
+    args = ap.parse_args(argv)
+
+    reader = OpenDataFile(args.input)
+    if reader is None:
+        sys.exit(f"{args.input}: ParaView has no reader for it")
+    times = list(reader.TimestepValues) if reader.TimestepValues else []
+    time = 0.0
+    if times:
+        time = times[-1] if args.time is None else min(times, key=lambda t: abs(t - args.time))
+    UpdatePipeline(time=time, proxy=reader)
+
+    point_names, cell_names = list(reader.PointData.keys()), list(reader.CellData.keys())
+    field = args.field or ("T" if "T" in point_names + cell_names else
+                           (point_names + cell_names + [None])[0])
+    if field is None or field not in point_names + cell_names:
+        sys.exit(f"{args.input}: no field '{field}' (have: {', '.join(point_names + cell_names)})")
+    association = "POINTS" if field in point_names else "CELLS"
+    array = (reader.PointData if association == "POINTS" else reader.CellData)[field]
+    component = -1 if array.GetNumberOfComponents() > 1 else 0
+    low, high = array.GetRange(component)
+    if not low <= high:  # no finite value (a crack file without cracks)
+        low, high = 0.0, 1.0
+
+    width, height = (int(v) for v in args.size.lower().split("x"))
+    view = CreateView("RenderView")
+    view.ViewSize = [width, height]
+    view.ViewTime = time
+    view.OrientationAxesVisibility = 0
+    view.Background = [1, 1, 1]
+    try:  # ParaView >= 5.10: the palette's background would override it
+        view.UseColorPaletteForBackground = 0
+    except AttributeError:
+        pass
+    display = Show(reader, view)
+    if component == -1:
+        ColorBy(display, (association, field, "Magnitude"))
+    else:
+        ColorBy(display, (association, field))
+    lut = GetColorTransferFunction(field)
+    lut.ApplyPreset(args.cmap, True)
+    lut.RescaleTransferFunction(low, high)
+    display.SetScalarBarVisibility(view, True)
+    bar = GetScalarBar(lut, view)
+    bar.TitleColor = bar.LabelColor = [0, 0, 0]
+    view.InteractionMode = "2D"
+    view.ResetCamera()
+    SaveScreenshot(args.output, view, ImageResolution=[width, height])
+    n_cells = reader.GetDataInformation().GetNumberOfCells()
+    print(f"wrote {args.output}: {field} ({association.lower()}) at t = {time:.6g} s in "
+          f"[{low:.6g}, {high:.6g}], {n_cells} cells")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

@@ -1,0 +1,230 @@
+#!/usr/bin/env python3
+"""The vtu outputs in both encodings (Output/Vtu format) and in ParaView.
+
+    verify_vtu_outputs.py TMFDEM MPIRUN|none OUT formats
+    verify_vtu_outputs.py TMFDEM MPIRUN|none OUT paraview
+
+formats: the quenched disc (prm/thermal_shock_disc.prm, coarse, T0 = 400 C,
+cracking) run with Output/Vtu format = ascii and = binary, on one rank and
+on two: the same files; every vtu (pieces included) holds the same
+DataArrays, in the same order, with the same attributes and bitwise the
+same values (decoded by scripts/vtu_pieces.py and by VTK,
+python3-vtk9); pvd and pvtu records identical; the binary files hold only
+binary arrays and are at least 3x smaller; the two-rank pieces merge into
+the one-rank files byte for byte; meshio reads every vtu, also the crack
+file written before any joint breaks.
+
+paraview: ParaView's own readers (pvbatch under xvfb-run) open the
+continuum and the discrete solution.pvd, cracks.pvd and a two-rank pvtu:
+time steps, array names, sizes and value ranges as VTK's Python module
+decodes them; scripts/render_paraview.py writes a PNG. Exit 77 (ctest
+SKIP_RETURN_CODE) when pvbatch or xvfb-run is missing.
+"""
+import filecmp
+import glob
+import json
+import os
+import shutil
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+sys.path.insert(0, HERE)
+import vtu_pieces  # noqa: E402
+from plot_vtu import grid_arrays, read_grid  # noqa: E402
+from common import run, check, SKIP  # noqa: E402
+
+binary, mpirun, out, mode = sys.argv[1:5]
+mpirun = None if mpirun == "none" else mpirun
+PRM = os.path.join(ROOT, "prm", "thermal_shock_disc.prm")
+DISC = ["Mesh/Element size=0.8e-3", "Initial conditions/Temperature=400",
+        "Time stepping/End time=0.01", "Output/Times=0.004"]
+SOLUTION = ({"displacement", "velocity", "T"},
+            {"sxx", "syy", "sxy", "joint_damage", "material_id", "body"})
+CRACKS = (set(), {"failure_mode", "break_time"})
+
+
+def disc_run(folder, fmt, ranks=1):
+    if not os.path.exists(os.path.join(folder, "summary.json")):
+        shutil.rmtree(folder, ignore_errors=True)
+        run(binary, PRM, folder, *DISC, f"Output/Vtu format={fmt}",
+            mpirun=mpirun if ranks > 1 else None, np=ranks)
+    return folder
+
+
+def files(folder, ext):
+    return sorted(os.path.relpath(p, folder)
+                  for p in glob.glob(os.path.join(folder, f"*{ext}")))
+
+
+def same_bits(a, b):
+    return a.dtype == b.dtype and a.shape == b.shape and a.tobytes() == b.tobytes()
+
+
+def compare(ascii_folder, binary_folder):
+    """Every vtu of the two folders: same arrays and values; records equal."""
+    ok = check(files(ascii_folder, ".vtu") == files(binary_folder, ".vtu") and
+               files(ascii_folder, ".vtu"),
+               f"{len(files(binary_folder, '.vtu'))} vtu files in both encodings")
+    for record in files(ascii_folder, ".pvd") + files(ascii_folder, ".pvtu"):
+        ok &= check(filecmp.cmp(os.path.join(ascii_folder, record),
+                                os.path.join(binary_folder, record), shallow=False),
+                    f"{record} identical")
+    n_arrays = 0
+    for name in files(binary_folder, ".vtu"):
+        pa, pb = os.path.join(ascii_folder, name), os.path.join(binary_folder, name)
+        with open(pb) as f:
+            text = f.read()
+        fine = 'format="ascii"' not in text and 'compressor="vtkZLibDataCompressor"' in text
+        own_a, own_b = vtu_pieces.read_arrays(pa), vtu_pieces.read_arrays(pb)
+        fine &= len(own_a) == len(own_b)
+        for (sa, aa, va), (sb, ab, vb) in zip(own_a, own_b):
+            fine &= sa == sb and aa == ab and same_bits(va, vb)
+            n_arrays += 1
+        vtk_a, vtk_b = grid_arrays(read_grid(pa)), grid_arrays(read_grid(pb))
+        for xa, xb in zip(vtk_a[:4], vtk_b[:4]):
+            fine &= same_bits(xa, xb)
+        for da, db in zip(vtk_a[4:], vtk_b[4:]):
+            fine &= list(da) == list(db) and all(same_bits(da[k], db[k]) for k in da)
+        expected = CRACKS if os.path.basename(name).startswith("cracks") else SOLUTION
+        fine &= set(vtk_b[4]) == expected[0] and set(vtk_b[5]) == expected[1]
+        if not fine:
+            ok &= check(False, f"{name}: ascii and binary differ")
+    return ok & check(n_arrays > 0, f"{n_arrays} DataArrays bitwise equal in ascii and binary "
+                      f"(attributes, order, values; read by vtu_pieces.py and by VTK)")
+
+
+def size(folder, ext=""):
+    return sum(os.path.getsize(p) for p in glob.glob(os.path.join(folder, "*" + ext)))
+
+
+def formats():
+    ok = True
+    folders = {}
+    for ranks in ([1, 2] if mpirun else [1]):
+        for fmt in ("ascii", "binary"):
+            folders[ranks, fmt] = disc_run(os.path.join(out, f"np{ranks}_{fmt}"), fmt, ranks)
+        print(f"-- {ranks} rank(s)", flush=True)
+        ok &= compare(folders[ranks, "ascii"], folders[ranks, "binary"])
+    a, b = folders[1, "ascii"], folders[1, "binary"]
+    ratio = size(a, ".vtu") / size(b, ".vtu")
+    ok &= check(ratio >= 3, f"vtu files: ascii {size(a, '.vtu')} bytes, binary "
+                f"{size(b, '.vtu')} bytes ({ratio:.1f}x smaller); whole folder "
+                f"{size(a)} -> {size(b)} bytes")
+    first = os.path.join(b, "cracks_00000.vtu")
+    _, _, _, types, _, cell_data = grid_arrays(read_grid(first))
+    ok &= check(list(types) == [2] and cell_data["failure_mode"].tolist() == [0],
+                "cracks_00000.vtu (no broken joint): one placeholder cell, a poly-vertex of "
+                "no points, failure_mode 0")
+    _, _, _, types, _, _ = grid_arrays(read_grid(sorted(glob.glob(os.path.join(b, "cracks_*.vtu")))[-1]))
+    ok &= check(len(types) > 10 and set(types.tolist()) == {3},
+                f"the last crack file: {len(types)} line cells")
+    if mpirun:
+        merged = os.path.join(out, "np2_binary_merged")
+        records = vtu_pieces.merged_view(folders[2, "binary"], merged)
+        same = [n for n in files(b, ".vtu")
+                if filecmp.cmp(os.path.join(b, n), os.path.join(merged, n), shallow=False)]
+        ok &= check(records > 0 and len(same) == len(files(b, ".vtu")),
+                    f"2-rank binary pieces merged ({records} pvtu records): {len(same)} of "
+                    f"{len(files(b, '.vtu'))} files byte for byte the 1-rank ones")
+    try:
+        import meshio
+    except ImportError:
+        meshio = None
+        print("meshio not installed (python3-meshio): its check left out")
+    if meshio:
+        import warnings
+        read = 0
+        for folder in (a, b):
+            for name in files(folder, ".vtu"):
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    mesh = meshio.read(os.path.join(folder, name))
+                read += 1
+                if name == "cracks_00000.vtu":
+                    ok &= check(sum(len(c.data) for c in mesh.cells) == 0,
+                                f"meshio reads {os.path.basename(folder)}/{name}: "
+                                f"{len(mesh.points)} points, no cells")
+        ok &= check(read > 0, f"meshio {meshio.__version__} reads all {read} vtu files")
+    return ok
+
+
+def expected(path, time, times):
+    """What ParaView must find in @p path at @p time: from VTK's Python
+    module (the file of that time in a pvd)."""
+    target = path
+    if path.endswith(".pvd"):
+        root = ET.parse(path).getroot()
+        files_by_time = {float(d.get("timestep")): d.get("file") for d in root.iter("DataSet")}
+        target = os.path.join(os.path.dirname(path), files_by_time[time])
+    points, _, _, types, point_data, cell_data = grid_arrays(read_grid(target))
+
+    def spans(data, n):
+        out = {}
+        for name, values in data.items():
+            first = values.reshape(n, -1)[:, 0] if n else values
+            finite = first[np.isfinite(first)]
+            out[name] = [float(finite.min()), float(finite.max())] if len(finite) else None
+        return out
+    return {"file": path, "times": times, "time": time, "n_points": len(points),
+            "n_cells": len(types), "point_data": spans(point_data, len(points)),
+            "cell_data": spans(cell_data, len(types))}
+
+
+def pvd_times(path):
+    return [float(d.get("timestep")) for d in ET.parse(path).getroot().iter("DataSet")]
+
+
+def paraview():
+    pvbatch, xvfb = shutil.which("pvbatch"), shutil.which("xvfb-run")
+    if not pvbatch or not xvfb:
+        print(f"SKIP: pvbatch ({pvbatch}) or xvfb-run ({xvfb}) missing "
+              "(Debian paraview python3-paraview xvfb, scripts/install-dependencies.sh)")
+        sys.exit(SKIP)
+    disc = disc_run(os.path.join(out, "np1_binary"), "binary")
+    continuum = os.path.join(out, "continuum")
+    if not os.path.exists(os.path.join(continuum, "summary.json")):
+        run(binary, os.path.join(ROOT, "prm", "plate_transient-continuum.prm"), continuum,
+            "Time stepping/End time=10", "Output/Times=2")
+    spec = []
+    for pvd in (os.path.join(continuum, "solution.pvd"), os.path.join(disc, "solution.pvd"),
+                os.path.join(disc, "cracks.pvd")):
+        times = pvd_times(pvd)
+        spec.append(expected(pvd, times[-1], times))
+    first_cracks = os.path.join(disc, "cracks.pvd")
+    spec.append(expected(first_cracks, pvd_times(first_cracks)[0], pvd_times(first_cracks)))
+    if mpirun:
+        ranks = disc_run(os.path.join(out, "np2_binary"), "binary", 2)
+        for stem in ("solution", "cracks"):
+            spec.append(expected(sorted(glob.glob(os.path.join(ranks, f"{stem}_*.pvtu")))[-1],
+                                 0.0, []))
+    spec_file = os.path.join(out, "paraview_spec.json")
+    with open(spec_file, "w") as f:
+        json.dump(spec, f, indent=1)
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    ok = True
+    for cmd in ([xvfb, "-a", pvbatch, os.path.join(HERE, "paraview_check.py"), spec_file],
+                [xvfb, "-a", pvbatch, os.path.join(ROOT, "scripts", "render_paraview.py"),
+                 os.path.join(disc, "solution.pvd"), os.path.join(out, "disc_T.png"),
+                 "--field", "T", "--time", "0.004", "--size", "800x600"]):
+        print("$", " ".join(cmd), flush=True)
+        r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=600)
+        print(r.stdout[-6000:], r.stderr[-2000:], flush=True)
+        ok &= check(r.returncode == 0, f"{os.path.basename(cmd[3])} exit status {r.returncode}")
+    png = os.path.join(out, "disc_T.png")
+    with open(png, "rb") if os.path.exists(png) else open(os.devnull, "rb") as f:
+        head = f.read(8)
+    ok &= check(head == b"\x89PNG\r\n\x1a\n" and os.path.getsize(png) > 5000,
+                f"render_paraview.py wrote {png} ({os.path.getsize(png) if os.path.exists(png) else 0} bytes)")
+    return ok
+
+
+os.makedirs(out, exist_ok=True)
+ok = formats() if mode == "formats" else paraview()
+print("PASS" if ok else "FAIL")
+sys.exit(0 if ok else 1)
