@@ -38,14 +38,28 @@ namespace tmfdem
                    domain_area(parameters.mesh),
                    parameters.mesh.source == MeshParameters::Source::annulus ||
                      parameters.mesh.source == MeshParameters::Source::disc);
-      // ids without a subsection (or beyond them) are refused
+      // ids without a subsection (or beyond them) are refused, naming the
+      // cells and the bodies that use them
+      const auto &read = parameters.sections_read;
+      const bool  bodies_read =
+        read.empty() ||
+        std::find(read.begin(), read.end(), "Discrete bodies") != read.end();
       for (const auto id : report.material_ids)
-        parameters.materials.require_given(id,
-                                           "cells of the " + source +
-                                             (parameters.mesh.source ==
-                                                  MeshParameters::Source::file ?
-                                                "" :
-                                                " (Mesh/Material id)"));
+        {
+          std::string where =
+            "cells of the " + source +
+            (parameters.mesh.source == MeshParameters::Source::file ?
+               "" :
+               " (Mesh/Material id)");
+          if (bodies_read)
+            for (const auto &body :
+                 parameters.get<DiscreteBodyParameters>().bodies)
+              if (std::find(body.material_ids.begin(),
+                            body.material_ids.end(),
+                            id) != body.material_ids.end())
+                where += " and by " + body.name + "/Material ids";
+          parameters.materials.require_given(id, where);
+        }
       if (report.n_quadrilaterals > 0)
         throw InputError(source +
                          " has quadrilaterals; the discrete layer needs "

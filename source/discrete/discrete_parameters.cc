@@ -772,10 +772,6 @@ namespace tmfdem
   DiscreteBodyParameters::complete(Parameters &parameters) const
   {
     const auto &materials = parameters.materials.materials;
-    // a body's material ids take the properties of their subsections
-    for (const auto &body : bodies)
-      for (const auto id : body.material_ids)
-        parameters.materials.require_given(id, body.name + "/Material ids");
     // a body and one of its materials may not both set the initial
     // temperature: two entries for the same cells
     for (const auto &body : bodies)

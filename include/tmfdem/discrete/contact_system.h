@@ -259,8 +259,9 @@ namespace tmfdem
        * The force-carrying pair of the current pair list (this rank's
        * pairs) whose triangles overlap most, relative to the smaller
        * triangle's area (triangle_overlap.h), in the current geometry of
-       * @p model. Pairs within one rigid group are skipped. Not
-       * collective.
+       * @p model. Pairs within one rigid group, and pairs of one piece
+       * (connected by intact joints: crushing, not failed contact), are
+       * skipped. Not collective.
        */
       Overlap
       largest_overlap(const DiscreteModel &model) const;
