@@ -78,7 +78,7 @@ namespace tmfdem
       // too many break at once, or whose relaxation does not
       // converge, is re-run shorter from here (theory manual 8, "Thermal
       // steps through the fracture process")
-      const bool control_failures = dh.maximum_failing_joints > 0;
+      const bool          control_failures = dh.maximum_failing_joints > 0;
       std::vector<double> utilisation_start, damage_start;
       if (dh.maximum_utilisation_change > 0.)
         joint_utilisations(model, utilisation_start);
@@ -153,7 +153,8 @@ namespace tmfdem
               {
                 highest = std::max(highest, utilisation_end[j]);
                 if (utilisation_start[j] >= 0.)
-                  rise = std::max(rise, utilisation_end[j] - utilisation_start[j]);
+                  rise =
+                    std::max(rise, utilisation_end[j] - utilisation_start[j]);
               }
           joint_utilisation_rate = unstable ? 0. : rise / dt;
           joint_utilisation      = highest;
@@ -168,8 +169,8 @@ namespace tmfdem
               << steps_per_thermal_step
               << " mechanical steps (Discrete heat/Mechanical steps per "
                  "thermal step) with kinetic / strain energy "
-              << last_kinetic_to_strain << " above Relaxation tolerance = "
-              << dh.relaxation_tolerance
+              << last_kinetic_to_strain
+              << " above Relaxation tolerance = " << dh.relaxation_tolerance
               << ": the state is not in equilibrium"
               << (control_failures ? ", also with Minimum thermal step" : "")
               << ". Raise the cap, "

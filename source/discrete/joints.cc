@@ -513,8 +513,8 @@ namespace tmfdem
               model.joint_damage[2 * j] > 0. ||
               model.joint_damage[2 * j + 1] > 0.)
             continue;
-          const JointFrame      g = joint_frame(model, j);
-          const JointConstants &k = model.joint_constants[j];
+          const JointFrame      g       = joint_frame(model, j);
+          const JointConstants &k       = model.joint_constants[j];
           double                highest = 0.;
           for (const double u : {gauss_0, gauss_1})
             {
@@ -539,10 +539,10 @@ namespace tmfdem
     {
       damage.resize(model.n_joints);
       for (unsigned int j = 0; j < model.n_joints; ++j)
-        damage[j] = model.joint_status[j] != JointStatus::intact ?
-                      1. :
-                      std::max(model.joint_damage[2 * j],
-                               model.joint_damage[2 * j + 1]);
+        damage[j] =
+          model.joint_status[j] != JointStatus::intact ?
+            1. :
+            std::max(model.joint_damage[2 * j], model.joint_damage[2 * j + 1]);
     }
 
     unsigned int
