@@ -12,8 +12,11 @@ an X display: on a machine without one (a server, CI), run it under
 Prints the time, the field's range there and the number of cells.
 """
 import argparse
+import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import paraview_path  # noqa: E402,F401  (finds python3-paraview's package)
 from paraview.simple import (ColorBy, CreateView, GetColorTransferFunction, GetScalarBar,
                              OpenDataFile, SaveScreenshot, Show, UpdatePipeline)
 

@@ -11,8 +11,11 @@ values})}. Exit status 0 when everything matches.
 """
 import json
 import math
+import os
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+import paraview_path  # noqa: E402,F401  (finds python3-paraview's package)
 from paraview.simple import OpenDataFile, UpdatePipeline
 
 

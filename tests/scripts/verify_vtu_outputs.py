@@ -207,7 +207,10 @@ def paraview():
     spec_file = os.path.join(out, "paraview_spec.json")
     with open(spec_file, "w") as f:
         json.dump(spec, f, indent=1)
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    # pvbatch runs the Python it was built with: a PYTHONHOME or PYTHONPATH of
+    # another interpreter (pyenv, conda) would hide ParaView's own modules
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONHOME", "PYTHONPATH")}
+    env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     ok = True
     xvfb = [xvfb, "-a", "-s", "-screen 0 1280x1024x24"]
     for cmd in (xvfb + [pvbatch, os.path.join(HERE, "paraview_check.py"), spec_file],
