@@ -8,12 +8,13 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
+from bench_common import help_requested, tmfdem, work_folder
 
 here = os.path.dirname(os.path.abspath(__file__))
-binary = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "build-release", "tmfdem")
+help_requested(__doc__)
+binary = tmfdem(sys.argv[1] if len(sys.argv) > 1 else None)
 prm_dir = os.path.join(here, "..", "prm")
-out = tempfile.mkdtemp(prefix="tmfdem-bench-")
+out = work_folder("tmfdem-bench-")
 
 
 def run(prm, *settings):

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The discrete layer's heat on MPI ranks (issue 14): each rank advances
+"""The discrete layer's heat on MPI ranks: each rank advances
 the nodes of its own triangles (DiscreteHeat::distribute()).
 
   heat:  Model = discrete heat on the structured unit-square plate of
@@ -35,7 +35,6 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 import time
 
 here = os.path.dirname(os.path.abspath(__file__))
@@ -133,11 +132,15 @@ def main():
     parser.add_argument("--cells", type=int, default=336)
     parser.add_argument("--against", help="another build's tmfdem (before/after)")
     args = parser.parse_args()
+    from bench_common import tmfdem, work_folder
+    args.binary = tmfdem(args.binary)
+    if args.against:
+        args.against = tmfdem(args.against)
     # what differs between rank counts by design (scripts/rank_independence.py)
     rn.VOLATILE.update({"mpi_processes", "ghost_elements", "ghost_exchange_bytes",
                         "synchronisations", "synchronisation_bytes",
                         "communication_time_s", "heat_distributed"})
-    work = tempfile.mkdtemp(prefix="tmfdem-heat-")
+    work = work_folder("tmfdem-heat-")
     throughput.work = work
     print(f"load average {os.getloadavg()[0]:.2f}; outputs in {work}")
 

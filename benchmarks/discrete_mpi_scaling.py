@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Scaling of the discrete layer over MPI ranks (issue 14): the intact plate
+"""Scaling of the discrete layer over MPI ranks: the intact plate
 of discrete_mechanics_throughput.py (n x n cells, two triangles each,
 bottom on rollers, top pulled, strong joints, contact on), one thread per
 rank.
@@ -25,10 +25,13 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 import time
 
 here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, here)
+from bench_common import help_requested, tmfdem, work_folder  # noqa: E402
+
+help_requested(__doc__)
 sys.argv_saved = list(sys.argv)
 sys.argv = sys.argv[:1]  # the throughput module reads its own arguments
 sys.path.insert(0, here)
@@ -37,9 +40,9 @@ import discrete_mechanics_throughput as throughput  # noqa: E402
 arguments = sys.argv_saved[1:]
 skip_large = "--skip-large" in arguments
 arguments = [a for a in arguments if a != "--skip-large"]
-binary = arguments[0] if arguments else os.path.join(here, "..", "build-release", "tmfdem")
+binary = tmfdem(arguments[0] if arguments else None)
 steps = int(arguments[1]) if len(arguments) > 1 else 400
-work = tempfile.mkdtemp(prefix="tmfdem-mpi-")
+work = work_folder("tmfdem-mpi-")
 throughput.work = work
 
 

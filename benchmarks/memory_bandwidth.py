@@ -12,6 +12,10 @@ import time
 
 import numpy as np
 
+from bench_common import help_requested
+
+help_requested(__doc__)
+
 n = 50_000_000
 a = np.zeros(n)
 b = np.ones(n)

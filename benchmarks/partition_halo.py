@@ -20,7 +20,7 @@ import argparse
 import json
 import os
 import subprocess
-import tempfile
+import sys
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..")
@@ -31,6 +31,10 @@ parser.add_argument("tmfdem", nargs="?",
 parser.add_argument("--large", action="store_true")
 parser.add_argument("--only-large", action="store_true")
 args = parser.parse_args()
+sys.path.insert(0, here)
+from bench_common import tmfdem, work_folder  # noqa: E402
+
+args.tmfdem = tmfdem(args.tmfdem)
 
 # case, extra settings, what bounds the run
 cases = [
@@ -51,7 +55,7 @@ if args.large or args.only_large:
     cases.append(("plate_transient", ["Mesh/Element size=0.0016",
                                       "Time stepping/End time=0.25"]))
 
-work = tempfile.mkdtemp(prefix="tmfdem-halo-")
+work = work_folder("tmfdem-halo-")
 env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
            OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 print(f"{'case':>22} {'np':>2} {'numbering':>13} {'triangles':>9} "

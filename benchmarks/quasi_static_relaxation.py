@@ -1,9 +1,8 @@
 #!/usr/bin/python3
 """Quasi-static relaxation: prm/hollow_cylinder_cracking.prm (paper 5.5) on
-one thread (Discrete mechanics/Threads = 1) with the relaxation of before
-issue 12 part 3 ("old": mass damping 6e4 1/s, each relaxation from the last
-state, Relaxation force tolerance 1e-3, as shipped until 2026-11-23) and as
-shipped now ("new": the start extrapolated from the last relaxation, kinetic
+one thread (Discrete mechanics/Threads = 1) with the mass-damped relaxation
+("old": mass damping 6e4 1/s, each relaxation from the last state,
+Relaxation force tolerance 1e-3) and as shipped ("new": the start extrapolated from the last relaxation, kinetic
 damping, no mass damping, force tolerance 1e-5; doc/theory.md 8).
 The two run alternately, REPEATS pairs (default 1; the machine may be
 shared: each run prints its wall and CPU time, steps and the 1-minute load
@@ -20,16 +19,17 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
-
 import numpy as np
 
+from bench_common import help_requested, tmfdem, work_folder
+
 here = os.path.dirname(os.path.abspath(__file__))
-binary = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "build-release", "tmfdem")
+help_requested(__doc__)
+binary = tmfdem(sys.argv[1] if len(sys.argv) > 1 else None)
 repeats = int(sys.argv[2]) if len(sys.argv) > 2 else 1
 end_time = sys.argv[3] if len(sys.argv) > 3 else None
 prm = os.path.join(here, "..", "prm", "hollow_cylinder_cracking.prm")
-work = tempfile.mkdtemp(prefix="tmfdem-relax-")
+work = work_folder("tmfdem-relax-")
 RATE = 1e-4  # C/s: the prm's inner-wall ramp
 
 VARIANTS = {

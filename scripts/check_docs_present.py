@@ -3,7 +3,7 @@
 
 usage: scripts/check_docs_present.py [REPOSITORY_ROOT]
 
-Scans doc/**/*.md and README.md of the repository (default: the folder
+Scans doc/**/*.md, README.md and benchmarks/README.md of the repository (default: the folder
 above this script) and lists, as FILE:LINE: what: text, every
 
   - ISO date (2026-11-24),
@@ -52,9 +52,9 @@ def findings(line):
 
 def documents(root):
     files = sorted((root / "doc").glob("**/*.md"))
-    readme = root / "README.md"
-    if readme.is_file():
-        files.append(readme)
+    for readme in (root / "README.md", root / "benchmarks" / "README.md"):
+        if readme.is_file():
+            files.append(readme)
     return files
 
 

@@ -99,6 +99,18 @@ namespace tmfdem
                       "Source = file: the area of the domain [m^2]; a mesh "
                       "covering less (an unmeshed region) or more is "
                       "refused. 0: not checked.");
+    prm.declare_entry(
+      "Circular boundaries",
+      "",
+      Patterns::Anything(),
+      "Source = file: boundary ids whose edges lie on circles, as 'id: x, y; "
+      "id: x, y' with the circle's centre x, y [m] (a hole, a borehole, a "
+      "disc's rim). Global refinements put the new vertices of these edges "
+      "on the circle through the edge's ends about the centre, so that the "
+      "refined mesh follows the circle instead of the mesh file's polygon. "
+      "Each id must name boundary edges of the mesh whose ends lie at one "
+      "distance from the centre (within 1 %). Empty: refinement keeps the "
+      "polygon.");
     prm.declare_entry("Global refinements",
                       "0",
                       Patterns::Integer(0, 12),
@@ -187,6 +199,55 @@ namespace tmfdem
     material_id        = prm.get_integer("Material id");
     file_name          = prm.get("File name");
     expected_area      = prm.get_double("Expected area");
+    circular_boundaries.clear();
+    for (const std::string &item :
+         Utilities::split_string_list(prm.get("Circular boundaries"), ';'))
+      {
+        const auto fail = [&item]() {
+          throw InputError("Mesh/Circular boundaries: '" + item +
+                           "': allowed are entries 'boundary id: x, y' "
+                           "separated by ';' (a boundary id 0 to 254 and "
+                           "the circle's centre x, y in m).");
+        };
+        const std::vector<std::string> parts =
+          Utilities::split_string_list(item, ':');
+        if (parts.size() != 2)
+          fail();
+        const std::vector<std::string> centre =
+          Utilities::split_string_list(parts[1], ',');
+        int    id = -1;
+        double x = 0., y = 0.;
+        try
+          {
+            std::size_t used = 0;
+            id               = std::stoi(parts[0], &used);
+            if (used != parts[0].size() || centre.size() != 2)
+              fail();
+            x = std::stod(centre[0], &used);
+            if (used != centre[0].size())
+              fail();
+            y = std::stod(centre[1], &used);
+            if (used != centre[1].size())
+              fail();
+          }
+        catch (const std::logic_error &)
+          {
+            fail();
+          }
+        if (id < 0 || id > 254 || !std::isfinite(x) || !std::isfinite(y))
+          fail();
+        for (const auto &[other, point] : circular_boundaries)
+          if (other == static_cast<types::boundary_id>(id))
+            throw InputError("Mesh/Circular boundaries: boundary id " +
+                             std::to_string(id) +
+                             " is named twice; allowed is one circle per id.");
+        circular_boundaries.emplace_back(static_cast<types::boundary_id>(id),
+                                         Point<2>(x, y));
+      }
+    if (!circular_boundaries.empty() && source != Source::file)
+      throw InputError("Mesh/Circular boundaries: only for Source = file "
+                       "(the generated annulus and disc follow their circles "
+                       "already).");
     gmsh_time_limit    = prm.get_double("Gmsh time limit");
     if (!(gmsh_time_limit > 0.) || !std::isfinite(gmsh_time_limit))
       throw InputError(

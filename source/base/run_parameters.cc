@@ -177,7 +177,8 @@ namespace tmfdem
     prm.declare_entry("Polynomial degree",
                       "1",
                       Patterns::Integer(1, 3),
-                      "Degree of the Lagrange elements for temperature [-].");
+                      "Degree of the Lagrange elements for temperature: 1 "
+                      "to 3 on quadrilaterals, 1 or 2 on triangles [-].");
     prm.declare_entry("Relative tolerance",
                       "1e-10",
                       Patterns::Double(1e-16, 1e-2),
@@ -262,7 +263,8 @@ namespace tmfdem
     prm.declare_entry("Polynomial degree",
                       "2",
                       Patterns::Integer(1, 3),
-                      "Degree of the Lagrange elements for displacement [-].");
+                      "Degree of the Lagrange elements for displacement: 1 "
+                      "to 3 on quadrilaterals, 1 or 2 on triangles [-].");
     prm.declare_entry(
       "Newton tolerance",
       "1e-10",
@@ -294,7 +296,10 @@ namespace tmfdem
                       "false",
                       Patterns::Bool(),
                       "Also write sigma_rr and sigma_tt (columns srr, stt) "
-                      "about Polar centre to probes.csv and lines.csv.");
+                      "about Polar centre to probes.csv and lines.csv, in the "
+                      "continuum and the discrete models; the discrete "
+                      "layer's solution vtu files hold them as cell data "
+                      "too (srr, stt at the deformed triangle's centroid).");
     prm.declare_entry("Polar centre",
                       "0, 0",
                       point_pattern(),

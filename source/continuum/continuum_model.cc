@@ -113,6 +113,16 @@ namespace tmfdem
       }
     else
       {
+        // deal.II 9.4 has triangle elements of degrees 1 and 2 only (its
+        // FE_SimplexP(3) crashes in a release build)
+        if (degree > 2)
+          throw InputError(
+            std::string(n_components == 1 ? "Heat solver" : "Mechanics") +
+            "/Polynomial degree = " + std::to_string(degree) +
+            ": the mesh is made of triangles, whose elements (deal.II 9.4) "
+            "have degree 1 or 2; allowed are 1 and 2 on triangles, 1 to 3 "
+            "on quadrilaterals (Mesh/Element type, or a quadrilateral mesh "
+            "file).");
         scalar  = std::make_unique<FE_SimplexP<2>>(degree);
         mapping = std::make_unique<MappingFE<2>>(FE_SimplexP<2>(1));
       }

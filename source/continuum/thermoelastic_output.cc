@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/polar_stress.h>
 #include <tmfdem/continuum/thermoelastic_solver.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/monitors.h>
@@ -157,12 +158,10 @@ namespace tmfdem
     if (parameters.mechanics.polar_frame)
       {
         const Tensor<1, 2> radial = p - parameters.mechanics.polar_centre;
-        const double       angle  = std::atan2(radial[1], radial[0]);
-        const double       c = std::cos(angle), s = std::sin(angle);
-        values.push_back(sigma[0][0] * c * c + sigma[1][1] * s * s +
-                         2. * sigma[0][1] * c * s);
-        values.push_back(sigma[0][0] * s * s + sigma[1][1] * c * c -
-                         2. * sigma[0][1] * c * s);
+        const auto         polar =
+          polar_stress(sigma[0][0], sigma[1][1], sigma[0][1], radial[0], radial[1]);
+        values.push_back(polar[0]);
+        values.push_back(polar[1]);
       }
     return values;
   }

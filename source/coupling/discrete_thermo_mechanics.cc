@@ -78,33 +78,33 @@ namespace tmfdem
       // too many break at once, or whose relaxation does not
       // converge, is re-run shorter from here (theory manual 8, "Thermal
       // steps through the fracture process")
-      const bool          control_failures = dh.maximum_failing_joints > 0;
+      const bool          control_breaks = dh.maximum_broken_joints_per_step > 0;
       std::vector<double> utilisation_start, damage_start;
       if (dh.maximum_utilisation_change > 0.)
         joint_utilisations(model, utilisation_start);
-      if (control_failures)
+      if (control_breaks)
         {
           joint_damages(model, damage_start);
           keep_thermal_step_start();
         }
       const double        minimum_step = minimum_thermal_step();
-      const double        allowed      = dh.maximum_failing_joints;
+      const double        allowed      = dh.maximum_broken_joints_per_step;
       bool                unstable     = false;
       std::vector<double> damage_end;
-      unsigned int        failing = 0;
+      unsigned int        broke_in_step = 0;
       while (true)
         {
           advance_thermal_step(dt);
-          if (!control_failures)
+          if (!control_breaks)
             break;
           // joints that broke in this step (their onset of damage is
           // resolved by the utilisation control above)
           joint_damages(model, damage_end);
-          failing = 0;
+          broke_in_step = 0;
           bool damage_grew = false;
           for (unsigned int j = 0; j < model.n_joints; ++j)
             {
-              failing += damage_start[j] < 1. && damage_end[j] >= 1.;
+              broke_in_step += damage_start[j] < 1. && damage_end[j] >= 1.;
               damage_grew |= damage_end[j] > damage_start[j];
             }
           // an unconverged relaxation is re-run only where damage grew in
@@ -112,7 +112,7 @@ namespace tmfdem
           // does not help a cap that is too low for the load, which the
           // count of relaxations at the cap reports
           const bool resolved =
-            failing <= 2. * allowed &&
+            broke_in_step <= 2. * allowed &&
             (last_relaxation_converged || !damage_grew);
           if (resolved)
             break;
@@ -133,21 +133,21 @@ namespace tmfdem
           restore_thermal_step_start();
           ++rejected_thermal_steps;
           const double factor =
-            failing > 2. * allowed ? 0.5 * allowed / failing : 0.25;
+            broke_in_step > 2. * allowed ? 0.5 * allowed / broke_in_step : 0.25;
           dt = std::max(minimum_step, factor * dt);
           if (writes_files())
             std::cerr << "[tmfdem] t = " << time << " s: thermal step re-run "
-                      << (failing > 2. * allowed ?
-                            "(" + std::to_string(failing) +
+                      << (broke_in_step > 2. * allowed ?
+                            "(" + std::to_string(broke_in_step) +
                               " joints broke in it)" :
                             std::string("(the relaxation did not converge)"))
                       << " with " << dt << " s\n";
         }
       last_thermal_step = dt;
-      // the next step shrinks by allowed / failing where more broke than
+      // the next step shrinks by allowed / broke_in_step where more broke than
       // allowed (a single break in a short step says nothing of a rate)
-      if (control_failures)
-        failure_rate = unstable || failing <= allowed ? 0. : failing / dt;
+      if (control_breaks)
+        break_rate = unstable || broke_in_step <= allowed ? 0. : broke_in_step / dt;
       if (dh.maximum_utilisation_change > 0.)
         {
           // the fastest rise of one joint's utilisation, over the joints
@@ -181,7 +181,7 @@ namespace tmfdem
               << last_kinetic_to_strain
               << " above Relaxation tolerance = " << dh.relaxation_tolerance
               << ": the state is not in equilibrium"
-              << (control_failures ? ", also with Minimum thermal step" : "")
+              << (control_breaks ? ", also with Minimum thermal step" : "")
               << ". Raise the cap, "
                  "add Mass damping or run the fracture with inertia "
                  "(Relaxation damping = kinetic, Fracture event duration); "
@@ -358,10 +358,10 @@ namespace tmfdem
         }
       // joints breaking: at most the allowed number per step, from their
       // rate over the last step where it had more
-      if (dh.maximum_failing_joints > 0 && failure_rate > 0.)
+      if (dh.maximum_broken_joints_per_step > 0 && break_rate > 0.)
         dt = std::min(dt,
                       std::max(minimum_step,
-                               dh.maximum_failing_joints / failure_rate));
+                               dh.maximum_broken_joints_per_step / break_rate));
       // land on the end time instead of stepping past it
       const double to_end = parameters.time.end_time - time;
       if (to_end < 1.5 * dt)

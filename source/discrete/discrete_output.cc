@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <tmfdem/base/polar_stress.h>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/temperature_source.h>
 #include <tmfdem/io/output_files.h>
@@ -340,8 +341,9 @@ namespace tmfdem
       const bool           binary,
       const std::vector<std::pair<std::string, const std::vector<double> *>>
                         &extra_point_fields,
-      const unsigned int first_element,
-      const unsigned int end_element)
+      const unsigned int           first_element,
+      const unsigned int           end_element,
+      const std::array<double, 2> *polar_centre)
     {
       // triangles [first, end) own the nodes [3 first, 3 end)
       const unsigned int  first    = std::min(first_element, model.n_elements);
@@ -386,7 +388,10 @@ namespace tmfdem
           syy[c]               = model.stress[3 * e + 1];
           sxy[c]               = model.stress[3 * e + 2];
           material[c]          = model.material[e];
-          body[c]              = model.body[e] == no_body ? -1 : model.body[e];
+          body[c]              = model.body[e] == no_body ?
+                                     -1 :
+                                     static_cast<int>(
+                                       model.body_number[model.body[e]]);
           for (unsigned int k = 0; k < 3; ++k)
             {
               const int code = model.edge_joint[3 * e + k];
@@ -409,6 +414,25 @@ namespace tmfdem
         out.data_array<double>("Float64", "joint_damage", 1, damage);
         out.data_array<std::int32_t>("Int32", "material_id", 1, material);
         out.data_array<std::int32_t>("Int32", "body", 1, body);
+        if (polar_centre)
+          {
+            std::vector<double> srr(n_cells), stt(n_cells);
+            for (unsigned int c = 0; c < n_cells; ++c)
+              {
+                const unsigned int e = first + c, n = 3 * e;
+                const double       dx =
+                  (model.x[n] + model.x[n + 1] + model.x[n + 2]) / 3. -
+                  (*polar_centre)[0];
+                const double dy =
+                  (model.y[n] + model.y[n + 1] + model.y[n + 2]) / 3. -
+                  (*polar_centre)[1];
+                const auto polar = polar_stress(sxx[c], syy[c], sxy[c], dx, dy);
+                srr[c]           = polar[0];
+                stt[c]           = polar[1];
+              }
+            out.data_array<double>("Float64", "srr", 1, srr);
+            out.data_array<double>("Float64", "stt", 1, stt);
+          }
         if (!model.expansion_factor.empty())
           out.data_array<double>(
             "Float64",

@@ -561,9 +561,10 @@ namespace tmfdem
       "Quasi-static coupling: thermal step control through the fracture "
       "process. Counted per thermal step are the joints that break; where "
       "more broke than this, the next step is shorter by this number over "
-      "theirs, and a step in which more than twice this many broke, or whose "
-      "relaxation reached Mechanical steps per thermal step, is re-run from "
-      "its start with a shorter step, down to Minimum thermal step, where it "
+      "theirs, and a step in which more than twice this many broke, or in "
+      "which damage grew and whose relaxation reached Mechanical steps per "
+      "thermal step, is re-run from its start with a shorter step, down to "
+      "Minimum thermal step, where it "
       "is accepted as unstable crack growth (summary.json "
       "rejected_thermal_steps, unstable_thermal_steps). After a shortened "
       "step the step grows back by at most a factor 2 per step. The onset "
@@ -619,7 +620,7 @@ namespace tmfdem
     thermal_step_growth     = prm.get_double("Thermal step growth factor");
     maximum_thermal_step    = prm.get_double("Maximum thermal step");
     maximum_utilisation_change = prm.get_double("Maximum utilisation change");
-    maximum_failing_joints = prm.get_integer("Maximum broken joints per step");
+    maximum_broken_joints_per_step = prm.get_integer("Maximum broken joints per step");
     minimum_thermal_step   = prm.get_double("Minimum thermal step");
     {
       const std::string name  = prm.get("Contact heat model");
@@ -721,7 +722,8 @@ namespace tmfdem
     for (unsigned int n = 1; n <= max_bodies; ++n)
       {
         DiscreteBody body;
-        body.name = "Discrete bodies/Body " + std::to_string(n);
+        body.name   = "Discrete bodies/Body " + std::to_string(n);
+        body.number = n;
         prm.enter_subsection("Body " + std::to_string(n));
         for (const int id : Utilities::string_to_int(
                Utilities::split_string_list(prm.get("Material ids"), ',')))

@@ -24,6 +24,9 @@ namespace tmfdem
         }
       body_velocity_now.assign(bodies.size(), {{0., 0.}});
       body_reaction.assign(bodies.size(), {{0., 0.}});
+      model.body_number.clear();
+      for (const auto &b : bodies)
+        model.body_number.push_back(b.number);
       std::vector<unsigned char> body_of_material(256, no_body);
       for (unsigned int b = 0; b < bodies.size(); ++b)
         for (const auto id : bodies[b].material_ids)

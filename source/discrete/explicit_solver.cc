@@ -350,16 +350,17 @@ namespace tmfdem
         "viscous_dissipation,external_work,balance_error,broken_joints,"
         "damaged_joints";
       for (unsigned int b = 0; b < drivers.body_motion.size(); ++b)
-        header += ",body" + std::to_string(b + 1) + "_fx,body" +
-                  std::to_string(b + 1) + "_fy";
+        header += ",body" + std::to_string(model.body_number[b]) + "_fx,body" +
+                  std::to_string(model.body_number[b]) + "_fy";
       drivers.condition_reaction.assign(drivers.conditions.size(), {{0., 0.}});
       for (unsigned int k = 0; k < drivers.conditions.size(); ++k)
         header += ",condition" + std::to_string(k + 1) + "_fx,condition" +
                   std::to_string(k + 1) + "_fy";
       history_csv = open_csv(folder + "/history.csv", header);
-      const std::string monitor_header = with_heat ?
-                                           "time,name,x,y,T,ux,uy,sxx,syy,sxy" :
-                                           "time,name,x,y,ux,uy,sxx,syy,sxy";
+      const std::string monitor_header =
+        std::string(with_heat ? "time,name,x,y,T,ux,uy,sxx,syy,sxy" :
+                                "time,name,x,y,ux,uy,sxx,syy,sxy") +
+        (parameters.mechanics.polar_frame ? ",srr,stt" : "");
       if (!probe_samples.empty())
         probes_csv = open_csv(folder + "/probes.csv", monitor_header);
       if (!line_samples.empty())
@@ -407,7 +408,8 @@ namespace tmfdem
       ProgressReporter    progress(parameters.output.progress_interval,
                                 start,
                                 end,
-                                writes_files());
+                                writes_files(),
+                                !quasi_static);
       const unsigned long max_steps =
         parameters.get<DiscreteMechanicsParameters>().max_steps;
       const double advance =
@@ -485,10 +487,16 @@ namespace tmfdem
           if ((step_number & 255) == 0)
             {
               wall_time = progress.elapsed() + resumed_wall_time;
-              progress.update(step_number,
-                              time,
-                              " broken joints " +
-                                std::to_string(n_broken_joints()));
+              progress.update(
+                step_number,
+                time,
+                (quasi_static ?
+                   "  thermal step " + std::to_string(n_thermal_steps) +
+                     " (last relaxed in " +
+                     std::to_string(last_relaxation_steps) +
+                     " steps)  broken joints " :
+                   std::string("  broken joints ")) +
+                  std::to_string(n_broken_joints()));
             }
           after_step(checkpoints);
         }

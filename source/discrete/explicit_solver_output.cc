@@ -13,6 +13,7 @@
 #include <sstream>
 #include <sys/resource.h>
 #include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/polar_stress.h>
 #include <tmfdem/discrete/contact_heat.h>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/explicit_solver.h>
@@ -64,8 +65,9 @@ namespace tmfdem
       on_rank_zero([this]() { write_output_files(); });
     }
 
-    void
-    ExplicitSolver::write_vtu_pieces()
+    std::string
+    ExplicitSolver::solution_vtu(const unsigned int first,
+                                 const unsigned int end) const
     {
       std::vector<double>                                              T;
       std::vector<std::pair<std::string, const std::vector<double> *>> fields;
@@ -74,13 +76,24 @@ namespace tmfdem
           T.assign(heat->temperature().begin(), heat->temperature().end());
           fields.emplace_back("T", &T);
         }
+      const std::array<double, 2> centre = {
+        {parameters.mechanics.polar_centre[0],
+         parameters.mechanics.polar_centre[1]}};
+      return discrete_solution_vtu(model,
+                                   parameters.output.binary_vtu,
+                                   fields,
+                                   first,
+                                   end,
+                                   parameters.mechanics.polar_frame ? &centre :
+                                                                      nullptr);
+    }
+
+    void
+    ExplicitSolver::write_vtu_pieces()
+    {
       // this rank's triangles (their nodes) and joints
       const std::string solution =
-        discrete_solution_vtu(model,
-                              parameters.output.binary_vtu,
-                              fields,
-                              partition.begin(),
-                              partition.end());
+        solution_vtu(partition.begin(), partition.end());
       const std::string cracks = crack_vtu(model,
                                            parameters.output.binary_vtu,
                                            partition.first_joint(),
@@ -124,20 +137,7 @@ namespace tmfdem
     {
       if (parameters.output.write_vtu && !partition.distributed())
         {
-          if (with_heat)
-            {
-              std::vector<double> T(heat->temperature().begin(),
-                                    heat->temperature().end());
-              solution_series->write(
-                time,
-                discrete_solution_vtu(model,
-                                      parameters.output.binary_vtu,
-                                      {{"T", &T}}));
-            }
-          else
-            solution_series->write(
-              time,
-              discrete_solution_vtu(model, parameters.output.binary_vtu));
+          solution_series->write(time, solution_vtu());
           crack_series->write(time,
                               crack_vtu(model, parameters.output.binary_vtu));
         }
@@ -259,7 +259,19 @@ namespace tmfdem
               }
             const Stress2 stress = recovered.value(s.element, s.lambda);
             out << ux << ',' << uy << ',' << stress.xx << ',' << stress.yy
-                << ',' << stress.xy << '\n';
+                << ',' << stress.xy;
+            if (parameters.mechanics.polar_frame)
+              {
+                // about the centre, towards the point where it is now
+                const auto polar = polar_stress(
+                  stress.xx,
+                  stress.yy,
+                  stress.xy,
+                  s.x + ux - parameters.mechanics.polar_centre[0],
+                  s.y + uy - parameters.mechanics.polar_centre[1]);
+                out << ',' << polar[0] << ',' << polar[1];
+              }
+            out << '\n';
           }
         return out.str();
       };

@@ -100,6 +100,19 @@ namespace tmfdem
       // writes it (every rank can resume from it, on any number of ranks)
       synchronise();
       contact.synchronise_pairs(partition);
+      // the work counters of all ranks (summary.json's vectorised shares
+      // continue from them after --resume)
+      for (double *counter : {&element_steps_done,
+                              &vectorised_element_steps,
+                              &joint_steps_done,
+                              &vectorised_joint_steps})
+        {
+          const double sum = Utilities::MPI::sum(*counter, communicator);
+          if (partition.rank() == 0)
+            *counter = sum;
+          else
+            *counter = 0.;
+        }
       on_rank_zero([this]() { write_checkpoint_file(); });
     }
 
@@ -124,6 +137,10 @@ namespace tmfdem
       out.put<std::uint64_t>(probes_csv ? probes_csv->size() : 0);
       out.put<std::uint64_t>(lines_csv ? lines_csv->size() : 0);
       out.put(wall_time);
+      out.put(element_steps_done);
+      out.put(vectorised_element_steps);
+      out.put(joint_steps_done);
+      out.put(vectorised_joint_steps);
       const std::size_t bytes = write_checkpoint(parameters, step_number, out);
       const double      seconds_taken =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
@@ -148,7 +165,7 @@ namespace tmfdem
       out.put<std::uint64_t>(relaxations_at_cap);
       out.put(joint_utilisation);
       out.put(joint_utilisation_rate);
-      out.put(failure_rate);
+      out.put(break_rate);
       out.put(last_thermal_step);
       out.put<std::uint64_t>(rejected_thermal_steps);
       out.put<std::uint64_t>(unstable_thermal_steps);
@@ -202,7 +219,7 @@ namespace tmfdem
       relaxations_at_cap = count;
       in.get(joint_utilisation);
       in.get(joint_utilisation_rate);
-      in.get(failure_rate);
+      in.get(break_rate);
       in.get(last_thermal_step);
       in.get(count);
       rejected_thermal_steps = count;
@@ -316,6 +333,16 @@ namespace tmfdem
         in.get(b);
       in.get(resumed_wall_time);
       wall_time = resumed_wall_time;
+      // the work counters of every rank summed, continued on rank 0
+      for (double *counter : {&element_steps_done,
+                              &vectorised_element_steps,
+                              &joint_steps_done,
+                              &vectorised_joint_steps})
+        {
+          in.get(*counter);
+          if (partition.rank() != 0)
+            *counter = 0.;
+        }
       in.finish();
 
       // every rank has the whole state; the ghost plan of its pairs
@@ -575,16 +602,6 @@ namespace tmfdem
       if (writes_files())
         try
           {
-            const auto solution_vtu = [&]() {
-              if (!with_heat)
-                return discrete_solution_vtu(model,
-                                             parameters.output.binary_vtu);
-              std::vector<double> T(heat->temperature().begin(),
-                                    heat->temperature().end());
-              return discrete_solution_vtu(model,
-                                           parameters.output.binary_vtu,
-                                           {{"T", &T}});
-            };
             write_file_atomically(folder + "/failure_state.vtu",
                                   solution_vtu());
             written = " Wrote " + folder +

@@ -357,11 +357,13 @@ namespace tmfdem
   ProgressReporter::ProgressReporter(const double interval,
                                      const double start_time,
                                      const double end_time,
-                                     const bool   active)
+                                     const bool   active,
+                                     const bool   eta_from_time)
     : interval(interval)
     , start_time(start_time)
     , end_time(end_time)
     , active(active && interval > 0)
+    , eta_from_time(eta_from_time)
     , start(Clock::now())
     , last(start)
   {}
@@ -390,7 +392,10 @@ namespace tmfdem
     line << std::setprecision(4) << "[tmfdem] step " << step << "  t = " << time
          << " s (" << std::fixed << std::setprecision(1) << 100. * done
          << " %)  " << std::setprecision(1) << step / std::max(wall, 1e-9)
-         << " steps/s  ETA " << eta << " s" << extra << "\n";
+         << " steps/s";
+    if (eta_from_time)
+      line << "  ETA " << eta << " s";
+    line << extra << "\n";
     std::cerr << line.str() << std::flush;
   }
 } // namespace tmfdem

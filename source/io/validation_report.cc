@@ -110,6 +110,84 @@ namespace tmfdem
             << " steps to End time = " << parameters.time.end_time << " s";
       out << "\n";
     }
+    /** Quasi-static coupling: thermal steps and the relaxations' cap
+     *  (the number of mechanical steps depends on how fast each
+     *  relaxation settles: only its bounds are known beforehand). */
+    void
+    describe_quasi_static_steps(std::ostream                 &out,
+                                const discrete::DiscreteModel &model,
+                                const double                  stable,
+                                const double                  used,
+                                const unsigned int            cap,
+                                const Parameters             &parameters)
+    {
+      // a relaxation settles in a few transits of the slowest-decaying
+      // mode across the body: the P wave over the body's largest extent
+      double x_min = std::numeric_limits<double>::max(), x_max = -x_min,
+             y_min = x_min, y_max = -x_min, wave_speed = 0.;
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        {
+          x_min = std::min(x_min, model.x_ref[n]);
+          x_max = std::max(x_max, model.x_ref[n]);
+          y_min = std::min(y_min, model.y_ref[n]);
+          y_max = std::max(y_max, model.y_ref[n]);
+        }
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          const MaterialProperties &m = parameters.materials[model.material[e]];
+          const double nu = m.poisson_ratio, E = m.youngs_modulus;
+          // the plane-strain P-wave modulus (the larger one)
+          wave_speed = std::max(
+            wave_speed,
+            std::sqrt(E * (1. - nu) / ((1. + nu) * (1. - 2. * nu)) / m.density));
+        }
+      const double extent = std::max(x_max - x_min, y_max - y_min);
+      const double transit_steps =
+        wave_speed > 0. && used > 0. ? extent / wave_speed / used : 0.;
+      const auto  &dh    = parameters.get<DiscreteHeatParameters>();
+      const double start = parameters.time.start_time,
+                   end   = parameters.time.end_time;
+      // the thermal steps of the schedule alone (Time step x growth^n up
+      // to Maximum thermal step); the step control adds shorter ones near
+      // failure
+      unsigned long long thermal_steps = 0;
+      double             t = start, dt = parameters.time.time_step;
+      while (t < end - 1e-9 * std::max(1., std::abs(end)) &&
+             thermal_steps < 100000000ULL)
+        {
+          t += dt;
+          ++thermal_steps;
+          dt *= dh.thermal_step_growth;
+          if (dh.maximum_thermal_step > 0.)
+            dt = std::min(dt, dh.maximum_thermal_step);
+        }
+      out << "  mechanical time step: stable " << stable << " s, used " << used
+          << " s (relaxation steps)\n"
+          << "  quasi-static coupling: " << thermal_steps
+          << " thermal steps to End time = " << end
+          << " s by the schedule (Time step " << parameters.time.time_step
+          << " s";
+      if (dh.thermal_step_growth != 1.)
+        out << " x " << dh.thermal_step_growth << "^n";
+      if (dh.maximum_thermal_step > 0.)
+        out << ", at most " << dh.maximum_thermal_step << " s";
+      out << "; the step control adds shorter ones where joints approach "
+             "their strength or break), each relaxed in at most "
+          << cap << " mechanical steps: at most "
+          << static_cast<double>(thermal_steps) * cap
+          << " mechanical steps on the schedule";
+      if (transit_steps > 0.)
+        out << "; a P wave crosses the body (" << extent << " m at "
+            << wave_speed << " m/s) in " << std::ceil(transit_steps)
+            << " mechanical steps, the cap is " << cap / transit_steps
+            << " transits (kinetic damping settles in about 5 to 10)";
+      if (dh.fracture_event_duration > 0.)
+        out << "; a fracture event runs "
+            << static_cast<long long>(
+                 std::ceil(dh.fracture_event_duration / used - 1e-9))
+            << " mechanical steps";
+      out << "\n";
+    }
   } // namespace
 
   std::string
@@ -123,11 +201,20 @@ namespace tmfdem
       {
         const auto &model = solver->get_model();
         describe_model(out, model);
-        describe_steps(out,
-                       "mechanical time step",
-                       solver->get_stable_time_step(),
-                       solver->get_time_step(),
-                       parameters);
+        const unsigned int cap = solver->get_relaxation_cap();
+        if (cap == 0)
+          describe_steps(out,
+                         "mechanical time step",
+                         solver->get_stable_time_step(),
+                         solver->get_time_step(),
+                         parameters);
+        else
+          describe_quasi_static_steps(out,
+                                      model,
+                                      solver->get_stable_time_step(),
+                                      solver->get_time_step(),
+                                      cap,
+                                      parameters);
         if (const auto *source = solver->get_temperature_source())
           out << "  temperature source: " << source->describe() << "\n";
         out << "  model state: " << model_bytes(model) / mebibyte

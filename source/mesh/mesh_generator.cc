@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <sys/wait.h>
 #include <tmfdem/base/exceptions.h>
@@ -364,6 +365,53 @@ namespace tmfdem
       triangulation.set_manifold(circle_manifold_id,
                                  SphericalManifold<2>(center));
     }
+
+    /** Mesh/Circular boundaries: the edges of each named boundary id follow
+     *  a circle about its centre on refinement (a manifold id of its own
+     *  per entry, from 10 on; 1 is the generated meshes' circle). */
+    void
+    attach_circular_boundaries(const MeshParameters &parameters,
+                               Triangulation<2>     &triangulation)
+    {
+      types::manifold_id manifold = 10;
+      for (const auto &[id, centre] : parameters.circular_boundaries)
+        {
+          double       smallest = std::numeric_limits<double>::max(),
+                 largest  = 0.;
+          unsigned int edges  = 0;
+          for (const auto &cell : triangulation.active_cell_iterators())
+            for (const auto face : cell->face_iterators())
+              if (face->at_boundary() && face->boundary_id() == id)
+                {
+                  face->set_manifold_id(manifold);
+                  ++edges;
+                  for (unsigned int v = 0; v < 2; ++v)
+                    {
+                      const double r = face->vertex(v).distance(centre);
+                      smallest       = std::min(smallest, r);
+                      largest        = std::max(largest, r);
+                    }
+                }
+          const std::string entry = "Mesh/Circular boundaries: boundary id " +
+                                    std::to_string(id) + " about (" +
+                                    Utilities::to_string(centre[0]) + ", " +
+                                    Utilities::to_string(centre[1]) + ")";
+          if (edges == 0)
+            throw InputError(entry + ": no boundary edge of the mesh file '" +
+                             parameters.file_name +
+                             "' has this id; allowed are the ids of its "
+                             "boundary edges (gmsh Physical Curve tags).");
+          if (!(smallest > 0.) || largest > 1.01 * smallest)
+            throw InputError(
+              entry + ": the " + std::to_string(edges) +
+              " edges' ends lie " + Utilities::to_string(smallest) + " to " +
+              Utilities::to_string(largest) +
+              " m from the centre; allowed are edges on one circle (radii "
+              "within 1 %): is the centre right?");
+          triangulation.set_manifold(manifold, SphericalManifold<2>(centre));
+          ++manifold;
+        }
+    }
   } // namespace
 
   void
@@ -492,6 +540,7 @@ namespace tmfdem
           }
         else
           read_gmsh_file(name, triangulation);
+        attach_circular_boundaries(parameters, triangulation);
         return;
       }
 

@@ -27,7 +27,8 @@ settings = ["Mesh/Global refinements=1", "Output/Progress interval=0",
 rn.VOLATILE.update({"threads", "threads_requested", "mpi_processes", "ghost_elements",
                     "ghost_exchange_bytes", "synchronisations", "synchronisation_bytes",
                     "communication_time_s",
-                    # counted over this run (from the resume on), per rank
+                    # the vector batches depend on each rank's share of
+                    # the triangles and joints
                     "vectorised_joint_share", "vectorised_element_share"})
 env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 

@@ -84,9 +84,7 @@ VOLATILE = {"wall_time", "element_steps_per_second",
             "cpu_time_other_threads_s",
             # traffic of a run that was cut off and resumed differs
             "ghost_exchange_bytes", "synchronisations", "synchronisation_bytes",
-            "communication_time_s",
-            # shares of the loop done in vector batches, over this run
-            "vectorised_joint_share", "vectorised_element_share"}
+            "communication_time_s"}
 
 
 def command(folder, *settings, resume=False):

@@ -11,7 +11,11 @@ h = 4 mm), the same at h = 8 mm (a / h = 3.75: the first ring of
 triangles spans the steepest part of sigma_theta, where the recovery's
 quadratic patch polynomials matter) and one with other radii, wall
 temperatures and element size (a = 0.05 m, b = 0.12 m, 200 C / 50 C,
-h = 6 mm)."""
+h = 6 mm). The third one reads the stresses in the polar frame
+(Mechanics/Polar frame, centre 0, 0) along a line at 35 degrees: srr and
+stt of lines.csv against Eq. 49 with the same bound, and srr, stt of the
+solution vtu's cells against the rotation of their sxx, syy, sxy about the
+centre to the deformed centroid (1e-9 of max |sigma_theta|)."""
 import os
 import sys
 
@@ -20,13 +24,34 @@ import numpy as np
 from analytic import read_csv, cylinder_stress, cylinder_temperature
 from common import run, summary, check
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                "scripts"))
+from plot_discrete_case import read_vtu  # noqa: E402
+
 binary, out = sys.argv[1], sys.argv[2]
 prm = os.path.join(os.path.dirname(__file__), "..", "..", "prm", "thick_cylinder.prm")
 
 
-def case(name, a, b, t_a, t_b, h, settings):
+def polar_cells(folder, scale):
+    """srr, stt of the last solution vtu against the rotation of the cells'
+    own sxx, syy, sxy about (0, 0) to their deformed centroids."""
+    vtus = sorted(f for f in os.listdir(folder) if f.startswith("solution_") and
+                  f.endswith(".vtu"))
+    points, cells, arrays = read_vtu(os.path.join(folder, vtus[-1]))
+    centroid = np.array([points[c, :2].mean(axis=0) for c in cells])
+    angle = np.arctan2(centroid[:, 1], centroid[:, 0])
+    c, s = np.cos(angle), np.sin(angle)
+    sxx, syy, sxy = arrays["sxx"], arrays["syy"], arrays["sxy"]
+    srr = sxx * c * c + syy * s * s + 2 * sxy * c * s
+    stt = sxx * s * s + syy * c * c - 2 * sxy * c * s
+    error = max(np.abs(arrays["srr"] - srr).max(), np.abs(arrays["stt"] - stt).max()) / scale
+    return check(error < 1e-9, f"vtu cells' srr, stt against the rotated sxx, syy, sxy "
+                               f"({len(cells)} cells): {error:.1e} of max |sigma_theta| (< 1e-9)")
+
+
+def case(name, a, b, t_a, t_b, h, settings, polar=False):
     folder = os.path.join(out, name)
-    run(binary, prm, folder, "Output/Write vtu=false", *settings)
+    run(binary, prm, folder, *([] if polar else ["Output/Write vtu=false"]), *settings)
     lines = read_csv(os.path.join(folder, "lines.csv"))["radial"]
     t = max(lines)
     x, y, f = lines[t]
@@ -36,8 +61,13 @@ def case(name, a, b, t_a, t_b, h, settings):
     ok &= check(T_error <= 0.5, f"{name}: T along radial: max error {T_error:.4f} C (<= 0.5 C)")
     sr, st = cylinder_stress(r, a=a, b=b, t_a=t_a, t_b=t_b)
     scale = np.abs(st).max()
-    er = np.abs(np.array(f["sxx"]) - sr) / scale   # on y = 0: sxx = sigma_r
-    et = np.abs(np.array(f["syy"]) - st) / scale   # syy = sigma_theta
+    if polar:
+        er = np.abs(np.array(f["srr"]) - sr) / scale
+        et = np.abs(np.array(f["stt"]) - st) / scale
+        ok &= polar_cells(folder, scale)
+    else:
+        er = np.abs(np.array(f["sxx"]) - sr) / scale   # on y = 0: sxx = sigma_r
+        et = np.abs(np.array(f["syy"]) - st) / scale   # syy = sigma_theta
     interior = (r >= a + 2 * h) & (r <= b - 2 * h)
     print(f"{name}: a + 2h <= r <= b - 2h: sigma_r error {100 * er[interior].max():.2f} %, "
           f"sigma_theta {100 * et[interior].max():.2f} %; inner wall point: "
@@ -58,10 +88,13 @@ def case(name, a, b, t_a, t_b, h, settings):
 ok = case("shipped", 0.03, 0.15, 100.0, 0.0, 0.004, [])
 ok &= case("coarse", 0.03, 0.15, 100.0, 0.0, 0.008, ["Mesh/Element size=0.008"])
 a, b, h = 0.05, 0.12, 0.006
+c, s = np.cos(np.radians(35)), np.sin(np.radians(35))
+r0, r1 = a + 1e-4, b - 1e-4
 ok &= case("other", a, b, 200.0, 50.0, h, [
     f"Mesh/Inner radius={a}", f"Mesh/Outer radius={b}", f"Mesh/Element size={h}",
     "Thermal boundary conditions/Condition 1/Temperature=200",
     "Thermal boundary conditions/Condition 2/Temperature=50",
-    f"Monitors/Probes=inner: {a + 1e-4}, 0; outer: {b - 1e-4}, 0",
-    f"Monitors/Lines=radial: {a + 1e-4}, 0.0001, {b - 1e-4}, 0.0001, 121"])
+    "Mechanics/Polar frame=true", "Mechanics/Polar centre=0, 0",
+    f"Monitors/Probes=inner: {r0 * c}, {r0 * s}; outer: {r1 * c}, {r1 * s}",
+    f"Monitors/Lines=radial: {r0 * c}, {r0 * s}, {r1 * c}, {r1 * s}, 121"], polar=True)
 sys.exit(0 if ok else 1)

@@ -82,6 +82,10 @@ namespace tmfdem
     double expected_area = 0.;
     /** Uniform refinements applied after generation or import. */
     unsigned int global_refinements = 0;
+    /** Source = file: boundary ids whose edges lie on circles, with the
+     *  circle's centre [m] (Circular boundaries): refinement puts new
+     *  vertices of those edges on the circle. */
+    std::vector<std::pair<types::boundary_id, Point<2>>> circular_boundaries;
     /** Material id of generated meshes. */
     types::material_id material_id = 0;
 

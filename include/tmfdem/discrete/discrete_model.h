@@ -68,6 +68,9 @@ namespace tmfdem
       std::vector<types::material_id> material;
       /** Body index per element (see DiscreteBodyParameters), or no_body. */
       std::vector<unsigned char> body;
+      /** N of the `Discrete bodies/Body N` subsection of each body index
+       *  (outputs name the bodies by it). */
+      std::vector<unsigned int> body_number;
       /** In-plane thermal stretch s of F_T = s I per element [-]; 1 here,
        *  set by the thermal coupling. */
       std::vector<double> thermal_stretch;

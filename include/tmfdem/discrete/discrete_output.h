@@ -9,6 +9,7 @@
 #ifndef tmfdem_discrete_discrete_output_h
 #define tmfdem_discrete_discrete_output_h
 
+#include <array>
 #include <string>
 #include <tmfdem/discrete/discrete_model.h>
 #include <utility>
@@ -80,7 +81,9 @@ namespace tmfdem
      *  digits, so both hold the same values). Extra nodal scalar fields
      *  (name, values per node) are added as point data. Only the triangles
      *  [@p first_element, @p end_element) and their nodes (one rank's
-     *  piece); end_element = -1: to the last. */
+     *  piece); end_element = -1: to the last. With a @p polar_centre
+     *  (x, y) [m] the cells also hold srr and stt, the stress in the polar
+     *  frame about it (directions to the deformed cell's centroid). */
     std::string
     discrete_solution_vtu(
       const DiscreteModel &model,
@@ -88,7 +91,8 @@ namespace tmfdem
       const std::vector<std::pair<std::string, const std::vector<double> *>>
                         &extra_point_fields = {},
       const unsigned int first_element      = 0,
-      const unsigned int end_element        = static_cast<unsigned int>(-1));
+      const unsigned int end_element        = static_cast<unsigned int>(-1),
+      const std::array<double, 2> *polar_centre = nullptr);
 
     /** Broken joints as line cells (one per joint, between the midpoints
      *  of its two faces' end nodes), of the joints [@p first_joint,

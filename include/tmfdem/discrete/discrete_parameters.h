@@ -171,7 +171,7 @@ namespace tmfdem
     /** Quasi-static: most joints that may break in one thermal step (the
      *  next step shrinks where more did; a step with more than twice this
      *  many is re-run shorter) [-]; 0: off. */
-    unsigned int maximum_failing_joints = 2;
+    unsigned int maximum_broken_joints_per_step = 2;
     /** Quasi-static: shortest thermal step of the step control; 0: 1e-3
      *  Time step [s]. */
     double minimum_thermal_step = 0.;
@@ -200,7 +200,8 @@ namespace tmfdem
       fixed,
       velocity
     };
-    std::string                     name; ///< for messages
+    std::string                     name;   ///< for messages
+    unsigned int                    number = 0; ///< N of Body N
     std::vector<types::material_id> material_ids;
     Motion                          motion     = Motion::free;
     std::string                     velocity_x = "0"; ///< v_x(t) [m/s]

@@ -87,6 +87,13 @@ namespace tmfdem
       {
         return stable_time_step;
       }
+      /** Quasi-static coupling: the cap of each relaxation (mechanical
+       *  steps per thermal step, after check_input); 0 otherwise. */
+      unsigned int
+      get_relaxation_cap() const
+      {
+        return quasi_static ? steps_per_thermal_step : 0;
+      }
       /** The temperature source (thermo-mechanics, after check_input);
        *  nullptr without heat. */
       const TemperatureSource *
@@ -163,6 +170,12 @@ namespace tmfdem
        *  on any rank stops every rank with its message). */
       void
       write_vtu_pieces();
+      /** The solution vtu of the triangles [@p first, @p end) (one rank's
+       *  piece; end = -1: to the last) with the temperature where heat
+       *  runs and sigma_rr, sigma_tt where Mechanics/Polar frame asks. */
+      std::string
+      solution_vtu(const unsigned int first = 0,
+                   const unsigned int end   = static_cast<unsigned int>(-1)) const;
       void
       write_output_files();
       void
@@ -272,7 +285,7 @@ namespace tmfdem
        * more broke than allowed and the step was resolved (not an unstable
        * event); 0 otherwise [1/s].
        */
-      double failure_rate = 0.;
+      double break_rate = 0.;
       /** The last accepted thermal step [s]; 0 before the first. */
       double last_thermal_step = 0.;
       /** Thermal steps re-run shorter: more than twice Maximum broken

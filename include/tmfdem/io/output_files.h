@@ -143,10 +143,15 @@ namespace tmfdem
   class ProgressReporter
   {
   public:
+    /** Lines every @p interval seconds of wall time, with an estimate of
+     *  the time left where the work is proportional to the simulated time
+     *  (@p eta_from_time; not so for quasi-static coupling, whose thermal
+     *  steps shorten near failure). */
     ProgressReporter(const double interval,
                      const double start_time,
                      const double end_time,
-                     const bool   active);
+                     const bool   active,
+                     const bool   eta_from_time = true);
     /** Reports if the interval has passed since the last line. */
     void
     update(const unsigned long step,
@@ -159,7 +164,7 @@ namespace tmfdem
   private:
     using Clock = std::chrono::steady_clock;
     double            interval, start_time, end_time;
-    bool              active;
+    bool              active, eta_from_time;
     Clock::time_point start, last;
   };
 } // namespace tmfdem
