@@ -4,7 +4,7 @@
 # missing.
 set -euo pipefail
 packages=(build-essential cmake libdeal.ii-dev libeigen3-dev gmsh openmpi-bin libgtest-dev
-          python3 python3-numpy python3-matplotlib python3-scipy python3-vtk9 python3-meshio
+          python3 python3-numpy python3-matplotlib python3-scipy python3-meshio
           paraview python3-paraview xvfb xauth)
 missing=()
 for p in "${packages[@]}"; do

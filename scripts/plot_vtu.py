@@ -6,7 +6,7 @@
 
 A .pvd is resolved to its last DataSet (relative to the .pvd's folder); a
 .pvtu is resolved to all its Piece sources. Files are read by VTK's own XML
-reader (python3-vtk9), so every encoding VTK writes or reads works: ascii,
+reader (`vtkmodules`: Debian python3-paraview or python3-vtk9), so every encoding VTK writes or reads works: ascii,
 binary (zlib-compressed or not), appended. Cells must be triangles (VTK
 type 5) or quads (type 9; deal.II writes higher-order patches as subdivided
 quads); Lagrange cells (types 69, 70) are drawn through their corner
@@ -37,13 +37,14 @@ PLACEHOLDER = 2
 
 def read_grid(path):
     """The vtkUnstructuredGrid of a .vtu file, or of all pieces of a .pvtu,
-    read by VTK's XML readers (python3-vtk9)."""
+    read by VTK's XML readers (vtkmodules)."""
     try:
         from vtkmodules.vtkIOXML import (vtkXMLPUnstructuredGridReader,
                                          vtkXMLUnstructuredGridReader)
     except ImportError:
-        sys.exit("reading vtu files needs VTK's Python module: apt-get install python3-vtk9 "
-                 "(scripts/install-dependencies.sh)")
+        sys.exit("reading vtu files needs VTK's Python module (vtkmodules): apt-get install "
+                 "python3-paraview, or python3-vtk9 (the two conflict; "
+                 "scripts/install-dependencies.sh installs the first)")
     if not os.path.isfile(path):
         sys.exit(f"{path}: no such file")
     reader = (vtkXMLPUnstructuredGridReader() if path.endswith(".pvtu")

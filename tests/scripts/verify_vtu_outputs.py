@@ -9,7 +9,7 @@ Weibull joint strengths: joints break by 6 ms) run with Output/Vtu format = asci
 on two: the same files; every vtu (pieces included) holds the same
 DataArrays, in the same order, with the same attributes and bitwise the
 same values (decoded by scripts/vtu_pieces.py and by VTK,
-python3-vtk9); pvd and pvtu records identical; the binary files hold only
+vtkmodules); pvd and pvtu records identical; the binary files hold only
 binary arrays and are at least 2x smaller than the (lossless) ascii; the two-rank pieces merge into
 the one-rank files byte for byte; meshio reads every vtu, also the crack
 file written before any joint breaks.
