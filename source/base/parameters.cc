@@ -248,7 +248,7 @@ namespace tmfdem
       throw InputError("Mesh/Circular boundaries: only for Source = file "
                        "(the generated annulus and disc follow their circles "
                        "already).");
-    gmsh_time_limit    = prm.get_double("Gmsh time limit");
+    gmsh_time_limit = prm.get_double("Gmsh time limit");
     if (!(gmsh_time_limit > 0.) || !std::isfinite(gmsh_time_limit))
       throw InputError(
         "Mesh/Gmsh time limit = " + Utilities::to_string(gmsh_time_limit) +

@@ -158,8 +158,11 @@ namespace tmfdem
     if (parameters.mechanics.polar_frame)
       {
         const Tensor<1, 2> radial = p - parameters.mechanics.polar_centre;
-        const auto         polar =
-          polar_stress(sigma[0][0], sigma[1][1], sigma[0][1], radial[0], radial[1]);
+        const auto         polar  = polar_stress(sigma[0][0],
+                                        sigma[1][1],
+                                        sigma[0][1],
+                                        radial[0],
+                                        radial[1]);
         values.push_back(polar[0]);
         values.push_back(polar[1]);
       }

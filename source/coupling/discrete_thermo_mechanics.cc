@@ -78,7 +78,7 @@ namespace tmfdem
       // too many break at once, or whose relaxation does not
       // converge, is re-run shorter from here (theory manual 8, "Thermal
       // steps through the fracture process")
-      const bool          control_breaks = dh.maximum_broken_joints_per_step > 0;
+      const bool control_breaks = dh.maximum_broken_joints_per_step > 0;
       std::vector<double> utilisation_start, damage_start;
       if (dh.maximum_utilisation_change > 0.)
         joint_utilisations(model, utilisation_start);
@@ -100,7 +100,7 @@ namespace tmfdem
           // joints that broke in this step (their onset of damage is
           // resolved by the utilisation control above)
           joint_damages(model, damage_end);
-          broke_in_step = 0;
+          broke_in_step    = 0;
           bool damage_grew = false;
           for (unsigned int j = 0; j < model.n_joints; ++j)
             {
@@ -111,9 +111,8 @@ namespace tmfdem
           // the step (a crack that runs): without fracture, a shorter step
           // does not help a cap that is too low for the load, which the
           // count of relaxations at the cap reports
-          const bool resolved =
-            broke_in_step <= 2. * allowed &&
-            (last_relaxation_converged || !damage_grew);
+          const bool resolved = broke_in_step <= 2. * allowed &&
+                                (last_relaxation_converged || !damage_grew);
           if (resolved)
             break;
           if (dt <= minimum_step * (1. + 1e-12))
@@ -147,7 +146,8 @@ namespace tmfdem
       // the next step shrinks by allowed / broke_in_step where more broke than
       // allowed (a single break in a short step says nothing of a rate)
       if (control_breaks)
-        break_rate = unstable || broke_in_step <= allowed ? 0. : broke_in_step / dt;
+        break_rate =
+          unstable || broke_in_step <= allowed ? 0. : broke_in_step / dt;
       if (dh.maximum_utilisation_change > 0.)
         {
           // the fastest rise of one joint's utilisation, over the joints

@@ -340,7 +340,7 @@ namespace tmfdem
       const DiscreteModel &model,
       const bool           binary,
       const std::vector<std::pair<std::string, const std::vector<double> *>>
-                        &extra_point_fields,
+                                  &extra_point_fields,
       const unsigned int           first_element,
       const unsigned int           end_element,
       const std::array<double, 2> *polar_centre)
@@ -389,9 +389,8 @@ namespace tmfdem
           sxy[c]               = model.stress[3 * e + 2];
           material[c]          = model.material[e];
           body[c]              = model.body[e] == no_body ?
-                                     -1 :
-                                     static_cast<int>(
-                                       model.body_number[model.body[e]]);
+                                   -1 :
+                                   static_cast<int>(model.body_number[model.body[e]]);
           for (unsigned int k = 0; k < 3; ++k)
             {
               const int code = model.edge_joint[3 * e + k];

@@ -620,8 +620,9 @@ namespace tmfdem
     thermal_step_growth     = prm.get_double("Thermal step growth factor");
     maximum_thermal_step    = prm.get_double("Maximum thermal step");
     maximum_utilisation_change = prm.get_double("Maximum utilisation change");
-    maximum_broken_joints_per_step = prm.get_integer("Maximum broken joints per step");
-    minimum_thermal_step   = prm.get_double("Minimum thermal step");
+    maximum_broken_joints_per_step =
+      prm.get_integer("Maximum broken joints per step");
+    minimum_thermal_step = prm.get_double("Minimum thermal step");
     {
       const std::string name  = prm.get("Contact heat model");
       bool              found = false;

@@ -487,16 +487,16 @@ namespace tmfdem
           if ((step_number & 255) == 0)
             {
               wall_time = progress.elapsed() + resumed_wall_time;
-              progress.update(
-                step_number,
-                time,
-                (quasi_static ?
-                   "  thermal step " + std::to_string(n_thermal_steps) +
-                     " (last relaxed in " +
-                     std::to_string(last_relaxation_steps) +
-                     " steps)  broken joints " :
-                   std::string("  broken joints ")) +
-                  std::to_string(n_broken_joints()));
+              progress.update(step_number,
+                              time,
+                              (quasi_static ?
+                                 "  thermal step " +
+                                   std::to_string(n_thermal_steps) +
+                                   " (last relaxed in " +
+                                   std::to_string(last_relaxation_steps) +
+                                   " steps)  broken joints " :
+                                 std::string("  broken joints ")) +
+                                std::to_string(n_broken_joints()));
             }
           after_step(checkpoints);
         }

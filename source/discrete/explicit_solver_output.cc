@@ -263,12 +263,12 @@ namespace tmfdem
             if (parameters.mechanics.polar_frame)
               {
                 // about the centre, towards the point where it is now
-                const auto polar = polar_stress(
-                  stress.xx,
-                  stress.yy,
-                  stress.xy,
-                  s.x + ux - parameters.mechanics.polar_centre[0],
-                  s.y + uy - parameters.mechanics.polar_centre[1]);
+                const auto polar =
+                  polar_stress(stress.xx,
+                               stress.yy,
+                               stress.xy,
+                               s.x + ux - parameters.mechanics.polar_centre[0],
+                               s.y + uy - parameters.mechanics.polar_centre[1]);
                 out << ',' << polar[0] << ',' << polar[1];
               }
             out << '\n';

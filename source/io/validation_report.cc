@@ -114,12 +114,12 @@ namespace tmfdem
      *  (the number of mechanical steps depends on how fast each
      *  relaxation settles: only its bounds are known beforehand). */
     void
-    describe_quasi_static_steps(std::ostream                 &out,
+    describe_quasi_static_steps(std::ostream                  &out,
                                 const discrete::DiscreteModel &model,
-                                const double                  stable,
-                                const double                  used,
-                                const unsigned int            cap,
-                                const Parameters             &parameters)
+                                const double                   stable,
+                                const double                   used,
+                                const unsigned int             cap,
+                                const Parameters              &parameters)
     {
       // a relaxation settles in a few transits of the slowest-decaying
       // mode across the body: the P wave over the body's largest extent
@@ -135,11 +135,12 @@ namespace tmfdem
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
           const MaterialProperties &m = parameters.materials[model.material[e]];
-          const double nu = m.poisson_ratio, E = m.youngs_modulus;
+          const double              nu = m.poisson_ratio, E = m.youngs_modulus;
           // the plane-strain P-wave modulus (the larger one)
-          wave_speed = std::max(
-            wave_speed,
-            std::sqrt(E * (1. - nu) / ((1. + nu) * (1. - 2. * nu)) / m.density));
+          wave_speed =
+            std::max(wave_speed,
+                     std::sqrt(E * (1. - nu) / ((1. + nu) * (1. - 2. * nu)) /
+                               m.density));
         }
       const double extent = std::max(x_max - x_min, y_max - y_min);
       const double transit_steps =

@@ -376,9 +376,8 @@ namespace tmfdem
       types::manifold_id manifold = 10;
       for (const auto &[id, centre] : parameters.circular_boundaries)
         {
-          double       smallest = std::numeric_limits<double>::max(),
-                 largest  = 0.;
-          unsigned int edges  = 0;
+          double smallest = std::numeric_limits<double>::max(), largest = 0.;
+          unsigned int edges = 0;
           for (const auto &cell : triangulation.active_cell_iterators())
             for (const auto face : cell->face_iterators())
               if (face->at_boundary() && face->boundary_id() == id)
@@ -403,8 +402,8 @@ namespace tmfdem
                              "boundary edges (gmsh Physical Curve tags).");
           if (!(smallest > 0.) || largest > 1.01 * smallest)
             throw InputError(
-              entry + ": the " + std::to_string(edges) +
-              " edges' ends lie " + Utilities::to_string(smallest) + " to " +
+              entry + ": the " + std::to_string(edges) + " edges' ends lie " +
+              Utilities::to_string(smallest) + " to " +
               Utilities::to_string(largest) +
               " m from the centre; allowed are edges on one circle (radii "
               "within 1 %): is the centre right?");

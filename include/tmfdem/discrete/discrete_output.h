@@ -89,9 +89,9 @@ namespace tmfdem
       const DiscreteModel &model,
       const bool           binary,
       const std::vector<std::pair<std::string, const std::vector<double> *>>
-                        &extra_point_fields = {},
-      const unsigned int first_element      = 0,
-      const unsigned int end_element        = static_cast<unsigned int>(-1),
+                                  &extra_point_fields = {},
+      const unsigned int           first_element      = 0,
+      const unsigned int           end_element  = static_cast<unsigned int>(-1),
       const std::array<double, 2> *polar_centre = nullptr);
 
     /** Broken joints as line cells (one per joint, between the midpoints

@@ -200,7 +200,7 @@ namespace tmfdem
       fixed,
       velocity
     };
-    std::string                     name;   ///< for messages
+    std::string                     name;       ///< for messages
     unsigned int                    number = 0; ///< N of Body N
     std::vector<types::material_id> material_ids;
     Motion                          motion     = Motion::free;

@@ -174,8 +174,9 @@ namespace tmfdem
        *  piece; end = -1: to the last) with the temperature where heat
        *  runs and sigma_rr, sigma_tt where Mechanics/Polar frame asks. */
       std::string
-      solution_vtu(const unsigned int first = 0,
-                   const unsigned int end   = static_cast<unsigned int>(-1)) const;
+      solution_vtu(
+        const unsigned int first = 0,
+        const unsigned int end   = static_cast<unsigned int>(-1)) const;
       void
       write_output_files();
       void
