@@ -11,6 +11,7 @@
  */
 #include <algorithm>
 #include <cmath>
+#include <tmfdem/discrete/element_kernel.h>
 #include <tmfdem/discrete/explicit_solver.h>
 #include <tmfdem/discrete/vector_instructions.h>
 #include <type_traits>
@@ -93,96 +94,46 @@ namespace tmfdem
             VY[k]   = gather<Lanes>(&m.vy[n0 + k], 3);
             mass[k] = gather<Lanes>(&m.mass[n0 + k], 3);
           }
-        const Lanes ib0 = gather<Lanes>(&m.inverse_basis[4 * e0], 4),
-                    ib1 = gather<Lanes>(&m.inverse_basis[4 * e0 + 1], 4),
-                    ib2 = gather<Lanes>(&m.inverse_basis[4 * e0 + 2], 4),
-                    ib3 = gather<Lanes>(&m.inverse_basis[4 * e0 + 3], 4);
-        // F = [x1 - x0, x2 - x0; y1 - y0, y2 - y0] Fi^-1
-        const Lanes b00 = X[1] - X[0], b01 = X[2] - X[0];
-        const Lanes b10 = Y[1] - Y[0], b11 = Y[2] - Y[0];
-        const Lanes F00 = b00 * ib0 + b01 * ib2, F01 = b00 * ib1 + b01 * ib3;
-        const Lanes F10 = b10 * ib0 + b11 * ib2, F11 = b10 * ib1 + b11 * ib3;
-        const Lanes det = F00 * F11 - F10 * F01;
-        // F_e = F / s (1 / 1 is 1: the scalar loop's shortcut, bit for bit)
+        Lanes ib[4];
+        for (unsigned int i = 0; i < 4; ++i)
+          ib[i] = gather<Lanes>(&m.inverse_basis[4 * e0 + i], 4);
+        // 1 / s (1 / 1 is 1: the scalar loop's shortcut, bit for bit)
         const Lanes inv_s = 1. / gather<Lanes>(&m.thermal_stretch[e0], 1);
-        const Lanes f00 = F00 * inv_s, f01 = F01 * inv_s;
-        const Lanes f10 = F10 * inv_s, f11 = F11 * inv_s;
-        // Eq. 44 (constitutive::elastic_stress())
-        Lanes mu, lambda;
+        Lanes       mu, lambda;
         for (unsigned int l = 0; l < lanes; ++l)
           {
             mu[l]     = in.lame[e0 + l].mu;
             lambda[l] = in.lame[e0 + l].lambda;
           }
-        const Lanes J         = f00 * f11 - f01 * f10;
-        const Lanes b_xx      = f00 * f00 + f01 * f01;
-        const Lanes b_yy      = f10 * f10 + f11 * f11;
-        const Lanes b_xy      = f00 * f10 + f01 * f11;
-        const Lanes inverse_J = 1. / J;
-        const Lanes mu_J      = mu * inverse_J;
-        const Lanes vol       = 0.5 * lambda * (J - inverse_J);
-        Lanes       sxx       = mu_J * (b_xx - 1.) + vol;
-        Lanes       syy       = mu_J * (b_yy - 1.) + vol;
-        Lanes       sxy       = mu_J * b_xy;
+        Lanes anisotropy[6];
         if (in.anisotropy != nullptr)
-          {
-            // anisotropic_stress() (solid.h)
-            const double *a = &in.anisotropy[6 * e0];
-            const Lanes c0 = gather<Lanes>(a, 6), c1 = gather<Lanes>(a + 1, 6),
-                        c2    = gather<Lanes>(a + 2, 6),
-                        c3    = gather<Lanes>(a + 3, 6),
-                        c4    = gather<Lanes>(a + 4, 6),
-                        c5    = gather<Lanes>(a + 5, 6);
-            const Lanes e_0   = 0.5 * (f00 * f00 + f10 * f10 - 1.);
-            const Lanes e_1   = 0.5 * (f01 * f01 + f11 * f11 - 1.);
-            const Lanes e_2   = mandel_sqrt2 * 0.5 * (f00 * f01 + f10 * f11);
-            const Lanes Sxx   = c0 * e_0 + c3 * e_1 + c4 * e_2;
-            const Lanes Syy   = c3 * e_0 + c1 * e_1 + c5 * e_2;
-            const Lanes Sxy   = (c4 * e_0 + c5 * e_1 + c2 * e_2) / mandel_sqrt2;
-            const Lanes inv_J = 1. / (f00 * f11 - f01 * f10);
-            const Lanes a00   = f00 * Sxx + f01 * Sxy,
-                        a01   = f00 * Sxy + f01 * Syy;
-            const Lanes a10   = f10 * Sxx + f11 * Sxy,
-                        a11   = f10 * Sxy + f11 * Syy;
-            sxx += (a00 * f00 + a01 * f01) * inv_J;
-            syy += (a10 * f10 + a11 * f11) * inv_J;
-            sxy += (a00 * f10 + a01 * f11) * inv_J;
-          }
-        // viscous stress 2 eta sym(dF/dt F^-1) where eta > 0, else 0
-        const Lanes eta = gather<Lanes>(&in.viscosity[e0], 1);
-        const Lanes d00 = VX[1] - VX[0], d01 = VX[2] - VX[0];
-        const Lanes d10 = VY[1] - VY[0], d11 = VY[2] - VY[0];
-        const Lanes D00 = d00 * ib0 + d01 * ib2, D01 = d00 * ib1 + d01 * ib3;
-        const Lanes D10 = d10 * ib0 + d11 * ib2, D11 = d10 * ib1 + d11 * ib3;
-        // Eigen's 2x2 inverse: 1 / det, then the cofactors times it
-        const Lanes invdet = 1. / det;
-        const Lanes G00 = F11 * invdet, G10 = -F10 * invdet;
-        const Lanes G01 = -F01 * invdet, G11 = F00 * invdet;
-        const Lanes L00 = D00 * G00 + D01 * G10, L01 = D00 * G01 + D01 * G11;
-        const Lanes L10 = D10 * G00 + D11 * G10, L11 = D10 * G01 + D11 * G11;
-        const auto  viscous = eta > 0.;
-        const Lanes zero    = {};
-        const Lanes vxx     = viscous ? 2. * eta * L00 : zero;
-        const Lanes vyy     = viscous ? 2. * eta * L11 : zero;
-        const Lanes vxy     = viscous ? eta * (L01 + L10) : zero;
-        scatter(sxx + vxx, &m.stress[3 * e0], 3);
-        scatter(syy + vyy, &m.stress[3 * e0 + 1], 3);
-        scatter(sxy + vxy, &m.stress[3 * e0 + 2], 3);
-        // nodal_forces() (solid.h) of both stresses: -1/2 sigma grad
-        const Lanes gx[3] = {Y[1] - Y[2], Y[2] - Y[0], Y[0] - Y[1]};
-        const Lanes gy[3] = {X[2] - X[1], X[0] - X[2], X[1] - X[0]};
+          for (unsigned int i = 0; i < 6; ++i)
+            anisotropy[i] = gather<Lanes>(&in.anisotropy[6 * e0 + i], 6);
+        const Lanes            eta = gather<Lanes>(&in.viscosity[e0], 1);
+        ElementResponse<Lanes> r;
+        element_response<Lanes>(X,
+                                Y,
+                                VX,
+                                VY,
+                                ib,
+                                inv_s,
+                                mu,
+                                lambda,
+                                in.anisotropy != nullptr ? anisotropy : nullptr,
+                                eta,
+                                r);
+        const Lanes det = r.det;
+        scatter(r.sxx + r.vxx, &m.stress[3 * e0], 3);
+        scatter(r.syy + r.vyy, &m.stress[3 * e0 + 1], 3);
+        scatter(r.sxy + r.vxy, &m.stress[3 * e0 + 2], 3);
+        const Lanes zero = {};
         Lanes       t_elastic[3], t_viscous[3], t_damping[3], t_joint[3],
           t_contact[3], t_external[3], speed2[3];
         Lanes t_unbalanced[3], t_internal[3], t_kinetic[3];
         for (unsigned int k = 0; k < 3; ++k)
           {
-            const Lanes fex = -0.5 * (sxx * gx[k] + sxy * gy[k]);
-            const Lanes fey = -0.5 * (sxy * gx[k] + syy * gy[k]);
-            // exactly +0 where eta = 0, as the scalar loop's f_v
-            const Lanes fvx =
-              viscous ? -0.5 * (vxx * gx[k] + vxy * gy[k]) : zero;
-            const Lanes fvy =
-              viscous ? -0.5 * (vxy * gx[k] + vyy * gy[k]) : zero;
+            const Lanes fex = r.fex[k], fey = r.fey[k];
+            const Lanes fvx = r.fvx[k], fvy = r.fvy[k];
             const Lanes fjx =
               0. + gather<Lanes>(&m.node_joint_force[4 * (n0 + k)], 12) +
               gather<Lanes>(&m.node_joint_force[4 * (n0 + k) + 2], 12);
@@ -435,45 +386,36 @@ namespace tmfdem
             const unsigned int n0 = 3 * e;
             const double      *X = &m.x[n0], *Y = &m.y[n0];
             const double      *VX = &m.vx[n0], *VY = &m.vy[n0];
-            const double      *ib     = &m.inverse_basis[4 * e];
-            const Matrix2      Fi_inv = matrix2(ib[0], ib[1], ib[2], ib[3]);
-            const Matrix2      F =
-              element_basis(X[0], Y[0], X[1], Y[1], X[2], Y[2]) * Fi_inv;
-            if (!(F.determinant() > 0.) && inverted < 0.)
-              inverted = e;
             // 1 / s: no division where there is no thermal stretch (the
             // mechanical models; F * 1 is F, bit for bit)
-            const double  s     = m.thermal_stretch[e];
-            const double  inv_s = s == 1. ? 1. : 1. / s;
-            const Matrix2 Fe    = F * inv_s;
-            Stress2       sigma = elastic_stress(Fe, element_lame[e]);
-            if (anisotropic)
+            const double            s     = m.thermal_stretch[e];
+            const double            inv_s = s == 1. ? 1. : 1. / s;
+            ElementResponse<double> r;
+            element_response<double>(X,
+                                     Y,
+                                     VX,
+                                     VY,
+                                     &m.inverse_basis[4 * e],
+                                     inv_s,
+                                     element_lame[e].mu,
+                                     element_lame[e].lambda,
+                                     anisotropic ? &element_anisotropy[6 * e] :
+                                                   nullptr,
+                                     viscosity[e],
+                                     r);
+            if (!(r.det > 0.) && inverted < 0.)
+              inverted = e;
+            m.stress[3 * e]     = r.sxx + r.vxx;
+            m.stress[3 * e + 1] = r.syy + r.vyy;
+            m.stress[3 * e + 2] = r.sxy + r.vxy;
+            double f_el[6], f_v[6];
+            for (unsigned int k = 0; k < 3; ++k)
               {
-                const Stress2 correction =
-                  anisotropic_stress(Fe, &element_anisotropy[6 * e]);
-                sigma.xx += correction.xx;
-                sigma.yy += correction.yy;
-                sigma.xy += correction.xy;
+                f_el[2 * k]     = r.fex[k];
+                f_el[2 * k + 1] = r.fey[k];
+                f_v[2 * k]      = r.fvx[k];
+                f_v[2 * k + 1]  = r.fvy[k];
               }
-            // viscous stress 2 eta sym(dF/dt F^-1), only where eta > 0
-            const double eta = viscosity[e];
-            Stress2      sigma_v;
-            double       f_el[6], f_v[6] = {0., 0., 0., 0., 0., 0.};
-            nodal_forces(sigma, X[0], Y[0], X[1], Y[1], X[2], Y[2], f_el);
-            if (eta > 0.)
-              {
-                const Matrix2 Fdot =
-                  element_basis(VX[0], VY[0], VX[1], VY[1], VX[2], VY[2]) *
-                  Fi_inv;
-                const Matrix2 L = Fdot * F.inverse();
-                sigma_v         = {2. * eta * L(0, 0),
-                                   2. * eta * L(1, 1),
-                                   eta * (L(0, 1) + L(1, 0))};
-                nodal_forces(sigma_v, X[0], Y[0], X[1], Y[1], X[2], Y[2], f_v);
-              }
-            m.stress[3 * e]     = sigma.xx + sigma_v.xx;
-            m.stress[3 * e + 1] = sigma.yy + sigma_v.yy;
-            m.stress[3 * e + 2] = sigma.xy + sigma_v.xy;
 
             // dt / ((1 + c dt / 2) m) per node: one division per element
             // where its three nodes have the same mass (the lumped mass of

@@ -111,7 +111,36 @@ namespace tmfdem
      * F_e = [fe00, fe01; fe10, fe11] [-] (F_e = F / s):
      * sigma = mu / J (B - I) + lambda / 2 (J - 1 / J) I with J = det F_e and
      * B = F_e F_e^T. Reduces to 2 mu eps + lambda tr(eps) I for small strain.
+     * Lame constants @p mu, @p lambda [Pa]. @p Number is double or a vector
+     * of doubles (one element per lane, discrete/element_kernel.h): the one
+     * body of the formula for the continuum layer, the discrete layer's
+     * element loop and its vector batches.
      */
+    template <typename Number>
+    __attribute__((always_inline)) inline void
+    elastic_stress(const Number fe00,
+                   const Number fe01,
+                   const Number fe10,
+                   const Number fe11,
+                   const Number mu,
+                   const Number lambda,
+                   Number      &sxx,
+                   Number      &syy,
+                   Number      &sxy)
+    {
+      const Number J         = fe00 * fe11 - fe01 * fe10;
+      const Number b_xx      = fe00 * fe00 + fe01 * fe01;
+      const Number b_yy      = fe10 * fe10 + fe11 * fe11;
+      const Number b_xy      = fe00 * fe10 + fe01 * fe11;
+      const Number inverse_J = 1. / J;
+      const Number mu_J      = mu * inverse_J;
+      const Number vol       = 0.5 * lambda * (J - inverse_J);
+      sxx                    = mu_J * (b_xx - 1.) + vol;
+      syy                    = mu_J * (b_yy - 1.) + vol;
+      sxy                    = mu_J * b_xy;
+    }
+
+    /** The same for doubles, as a Stress2 [Pa]. */
     inline Stress2
     elastic_stress(const double         fe00,
                    const double         fe01,
@@ -119,14 +148,17 @@ namespace tmfdem
                    const double         fe11,
                    const LameConstants &lame)
     {
-      const double J         = fe00 * fe11 - fe01 * fe10;
-      const double b_xx      = fe00 * fe00 + fe01 * fe01;
-      const double b_yy      = fe10 * fe10 + fe11 * fe11;
-      const double b_xy      = fe00 * fe10 + fe01 * fe11;
-      const double inverse_J = 1. / J;
-      const double mu_J      = lame.mu * inverse_J;
-      const double vol       = 0.5 * lame.lambda * (J - inverse_J);
-      return {mu_J * (b_xx - 1.) + vol, mu_J * (b_yy - 1.) + vol, mu_J * b_xy};
+      Stress2 s;
+      elastic_stress(fe00,
+                     fe01,
+                     fe10,
+                     fe11,
+                     lame.mu,
+                     lame.lambda,
+                     s.xx,
+                     s.yy,
+                     s.xy);
+      return s;
     }
 
     /**

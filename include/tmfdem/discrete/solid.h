@@ -88,45 +88,80 @@ namespace tmfdem
     /** sqrt 2, of the Mandel components below. */
     constexpr double mandel_sqrt2 = 1.4142135623730951;
 
-    /** Green-Lagrange strain E = (F_e^T F_e - I) / 2 of @p Fe in Mandel
-     *  components (xx, yy, sqrt 2 xy) [-]. */
+    /** Green-Lagrange strain E = (F_e^T F_e - I) / 2 of F_e = [f00, f01;
+     *  f10, f11] in Mandel components (xx, yy, sqrt 2 xy) [-], written to
+     *  @p e. @p Number: double or a vector of doubles. */
+    template <typename Number>
+    __attribute__((always_inline)) inline void
+    green_lagrange_mandel(const Number f00,
+                          const Number f01,
+                          const Number f10,
+                          const Number f11,
+                          Number      *e)
+    {
+      e[0] = 0.5 * (f00 * f00 + f10 * f10 - 1.);
+      e[1] = 0.5 * (f01 * f01 + f11 * f11 - 1.);
+      e[2] = mandel_sqrt2 * 0.5 * (f00 * f01 + f10 * f11);
+    }
+
+    /** The same for a Matrix2 @p Fe. */
     inline std::array<double, 3>
     green_lagrange_mandel(const Matrix2 &Fe)
     {
-      const double f00 = Fe(0, 0), f01 = Fe(0, 1);
-      const double f10 = Fe(1, 0), f11 = Fe(1, 1);
-      return {{0.5 * (f00 * f00 + f10 * f10 - 1.),
-               0.5 * (f01 * f01 + f11 * f11 - 1.),
-               mandel_sqrt2 * 0.5 * (f00 * f01 + f10 * f11)}};
+      std::array<double, 3> e;
+      green_lagrange_mandel(Fe(0, 0), Fe(0, 1), Fe(1, 0), Fe(1, 1), e.data());
+      return e;
     }
 
     /**
      * The anisotropic correction of an element's stress [Pa]
      * (joint_compliance.h): the Cauchy stress of the second Piola-Kirchhoff
      * stress Delta C : E, E = (F_e^T F_e - I) / 2, that is
-     * F_e (Delta C : E) F_e^T / J, with @p delta_C the Mandel components
-     * (11, 22, 33, 12, 13, 23) [Pa]. Linear in the small strain, objective,
-     * and the derivative of anisotropic_energy_density().
+     * F_e (Delta C : E) F_e^T / J, with @p c the Mandel components of
+     * Delta C (11, 22, 33, 12, 13, 23) [Pa], for F_e = [f00, f01; f10, f11]
+     * [-]; written to @p sxx, @p syy, @p sxy. Linear in the small strain,
+     * objective, and the derivative of anisotropic_energy_density().
+     * @p Number: double or a vector of doubles.
      */
+    template <typename Number>
+    __attribute__((always_inline)) inline void
+    anisotropic_stress(const Number  f00,
+                       const Number  f01,
+                       const Number  f10,
+                       const Number  f11,
+                       const Number *c,
+                       Number       &sxx,
+                       Number       &syy,
+                       Number       &sxy)
+    {
+      Number e[3];
+      green_lagrange_mandel(f00, f01, f10, f11, e);
+      const Number Sxx = c[0] * e[0] + c[3] * e[1] + c[4] * e[2];
+      const Number Syy = c[3] * e[0] + c[1] * e[1] + c[5] * e[2];
+      const Number Sxy =
+        (c[4] * e[0] + c[5] * e[1] + c[2] * e[2]) / mandel_sqrt2;
+      const Number inverse_J = 1. / (f00 * f11 - f01 * f10);
+      const Number a00 = f00 * Sxx + f01 * Sxy, a01 = f00 * Sxy + f01 * Syy;
+      const Number a10 = f10 * Sxx + f11 * Sxy, a11 = f10 * Sxy + f11 * Syy;
+      sxx = (a00 * f00 + a01 * f01) * inverse_J;
+      syy = (a10 * f10 + a11 * f11) * inverse_J;
+      sxy = (a00 * f10 + a01 * f11) * inverse_J;
+    }
+
+    /** The same for a Matrix2 @p Fe and Delta C @p delta_C [Pa]. */
     inline Stress2
     anisotropic_stress(const Matrix2 &Fe, const double *delta_C)
     {
-      const auto   e = green_lagrange_mandel(Fe);
-      const double Sxx =
-        delta_C[0] * e[0] + delta_C[3] * e[1] + delta_C[4] * e[2];
-      const double Syy =
-        delta_C[3] * e[0] + delta_C[1] * e[1] + delta_C[5] * e[2];
-      const double Sxy =
-        (delta_C[4] * e[0] + delta_C[5] * e[1] + delta_C[2] * e[2]) /
-        mandel_sqrt2;
-      const double f00 = Fe(0, 0), f01 = Fe(0, 1);
-      const double f10 = Fe(1, 0), f11 = Fe(1, 1);
-      const double inverse_J = 1. / (f00 * f11 - f01 * f10);
-      const double a00 = f00 * Sxx + f01 * Sxy, a01 = f00 * Sxy + f01 * Syy;
-      const double a10 = f10 * Sxx + f11 * Sxy, a11 = f10 * Sxy + f11 * Syy;
-      return {(a00 * f00 + a01 * f01) * inverse_J,
-              (a10 * f10 + a11 * f11) * inverse_J,
-              (a00 * f10 + a01 * f11) * inverse_J};
+      Stress2 s;
+      anisotropic_stress(Fe(0, 0),
+                         Fe(0, 1),
+                         Fe(1, 0),
+                         Fe(1, 1),
+                         delta_C,
+                         s.xx,
+                         s.yy,
+                         s.xy);
+      return s;
     }
 
     /** The energy of anisotropic_stress() per unit area of the stress-free
@@ -158,9 +193,33 @@ namespace tmfdem
     /**
      * Nodal forces of a constant-stress triangle [N/m]: f_a = -A sigma
      * grad N_a in the current configuration, which is -1/2 sigma n_a with
-     * n_a the opposite edge rotated outward. Coordinates of the current
-     * nodes [m]; results added to nothing, written to @p f (x0,y0,x1,...).
+     * n_a the opposite edge rotated outward. Stress @p sxx, @p syy, @p sxy
+     * [Pa], current node coordinates @p x, @p y [m]; written to @p fx,
+     * @p fy (node by node). @p Number: double or a vector of doubles.
      */
+    template <typename Number>
+    __attribute__((always_inline)) inline void
+    nodal_forces(const Number  sxx,
+                 const Number  syy,
+                 const Number  sxy,
+                 const Number *x,
+                 const Number *y,
+                 Number       *fx,
+                 Number       *fy)
+    {
+      // grad N_a * 2A: node 0: (y1 - y2, x2 - x1), node 1: (y2 - y0, x0 - x2),
+      // node 2: (y0 - y1, x1 - x0)
+      const Number gx[3] = {y[1] - y[2], y[2] - y[0], y[0] - y[1]};
+      const Number gy[3] = {x[2] - x[1], x[0] - x[2], x[1] - x[0]};
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          fx[k] = -0.5 * (sxx * gx[k] + sxy * gy[k]);
+          fy[k] = -0.5 * (sxy * gx[k] + syy * gy[k]);
+        }
+    }
+
+    /** The same for a Stress2 @p s and nodes (x0, y0) ... (x2, y2) [m];
+     *  written to @p f (x0, y0, x1, ...) [N/m]. */
     inline void
     nodal_forces(const Stress2 &s,
                  const double   x0,
@@ -171,17 +230,14 @@ namespace tmfdem
                  const double   y2,
                  double        *f)
     {
-      // grad N_a * 2A: node 0: (y1 - y2, x2 - x1), node 1: (y2 - y0, x0 - x2),
-      // node 2: (y0 - y1, x1 - x0)
-      const double g0x = y1 - y2, g0y = x2 - x1;
-      const double g1x = y2 - y0, g1y = x0 - x2;
-      const double g2x = y0 - y1, g2y = x1 - x0;
-      f[0] = -0.5 * (s.xx * g0x + s.xy * g0y);
-      f[1] = -0.5 * (s.xy * g0x + s.yy * g0y);
-      f[2] = -0.5 * (s.xx * g1x + s.xy * g1y);
-      f[3] = -0.5 * (s.xy * g1x + s.yy * g1y);
-      f[4] = -0.5 * (s.xx * g2x + s.xy * g2y);
-      f[5] = -0.5 * (s.xy * g2x + s.yy * g2y);
+      const double x[3] = {x0, x1, x2}, y[3] = {y0, y1, y2};
+      double       fx[3], fy[3];
+      nodal_forces(s.xx, s.yy, s.xy, x, y, fx, fy);
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          f[2 * k]     = fx[k];
+          f[2 * k + 1] = fy[k];
+        }
     }
   } // namespace discrete
 } // namespace tmfdem

@@ -1,0 +1,132 @@
+/**
+ * @file
+ * One triangle's stress and nodal forces in one explicit step, written once
+ * for the element-by-element loop (Number = double) and for the vector
+ * batches (Number = a GCC vector of doubles, one triangle per lane;
+ * source/discrete/node_update.cc): the deformation gradient F from the
+ * current nodes and the inverse initial basis (paper Eq. 39), its elastic
+ * part F_e = F / s, the Cauchy stress of Eq. 44 on F_e
+ * (constitutive::elastic_stress()) plus the anisotropic correction of joint
+ * compliance compensation (anisotropic_stress()), the viscous stress
+ * 2 eta sym(dF/dt F^-1) (Eqs. 45-46) and the nodal forces of both
+ * (nodal_forces()). Both instantiations perform the same operations in the
+ * same order, so a triangle in a batch gets bitwise the forces of the
+ * scalar loop (node_update.cc is compiled without FMA contraction).
+ */
+#ifndef tmfdem_discrete_element_kernel_h
+#define tmfdem_discrete_element_kernel_h
+
+#include <tmfdem/discrete/solid.h>
+#include <type_traits>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    /** What element_response() computes for one triangle (or one per
+     *  lane). */
+    template <typename Number>
+    struct ElementResponse
+    {
+      Number det;            ///< det F [-] (not > 0: an inverted triangle)
+      Number sxx, syy, sxy;  ///< elastic and anisotropic Cauchy stress [Pa]
+      Number vxx, vyy, vxy;  ///< viscous stress [Pa]; exactly +0 where eta = 0
+      Number fex[3], fey[3]; ///< nodal forces of the elastic stress [N/m]
+      Number fvx[3], fvy[3]; ///< of the viscous stress [N/m]; +0 where eta = 0
+    };
+
+    /**
+     * The stress and nodal forces of a constant-strain triangle with
+     * current nodes @p x, @p y [m] and nodal velocities @p vx, @p vy [m/s]
+     * (three each), inverse initial basis @p inverse_basis (row-major 2x2)
+     * [1/m], inverse thermal stretch @p inverse_stretch (1 / s) [-], Lame
+     * constants @p mu, @p lambda [Pa], Mandel components of the anisotropic
+     * correction @p anisotropy (six, or nullptr for none) [Pa] and
+     * viscosity @p eta [Pa s] (no viscous stress where eta is not > 0).
+     */
+    template <typename Number>
+    __attribute__((always_inline)) inline void
+    element_response(const Number            *x,
+                     const Number            *y,
+                     const Number            *vx,
+                     const Number            *vy,
+                     const Number            *inverse_basis,
+                     const Number             inverse_stretch,
+                     const Number             mu,
+                     const Number             lambda,
+                     const Number            *anisotropy,
+                     const Number             eta,
+                     ElementResponse<Number> &r)
+    {
+      const Number *ib = inverse_basis;
+      // F = [x1 - x0, x2 - x0; y1 - y0, y2 - y0] Fi^-1
+      const Number b00 = x[1] - x[0], b01 = x[2] - x[0];
+      const Number b10 = y[1] - y[0], b11 = y[2] - y[0];
+      const Number F00 = b00 * ib[0] + b01 * ib[2];
+      const Number F01 = b00 * ib[1] + b01 * ib[3];
+      const Number F10 = b10 * ib[0] + b11 * ib[2];
+      const Number F11 = b10 * ib[1] + b11 * ib[3];
+      r.det            = F00 * F11 - F10 * F01;
+      // F_e = F / s; Eq. 44 and the anisotropic correction on it
+      const Number f00 = F00 * inverse_stretch, f01 = F01 * inverse_stretch;
+      const Number f10 = F10 * inverse_stretch, f11 = F11 * inverse_stretch;
+      constitutive::elastic_stress(f00,
+                                   f01,
+                                   f10,
+                                   f11,
+                                   mu,
+                                   lambda,
+                                   r.sxx,
+                                   r.syy,
+                                   r.sxy);
+      if (anisotropy != nullptr)
+        {
+          Number axx, ayy, axy;
+          anisotropic_stress(f00, f01, f10, f11, anisotropy, axx, ayy, axy);
+          r.sxx += axx;
+          r.syy += ayy;
+          r.sxy += axy;
+        }
+      nodal_forces(r.sxx, r.syy, r.sxy, x, y, r.fex, r.fey);
+
+      // viscous stress 2 eta sym(dF/dt F^-1) where eta > 0, else +0; a
+      // single triangle skips the arithmetic where eta is not > 0
+      const Number zero{};
+      bool         any_viscous = true;
+      if constexpr (std::is_same_v<Number, double>)
+        any_viscous = eta > 0.;
+      if (!any_viscous)
+        {
+          r.vxx = r.vyy = r.vxy = zero;
+          for (unsigned int k = 0; k < 3; ++k)
+            r.fvx[k] = r.fvy[k] = zero;
+          return;
+        }
+      const Number d00 = vx[1] - vx[0], d01 = vx[2] - vx[0];
+      const Number d10 = vy[1] - vy[0], d11 = vy[2] - vy[0];
+      const Number D00 = d00 * ib[0] + d01 * ib[2];
+      const Number D01 = d00 * ib[1] + d01 * ib[3];
+      const Number D10 = d10 * ib[0] + d11 * ib[2];
+      const Number D11 = d10 * ib[1] + d11 * ib[3];
+      // F^-1 as Eigen forms it: 1 / det, then the cofactors times it
+      const Number invdet = 1. / r.det;
+      const Number G00 = F11 * invdet, G10 = -F10 * invdet;
+      const Number G01 = -F01 * invdet, G11 = F00 * invdet;
+      const Number L00 = D00 * G00 + D01 * G10, L01 = D00 * G01 + D01 * G11;
+      const Number L10 = D10 * G00 + D11 * G10, L11 = D10 * G01 + D11 * G11;
+      const auto   viscous = eta > 0.;
+      r.vxx                = viscous ? Number(2. * eta * L00) : zero;
+      r.vyy                = viscous ? Number(2. * eta * L11) : zero;
+      r.vxy                = viscous ? Number(eta * (L01 + L10)) : zero;
+      Number fvx[3], fvy[3];
+      nodal_forces(r.vxx, r.vyy, r.vxy, x, y, fvx, fvy);
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          r.fvx[k] = viscous ? fvx[k] : zero;
+          r.fvy[k] = viscous ? fvy[k] : zero;
+        }
+    }
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif
