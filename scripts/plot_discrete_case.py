@@ -11,7 +11,7 @@ several runs read one sub-folder per run, the layout the verification
 scripts write:
 
     joint_pull:        OUTPUT_FOLDER/{Munjiza,linear}_{I,II}/   (verify_discrete_joint.py)
-    block_on_incline:  OUTPUT_FOLDER/mu_0.3/, OUTPUT_FOLDER/mu_0.6/ (verify_discrete_dynamics.py incline)
+    block_on_incline:  OUTPUT_FOLDER/theta_<deg>_mu_<mu>/ (verify_discrete_dynamics.py incline)
     plate_transient:   OUTPUT_FOLDER/{h0.05,continuum_P1,beta100,beta1000,beta10000}/
                        (verify_discrete_plate.py)
     contact_conduction: OUTPUT_FOLDER/{steady,equilibrate}/  (verify_discrete_contact_heat.py)
@@ -27,6 +27,7 @@ import glob
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -159,35 +160,48 @@ def plot_joint_pull(folder, png):
 
 # ---------------------------------------------------- block_on_incline
 def plot_block_on_incline(folder, png):
-    g, theta = 9.81, math.radians(30)
+    g = 9.81
+    with open(os.path.join(ROOT, "prm", "block_on_incline.prm")) as f:
+        ramp = float(re.search(r"Gravity ramp time\s*=\s*([0-9.eE+-]+)", f.read()).group(1))
     fig, (ax_u, ax_e) = plt.subplots(2, 1, figsize=(7, 7), dpi=150, sharex=True,
                                      gridspec_kw=dict(height_ratios=[3, 2]))
-    print("block_on_incline: probe 'centre' u_x against 1/2 a t^2")
-    print(f"{'mu':>5} {'a exact':>10} {'a fit (t>=0.02)':>16} {'error [%]':>10} "
+    print("block_on_incline: probe 'centre' u_x against the rigid block "
+          f"(gravity ramped in over {ramp} s)")
+    print(f"{'theta':>5} {'mu':>5} {'a exact':>10} {'a fit (t>=0.02)':>16} {'error [%]':>10} "
           f"{'max|ux - exact| [m]':>20}")
-    for mu, c in ((0.3, "C0"), (0.6, "C3")):
-        run = os.path.join(folder, f"mu_{mu}")
-        ensure_run(run, "block_on_incline.prm", f"Discrete mechanics/Friction coefficient={mu}")
+    sticks = [(22.0, 0.42, "C2"), (30.0, 0.6, "C3"), (35.0, 0.73, "C4"), (40.0, 0.9, "C5")]
+    for degrees, mu, c in [(30.0, 0.3, "C0")] + sticks:
+        theta = math.radians(degrees)
+        run = os.path.join(folder, f"theta_{degrees:g}_mu_{mu}")
+        ensure_run(run, "block_on_incline.prm", f"Discrete mechanics/Friction coefficient={mu}",
+                   f"Discrete mechanics/Gravity={g * math.sin(theta)!r}, {-g * math.cos(theta)!r}")
         p = read_csv(os.path.join(run, "probes.csv"))
         t, ux = p["time"], p["ux"]
         a = max(0.0, g * (math.sin(theta) - mu * math.cos(theta)))
-        exact = 0.5 * a * t ** 2
+        # the rigid block under gravity growing as t / ramp: friction and
+        # gravity grow together, so a(t) = a t / ramp until the ramp ends
+        exact = np.where(t <= ramp, a * t ** 3 / (6 * ramp),
+                         a * ramp ** 2 / 6 + a * ramp / 2 * (t - ramp) + a / 2 * (t - ramp) ** 2)
         late = t >= 0.02
         a_fit = 2 * np.polyfit(t[late], ux[late], 2)[0]
         err = 100 * abs(a_fit / a - 1) if a > 0 else float("nan")
-        print(f"{mu:>5} {a:>10.6f} {a_fit:>16.6f} {err:>10.4f} {np.max(np.abs(ux - exact)):>20.3e}")
-        label = (f"mu = {mu}: a = g (sin 30 - mu cos 30) = {a:.4f} m/s^2" if a > 0 else
-                 f"mu = {mu} >= tan 30 = 0.577: sticks, u = 0")
-        ax_u.plot(t, 1e3 * exact, "-", color=c, lw=1.2, label=label)
-        ax_u.plot(t, 1e3 * ux, "o", color=c, ms=3, mfc="none",
-                  label=f"mu = {mu}: tmfdem" + (f" (fitted a {a_fit:.4f}, {err:.4f} %)" if a > 0 else ""))
-        ax_e.plot(t, 1e6 * (ux - exact), "o-", color=c, ms=2, lw=0.8, label=f"mu = {mu}")
+        print(f"{degrees:>5g} {mu:>5} {a:>10.6f} {a_fit:>16.6f} {err:>10.4f} "
+              f"{np.max(np.abs(ux - exact)):>20.3e}")
+        if a > 0:
+            ax_u.plot(t, 1e3 * exact, "-", color=c, lw=1.2,
+                      label=f"{degrees:g} deg, mu = {mu}: rigid block, a = g (sin - mu cos) = {a:.4f} m/s^2")
+            ax_u.plot(t, 1e3 * ux, "o", color=c, ms=3, mfc="none",
+                      label=f"tmfdem (fitted a {a_fit:.4f}, {err:.4f} %)")
+        else:
+            ax_e.plot(t, 1e6 * ux, "o-", color=c, ms=2, lw=0.8,
+                      label=f"{degrees:g} deg, mu = {mu} >= tan = {math.tan(theta):.3f}: "
+                            f"max |u_x| {1e6 * np.max(np.abs(ux)):.3f} um")
     ax_u.set_ylabel("u_x of the block centre [mm]")
-    ax_u.set_title("Block on a 30 degree incline: u_x against 1/2 a t^2")
+    ax_u.set_title("Block on an incline: sliding (30 deg) and sticking cases")
     ax_u.legend(fontsize=7)
     ax_u.grid(alpha=0.3)
     ax_e.axhline(0, color="k", lw=0.5)
-    ax_e.set_ylabel("u_x - 1/2 a t^2 [micrometre]")
+    ax_e.set_ylabel("u_x, sticking cases [micrometre]")
     ax_e.set_xlabel("t [s]")
     ax_e.legend(fontsize=7)
     ax_e.grid(alpha=0.3)

@@ -157,6 +157,16 @@ namespace tmfdem
                       "0, 0",
                       Patterns::List(Patterns::Double(), 2, 2, ","),
                       "Gravitational acceleration g_x, g_y [m/s^2].");
+    prm.declare_entry(
+      "Gravity ramp time",
+      "0",
+      Patterns::Double(0.),
+      "Gravity grows linearly from zero to Gravity over this time from "
+      "t = 0 [s]: bodies that start at rest on their supports are loaded "
+      "gradually instead of being dropped onto their contact springs at "
+      "once (which sets them bouncing; doc/cases/block_on_incline.md). "
+      "0: full gravity from the first step. Dynamic runs only (discrete "
+      "mechanics, multi-rate thermo-mechanics).");
     prm.declare_entry("Contact buffer",
                       "0",
                       Patterns::Double(0.),
@@ -303,6 +313,7 @@ namespace tmfdem
     mass_damping  = prm.get_double("Mass damping");
     gravity       = Utilities::string_to_double(
       Utilities::split_string_list(prm.get("Gravity"), ','));
+    gravity_ramp_time      = prm.get_double("Gravity ramp time");
     contact_buffer         = prm.get_double("Contact buffer");
     contact                = prm.get_bool("Contact");
     threads                = prm.get_integer("Threads");

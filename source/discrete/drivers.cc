@@ -66,6 +66,8 @@ namespace tmfdem
         }
       gravity = {{parameters.get<DiscreteMechanicsParameters>().gravity[0],
                   parameters.get<DiscreteMechanicsParameters>().gravity[1]}};
+      gravity_ramp_time =
+        parameters.get<DiscreteMechanicsParameters>().gravity_ramp_time;
     }
 
     void

@@ -93,6 +93,14 @@ namespace tmfdem
                                    .mechanical_steps_per_thermal_step;
           quasi_static = parameters.get<DiscreteHeatParameters>().coupling ==
                          DiscreteHeatParameters::Coupling::quasi_static;
+          const double ramp =
+            parameters.get<DiscreteMechanicsParameters>().gravity_ramp_time;
+          if (quasi_static && ramp > 0.)
+            throw InputError(
+              "Discrete mechanics/Gravity ramp time = " + std::to_string(ramp) +
+              " s: a gravity ramp is for dynamic runs; with Discrete "
+              "heat/Coupling = quasi-static every relaxation finds the "
+              "equilibrium under full gravity. Set it to 0.");
           if (n > 0)
             steps_per_thermal_step = n;
           else if (quasi_static)

@@ -308,6 +308,13 @@ namespace tmfdem
       // summary's last_relative_unbalanced_force): formed only there
       // (a compile-time flag, so that the loop without them keeps no
       // accumulators for them)
+      // gravity at the step's start (Gravity ramp time); exactly Gravity
+      // without a ramp
+      const double g_share = d.gravity_share(time);
+      const double gravity_x =
+        g_share == 1. ? d.gravity[0] : g_share * d.gravity[0];
+      const double gravity_y =
+        g_share == 1. ? d.gravity[1] : g_share * d.gravity[1];
       const auto chunk_update = [&](const auto        diagnostics_flag,
                                     const std::size_t local_begin,
                                     const std::size_t local_end,
@@ -332,8 +339,8 @@ namespace tmfdem
         batch.damp_a             = damp_a;
         batch.damp_b             = damp_b;
         batch.c_damp             = c_damp;
-        batch.gravity_x          = d.gravity[0];
-        batch.gravity_y          = d.gravity[1];
+        batch.gravity_x          = gravity_x;
+        batch.gravity_y          = gravity_y;
         const unsigned int lanes = vector_lanes(vector_instructions);
         double             batch_contact[6 * max_vector_lanes];
         // out-of-balance force (free components, no viscous part) and the
@@ -440,9 +447,8 @@ namespace tmfdem
                 const double  fjx  = 0. + jf[0] + jf[2];
                 const double  fjy  = 0. + jf[1] + jf[3];
                 const double  mass = node_mass[k];
-                const double  fgx  = mass * d.gravity[0],
-                             fgy   = mass * d.gravity[1];
-                const double fx =
+                const double  fgx = mass * gravity_x, fgy = mass * gravity_y;
+                const double  fx =
                   f_el[2 * k] + f_v[2 * k] + fjx + f_contact[2 * k] + fgx;
                 const double fy = f_el[2 * k + 1] + f_v[2 * k + 1] + fjy +
                                   f_contact[2 * k + 1] + fgy;

@@ -54,10 +54,13 @@ namespace tmfdem
     discrete::SofteningLaw softening_law = discrete::SofteningLaw::munjiza;
     double damping_ratio = 1.; ///< modal ratio of the highest element mode [-]
     double mass_damping  = 0.; ///< c of -c m v [1/s]
-    std::vector<double> gravity        = {0., 0.}; ///< [m/s^2]
-    double              contact_buffer = 0.;    ///< [m]; 0: 0.25 x smallest h
-    unsigned int        threads        = 0;     ///< 0: all cores
-    bool allow_oversubscription        = false; ///< threads beyond the cores
+    std::vector<double> gravity = {0., 0.}; ///< [m/s^2]
+    /** Gravity grows linearly from 0 over this time from t = 0 [s]; 0: at
+     *  once. */
+    double       gravity_ramp_time      = 0.;
+    double       contact_buffer         = 0.;    ///< [m]; 0: 0.25 x smallest h
+    unsigned int threads                = 0;     ///< 0: all cores
+    bool         allow_oversubscription = false; ///< threads beyond the cores
     /** Instruction set of the explicit loop's batches, resolved from the
      *  entry (auto: the widest this processor has). */
     discrete::VectorInstructions vector_instructions =

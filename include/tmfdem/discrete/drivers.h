@@ -12,6 +12,7 @@
 
 #include <deal.II/base/function_parser.h>
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <tmfdem/base/parameters.h>
@@ -127,6 +128,17 @@ namespace tmfdem
       std::vector<DiscreteBody::Motion>  body_motion;
       std::vector<std::array<double, 2>> body_velocity_now; ///< [m/s]
       std::array<double, 2>              gravity{{0., 0.}}; ///< [m/s^2]
+      /** Gravity grows linearly from 0 over this time [s]; 0: at once. */
+      double gravity_ramp_time = 0.;
+
+      /** The share of Gravity acting at time @p t [s] (Gravity ramp
+       *  time): min(1, t / ramp), 1 without a ramp. */
+      double
+      gravity_share(const double t) const
+      {
+        return gravity_ramp_time > 0. ? std::min(1., t / gravity_ramp_time) :
+                                        1.;
+      }
       /** Per node: slot into node_conditions, or -1. */
       std::vector<int>                node_condition_slot;
       std::vector<NodeCondition>      node_conditions;

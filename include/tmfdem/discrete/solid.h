@@ -9,11 +9,12 @@
  *
  * The constitutive law (Lame constants per idealisation, thermal stretch,
  * Eq. 44 on F_e) is the core both layers share, base/constitutive.h; this
- * header adds the triangle's kinematics and forces around it. Everything
- * here is plain inline arithmetic on doubles: these functions run once per
- * triangle per explicit step. The 2x2 algebra is Eigen's (Matrix2 =
- * Eigen::Matrix2d: F = basis * inverse_basis, F.determinant(),
- * F.inverse()).
+ * header adds the triangle's kinematics and forces around it: the
+ * anisotropic correction and the nodal forces as templates on the number
+ * type (double or a vector of doubles, one triangle per lane), which
+ * element_kernel.h assembles into the one element kernel of the explicit
+ * loop, and Matrix2 (Eigen::Matrix2d) versions of them for the set-up,
+ * stress recovery and tests.
  */
 #ifndef tmfdem_discrete_solid_h
 #define tmfdem_discrete_solid_h
