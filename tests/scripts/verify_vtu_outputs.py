@@ -213,10 +213,16 @@ def formats():
         print("meshio not installed (python3-meshio): its check left out")
     if meshio:
         import warnings
-        read = 0
+        read, empty = 0, []
         for key in sorted(folders):
             folder = folders[key]
             for name in files(folder, ".vtu"):
+                if 'NumberOfCells="0"' in xml_part(os.path.join(folder, name)):
+                    # a piece of a rank without triangles (the coarse disc's
+                    # 508 triangles are one chunk): meshio reads no vtu
+                    # without cells
+                    empty.append(f"{os.path.basename(folder)}/{name}")
+                    continue
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore")
                     mesh = meshio.read(os.path.join(folder, name))
@@ -230,7 +236,10 @@ def formats():
                     ok &= check(same_bits(np.asarray(mesh.points).ravel(), mine),
                                 f"meshio reads {os.path.basename(folder)}/{name}: its "
                                 f"{len(mesh.points)} points bitwise ({mine.dtype})")
-        ok &= check(read > 0, f"meshio {meshio.__version__} reads all {read} vtu files")
+        ok &= check(read > 0 and all(".0000.vtu" in e for e in empty),
+                    f"meshio {meshio.__version__} reads all {read} vtu files with cells "
+                    f"(left out: {len(empty)} pieces of no cells, of rank 0, e.g. "
+                    f"{empty[0] if empty else '-'})")
     return ok
 
 
