@@ -14,6 +14,7 @@
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/temperature_source.h>
 #include <tmfdem/io/output_files.h>
+#include <type_traits>
 #include <zlib.h>
 
 namespace tmfdem
@@ -32,6 +33,27 @@ namespace tmfdem
         out.append(text, result.ptr);
       }
 
+      /** The VTK type name of the C++ type @p Stored. */
+      template <typename Stored>
+      constexpr const char *
+      vtk_type_name()
+      {
+        if constexpr (std::is_same_v<Stored, float>)
+          return "Float32";
+        else if constexpr (std::is_same_v<Stored, double>)
+          return "Float64";
+        else if constexpr (std::is_same_v<Stored, std::int64_t>)
+          return "Int64";
+        else if constexpr (std::is_same_v<Stored, std::int32_t>)
+          return "Int32";
+        else
+          {
+            static_assert(std::is_same_v<Stored, std::uint8_t>,
+                          "a vtu array of a type without a VTK name");
+            return "UInt8";
+          }
+      }
+
       /**
        * Appends one DataArray's block of appended raw data as VTK's XML
        * readers expect it with compressor="vtkZLibDataCompressor" and
@@ -44,8 +66,8 @@ namespace tmfdem
       void
       append_compressed(std::string &out, const void *data, const std::size_t n)
       {
-        uLongf      size = compressBound(n);
-        std::size_t at   = out.size();
+        uLongf            size = compressBound(n);
+        const std::size_t at   = out.size();
         out.resize(at + 4 * sizeof(std::uint64_t) + size);
         const int status = compress2(reinterpret_cast<Bytef *>(
                                        &out[at + 4 * sizeof(std::uint64_t)]),
@@ -76,18 +98,17 @@ namespace tmfdem
           : encoding(encoding)
         {}
 
-        /** A DataArray of VTK type @p type (Float32, Float64, Int64,
-         *  Int32, UInt8) holding @p values converted to the C++ type
-         *  @p Stored of that VTK type (real values rounded to the
-         *  nearest). */
+        /** A DataArray of @p values converted to the C++ type @p Stored
+         *  (float, double, std::int64_t, std::int32_t, std::uint8_t; real
+         *  values rounded to the nearest), of that type's VTK type. */
         template <typename Stored, typename T>
         void
-        data_array(const std::string    &type,
-                   const std::string    &name,
+        data_array(const std::string    &name,
                    const unsigned int    components,
                    const std::vector<T> &values)
         {
-          text += "<DataArray type=\"" + type + "\"";
+          text +=
+            std::string("<DataArray type=\"") + vtk_type_name<Stored>() + "\"";
           if (!name.empty())
             text += " Name=\"" + name + "\"";
           text += " NumberOfComponents=\"" + std::to_string(components) + "\"";
@@ -123,9 +144,9 @@ namespace tmfdem
                    const std::vector<double> &values)
         {
           if (encoding.single_precision)
-            data_array<float>("Float32", name, components, values);
+            data_array<float>(name, components, values);
           else
-            data_array<double>("Float64", name, components, values);
+            data_array<double>(name, components, values);
         }
 
         void
@@ -202,13 +223,13 @@ namespace tmfdem
           }
         out.real_array("", 3, points);
         out.add("</Points>\n<Cells>\n");
-        out.data_array<std::int64_t>("Int64", "connectivity", 1, connectivity);
+        out.data_array<std::int64_t>("connectivity", 1, connectivity);
         std::vector<std::size_t>  offsets(n_cells);
         std::vector<unsigned int> types(n_cells, vtk_type);
         for (std::size_t c = 0; c < n_cells; ++c)
           offsets[c] = (c + 1) * nodes_per_cell;
-        out.data_array<std::int64_t>("Int64", "offsets", 1, offsets);
-        out.data_array<std::uint8_t>("UInt8", "types", 1, types);
+        out.data_array<std::int64_t>("offsets", 1, offsets);
+        out.data_array<std::uint8_t>("types", 1, types);
         out.add("</Cells>\n<PointData>\n");
         if (point_data)
           point_data(out);
@@ -424,8 +445,8 @@ namespace tmfdem
         out.real_array("syy", 1, syy);
         out.real_array("sxy", 1, sxy);
         out.real_array("joint_damage", 1, damage);
-        out.data_array<std::int32_t>("Int32", "material_id", 1, material);
-        out.data_array<std::int32_t>("Int32", "body", 1, body);
+        out.data_array<std::int32_t>("material_id", 1, material);
+        out.data_array<std::int32_t>("body", 1, body);
         if (polar_centre)
           {
             std::vector<double> srr(n_cells), stt(n_cells);
@@ -498,7 +519,7 @@ namespace tmfdem
           break_time.push_back(std::numeric_limits<double>::quiet_NaN());
         }
       const auto cell_data = [&](VtuText &out) {
-        out.data_array<std::int32_t>("Int32", "failure_mode", 1, mode);
+        out.data_array<std::int32_t>("failure_mode", 1, mode);
         out.real_array("break_time", 1, break_time);
       };
       return grid(encoding,
