@@ -15,12 +15,19 @@ against ascii double, and the wall time of composing and writing one output
 (solution and crack vtu with their pvd records: summary.json
 vtu_write_time_s over the number of outputs, the smallest of the repeats).
 
+--reference LABEL=TMFDEM (repeatable) adds the same runs of another build
+(its own library: LD_LIBRARY_PATH is set to the binary's folder, so a folder
+holding copies of tmfdem and libtmfdem.so serves) with its default Vtu
+settings, e.g. a build of another writer; its write time needs
+summary.json vtu_write_time_s.
+
 The zlib level: the arrays of the binary files, as tmfdem stores them
 (scripts/vtu_pieces.py read_arrays), compressed by Python's zlib at levels 1
 to 6 (the library tmfdem links, Debian's libz), each level timed over
 several rounds: size of all blocks and compression time per output.
 
-usage: benchmarks/output_files.py [TMFDEM] [--end-time T] [--repeats N]"""
+usage: benchmarks/output_files.py [TMFDEM] [--end-time T] [--repeats N]
+                                  [--reference LABEL=TMFDEM ...]"""
 import argparse
 import glob
 import json
@@ -44,12 +51,16 @@ VARIANTS = {"ascii double": ("ascii", "double"),
             "binary single": ("binary", "single")}
 
 
-def run(binary, folder, end_time, fmt, precision):
+def run(binary, folder, end_time, settings, library=None):
     cmd = [binary, os.path.join(ROOT, "prm", "thermal_shock_disc.prm"),
            "--set", f"Output/Directory={folder}", "--set", "Output/Progress interval=0",
-           "--set", f"Time stepping/End time={end_time}",
-           "--set", f"Output/Vtu format={fmt}", "--set", f"Output/Vtu precision={precision}"]
-    result = subprocess.run(cmd, capture_output=True, text=True)
+           "--set", f"Time stepping/End time={end_time}"]
+    for setting in settings:
+        cmd += ["--set", setting]
+    env = dict(os.environ)
+    if library:
+        env["LD_LIBRARY_PATH"] = library
+    result = subprocess.run(cmd, capture_output=True, text=True, env=env)
     if result.returncode != 0:
         sys.exit(f"{' '.join(cmd)} failed ({result.returncode}):\n{result.stderr[-3000:]}")
     with open(os.path.join(folder, "summary.json")) as f:
@@ -84,8 +95,19 @@ def main():
     parser.add_argument("binary", nargs="?")
     parser.add_argument("--end-time", type=float, default=0.03)
     parser.add_argument("--repeats", type=int, default=2)
+    parser.add_argument("--reference", action="append", default=[],
+                        metavar="LABEL=TMFDEM")
     options = parser.parse_args()
     binary = tmfdem(options.binary)
+    variants = {name: (binary, [f"Output/Vtu format={fmt}", f"Output/Vtu precision={precision}"],
+                       None)
+                for name, (fmt, precision) in VARIANTS.items()}
+    for reference in options.reference:
+        label, _, path = reference.partition("=")
+        if not label or not path:
+            parser.error(f"--reference {reference}: LABEL=TMFDEM expected")
+        path = tmfdem(path)
+        variants[label] = (path, [], os.path.dirname(path))
     work = work_folder("tmfdem-output-files-")
     print(f"cores: {os.cpu_count()}, load average before: "
           f"{' '.join(f'{x:.2f}' for x in os.getloadavg())}; prm/thermal_shock_disc.prm to "
@@ -93,14 +115,14 @@ def main():
           flush=True)
     results = {}
     for repeat in range(options.repeats):
-        for name, (fmt, precision) in VARIANTS.items():
-            folder = os.path.join(work, f"{name.replace(' ', '_')}_{repeat}")
-            s = run(binary, folder, options.end_time, fmt, precision)
+        for k, (name, (path, settings, library)) in enumerate(variants.items()):
+            folder = os.path.join(work, f"variant{k}_{repeat}")
+            s = run(path, folder, options.end_time, settings, library)
             outputs = len(glob.glob(os.path.join(folder, "solution_*.vtu")))
-            per_output = s["vtu_write_time_s"] / outputs
+            per_output = s.get("vtu_write_time_s", float("nan")) / outputs
             print(f"  {name:14s} repeat {repeat}: {outputs} outputs, vtu writing "
-                  f"{1e3 * s['vtu_write_time_s']:.1f} ms, time loop {s['wall_time_s']:.1f} s",
-                  flush=True)
+                  f"{1e3 * per_output * outputs:.1f} ms, time loop "
+                  f"{s.get('wall_time_s', float('nan')):.1f} s", flush=True)
             r = results.setdefault(name, {"folder": folder, "write": [], "summary": s,
                                           "outputs": outputs})
             r["write"].append(per_output)
