@@ -393,14 +393,16 @@ namespace tmfdem
       "Vtu format",
       "binary",
       Patterns::Selection("binary|ascii"),
-      "Encoding of the vtu files of both layers (solution, cracks, their "
-      "MPI pieces, failure_state.vtu and last_good_state.vtu): binary: VTK "
-      "XML binary, every array zlib-compressed (the discrete layer: "
-      "appended raw data, one zlib block per array; the continuum layer: "
-      "deal.II's base64-encoded blocks), a fraction of the size, read by "
-      "ParaView, VTK and meshio; ascii: plain text, every value written as "
-      "the shortest number that reads back as exactly the same value. Both "
-      "hold the same arrays and values.");
+      "Encoding of the vtu files (solution, cracks, their MPI pieces, "
+      "failure_state.vtu and last_good_state.vtu): binary: VTK XML binary, "
+      "every array zlib-compressed (the discrete layer: appended raw data, "
+      "one zlib block per array; the continuum layer: deal.II's "
+      "base64-encoded blocks), a fraction of the size, read by ParaView, "
+      "VTK and meshio; ascii: the discrete layer's files as plain text, "
+      "every value written as the shortest number that reads back as "
+      "exactly the same value (the same arrays and values as binary); "
+      "deal.II's DataOut writes the continuum layer's files base64-encoded "
+      "either way, with ascii its zlib blocks uncompressed.");
     prm.declare_entry(
       "Vtu precision",
       "single",
