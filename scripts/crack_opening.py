@@ -12,7 +12,10 @@ pair opens by the crack's opening there. Prints the vertices whose opening
 exceeds --threshold (default 1e-6 m) with their reference radius [m] from
 the origin, polar angle [deg] and opening [mm], and the elastic gap (median
 over all shared vertices). --time picks the solution written nearest that
-time [s] instead of the last one. Needs only numpy.
+time [s] instead of the last one. Needs only numpy. Float32 files
+(Output/Vtu precision = single, the default) hold the positions to about
+1e-7 of the coordinates: openings (and elastic gaps) smaller than that are
+not resolved there; write Vtu precision = double for them.
 """
 import argparse
 import os
@@ -31,18 +34,38 @@ def solution_file(folder, time=None):
     return series_entry(folder, "solution", time)
 
 
+def vertex_groups(reference):
+    """The vertex of each node (0, 1, ...): nodes whose reference positions
+    (n, 2) [m] agree to within a tolerance are one. They agree to round-off
+    of the file's values: about 1e-8 of the coordinates in a Float32 file
+    (Output/Vtu precision = single), 1e-16 in a Float64 one; the tolerance,
+    1e-6 of the largest coordinate and at least 1e-7 m, is far above that
+    and far below the distance between two vertices of a mesh. Nodes are
+    chained along x (sorted, split where consecutive x differ by more than
+    the tolerance), then each chain along y, so that no grid line can
+    separate the copies of one vertex."""
+    tolerance = max(1e-7, 1e-6 * np.abs(reference).max(initial=0.0))
+    n = len(reference)
+    by_x = np.argsort(reference[:, 0], kind="stable")
+    chain = np.empty(n, np.int64)
+    chain[by_x] = np.cumsum(np.concatenate(
+        [[True], np.diff(reference[by_x, 0]) > tolerance])) - 1
+    by_y = np.lexsort((reference[:, 1], chain))
+    vertex = np.empty(n, np.int64)
+    vertex[by_y] = np.cumsum(np.concatenate(
+        [[True], (np.diff(chain[by_y]) != 0) |
+         (np.diff(reference[by_y, 1]) > tolerance)])) - 1
+    return vertex
+
+
 def vertex_openings(vtu):
     """Per mesh vertex shared by two or more nodes: (reference radius [m],
     polar angle [deg], opening [m]), as three arrays."""
     pts, _, u, _ = read_vtu(vtu, "displacement")
     u = np.asarray(u).reshape(len(pts), -1)[:, :2]
     reference = pts - u
-    # the nodes of one vertex share its reference position to round-off
-    # (vertices of the meshes are far more than 1e-7 m apart)
-    keys = np.round(reference / 1e-7).astype(np.int64)
-    _, vertex, counts = np.unique(keys, axis=0, return_inverse=True,
-                                  return_counts=True)
-    vertex = vertex.reshape(-1)
+    vertex = vertex_groups(reference)
+    counts = np.bincount(vertex)
     order = np.argsort(vertex, kind="stable")
     starts = np.concatenate([[0], np.cumsum(counts)])
     r, angle, opening = [], [], []

@@ -45,7 +45,7 @@ ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
 VOLATILE = {"wall_time", "element_steps_per_second", "peak_resident_memory_bytes",
             "cpu_time_s", "wall_time_s", "threads_used", "threads_available",
             "cpu_time_busiest_thread_s", "cpu_time_other_threads_s", "prm_file",
-            "communication_time_s"}
+            "communication_time_s", "vtu_write_time_s"}
 SKIP_FILES = {"gmsh.log"}
 NEW_SUMMARY_KEYS = set()  # summary.json entries only the candidate writes
 

@@ -6,16 +6,17 @@ On P > 1 ranks every output of the discrete layer is one piece per rank
 order; `cracks_NNNNN.RRRR.vtu`: its broken joints) and a
 `solution_NNNNN.pvtu` record that the pvd lists. merge_pvtu() rebuilds from
 the pieces the single `solution_NNNNN.vtu` that one rank writes, byte for
-byte in tmfdem's layout (Output/Vtu format: binary, every DataArray one
-zlib block at level 1 with a UInt64 header, each base64-encoded; ascii, the
-pieces' tokens 9 values a line), so that outputs of runs on different rank
-counts can be compared bitwise (scripts/rank_independence.py,
-tests/scripts/mpi_resume_other_ranks.py). read_arrays() decodes every
-DataArray of a tmfdem vtu file (either format) to numpy.
+byte in tmfdem's layout (Output/Vtu format: binary, VTK XML appended raw
+data, every DataArray one zlib block at level ZLIB_LEVEL with a UInt64
+header, in document order after `<AppendedData encoding="raw">` and its mark
+`_`; ascii, the pieces' tokens 9 values a line; either precision, Output/Vtu
+precision), so that outputs of runs on different rank counts can be compared
+bitwise (scripts/rank_independence.py, tests/scripts/mpi_resume_other_ranks.py).
+read_arrays() decodes every DataArray of a tmfdem vtu file (either format,
+either precision) to numpy.
 
     vtu_pieces.py OUTPUT_FOLDER MERGED_FOLDER   writes the merged view
 """
-import base64
 import glob
 import os
 import re
@@ -27,11 +28,17 @@ import zlib
 
 import numpy as np
 
-ARRAY = re.compile(r'<DataArray ([^>]*)>\n(.*?)\n?</DataArray>\n', re.S)
+# an ascii DataArray with its values, or a declaration of an appended one
+ARRAY = re.compile(r'<DataArray ([^>]*?)(?:/>\n|>\n(.*?)\n?</DataArray>\n)', re.S)
 PIECE = re.compile(r'\.\d{4}\.vtu$')
 DTYPES = {"Int8": "i1", "UInt8": "u1", "Int16": "i2", "UInt16": "u2",
           "Int32": "i4", "UInt32": "u4", "Int64": "i8", "UInt64": "u8",
           "Float32": "f4", "Float64": "f8"}
+# what precedes the appended raw data of a binary file, and what follows it
+APPENDED = b'<AppendedData encoding="raw">\n_'
+TAIL = b"\n</AppendedData>\n</VTKFile>\n"
+# zlib level of tmfdem's blocks (vtu_zlib_level, discrete_output.h)
+ZLIB_LEVEL = 1
 
 
 def _attribute(attributes, name):
@@ -39,59 +46,101 @@ def _attribute(attributes, name):
     return m.group(1) if m else None
 
 
-def _decode(attributes, body):
-    """The values of one DataArray: a numpy array for a binary one (UInt64
+def _dtype(attributes):
+    return np.dtype("<" + DTYPES[_attribute(attributes, "type")])
+
+
+def _split(data):
+    """(XML text, appended raw bytes or None) of a tmfdem vtu file's bytes."""
+    at = data.find(APPENDED)
+    if at < 0:
+        return data.decode(), None
+    if not data.endswith(TAIL):
+        raise ValueError("appended raw data not followed by a line break, "
+                         "</AppendedData> and </VTKFile>")
+    return data[:at].decode(), data[at + len(APPENDED):len(data) - len(TAIL)]
+
+
+def _decode(attributes, body, appended):
+    """The values of one DataArray: a numpy array for an appended one (UInt64
     header, zlib blocks, as tmfdem writes), the text tokens for an ascii
     one."""
-    if _attribute(attributes, "format") != "binary":
+    if _attribute(attributes, "format") != "appended":
         return body.split()
-    dtype = np.dtype("<" + DTYPES[_attribute(attributes, "type")])
-    text = "".join(body.split())
-    n_blocks = struct.unpack("<Q", base64.b64decode(text[:12])[:8])[0]
-    header_chars = 4 * -(-8 * (3 + n_blocks) // 3)
-    header = struct.unpack(f"<{3 + n_blocks}Q", base64.b64decode(text[:header_chars]))
-    data, raw, at = base64.b64decode(text[header_chars:]), [], 0
+    at = int(_attribute(attributes, "offset"))
+    n_blocks = struct.unpack_from("<Q", appended, at)[0]
+    header = struct.unpack_from(f"<{3 + n_blocks}Q", appended, at)
+    at += 8 * (3 + n_blocks)
+    raw = []
     for size in header[3:]:
-        raw.append(zlib.decompress(data[at:at + size]))
+        raw.append(zlib.decompress(appended[at:at + size]))
         at += size
-    return np.frombuffer(b"".join(raw), dtype)
+    return np.frombuffer(b"".join(raw), _dtype(attributes))
 
 
-def _encode(attributes, values):
-    """The body of one DataArray in the encoding its attributes name."""
-    if _attribute(attributes, "format") != "binary":
-        return "".join(t + ("\n" if (k + 1) % 9 == 0 else " ")
-                       for k, t in enumerate(values))
-    raw = np.ascontiguousarray(values, "<" + DTYPES[_attribute(attributes, "type")]).tobytes()
-    block = zlib.compress(raw, 1)
-    return (base64.b64encode(struct.pack("<4Q", 1, len(raw), len(raw), len(block))).decode()
-            + base64.b64encode(block).decode())
+def _block(attributes, values):
+    """One DataArray's appended raw data: header and one zlib block."""
+    raw = np.ascontiguousarray(values, _dtype(attributes)).tobytes()
+    block = zlib.compress(raw, ZLIB_LEVEL)
+    return struct.pack("<4Q", 1, len(raw), len(raw), len(block)) + block
 
 
-def _arrays(text, start, end):
-    """(attributes, values) of the DataArrays between two markers."""
+def _arrays(text, appended, start, end):
+    """(attributes without format and offset, values) of the DataArrays
+    between two markers."""
     i, j = text.index(start), text.index(end)
-    return [(m.group(1), _decode(m.group(1), m.group(2))) for m in ARRAY.finditer(text, i, j)]
+    return [(re.sub(r' format="[^"]*"( offset="[^"]*")?', "", m.group(1)),
+             _decode(m.group(1), m.group(2), appended))
+            for m in ARRAY.finditer(text, i, j)]
 
 
-def _data_array(attributes, values):
-    return f"<DataArray {attributes}>\n{_encode(attributes, values)}\n</DataArray>\n"
+def _read(path):
+    """(XML text, appended raw bytes or None) of the file @p path."""
+    with open(path, "rb") as f:
+        return _split(f.read())
 
 
 def read_arrays(path):
     """Every DataArray of the tmfdem vtu file @p path in document order:
-    list of (section, attributes without format, values as numpy array);
-    section is Points, Cells, PointData or CellData."""
-    with open(path) as f:
-        text = f.read()
+    list of (section, attributes without format and offset, values as numpy
+    array); section is Points, Cells, PointData or CellData."""
+    text, appended = _read(path)
     out = []
     for section in ("Points", "Cells", "PointData", "CellData"):
-        for attributes, values in _arrays(text, f"<{section}>", f"</{section}>"):
-            dtype = np.dtype("<" + DTYPES[_attribute(attributes, "type")])
+        for attributes, values in _arrays(text, appended, f"<{section}>", f"</{section}>"):
+            dtype = _dtype(attributes)
             if not isinstance(values, np.ndarray):
+                # float32 tokens: the shortest text of the float, read as
+                # the nearest double, then rounded to the float it names
                 values = np.array(values, dtype=float if dtype.kind == "f" else int).astype(dtype)
-            out.append((section, re.sub(r' format="[^"]*"', "", attributes), values))
+            out.append((section, attributes, values))
     return out
+
+
+def _document(head, n_points, n_cells, sections):
+    """The bytes of a vtu file in tmfdem's layout: @p head (up to
+    <UnstructuredGrid>; binary if it names a compressor) and the arrays of
+    each section, a list of (attributes without format, values)."""
+    binary = "compressor=" in head
+    out, appended = [head, '<UnstructuredGrid>\n'
+                     f'<Piece NumberOfPoints="{n_points}" NumberOfCells="{n_cells}">\n'], []
+    size = 0
+    for section, arrays in zip(("Points", "Cells", "PointData", "CellData"), sections):
+        out.append(f"<{section}>\n")
+        for attributes, values in arrays:
+            if binary:
+                out.append(f'<DataArray {attributes} format="appended" offset="{size}"/>\n')
+                appended.append(_block(attributes, values))
+                size += len(appended[-1])
+            else:
+                body = "".join(t + ("\n" if (k + 1) % 9 == 0 else " ")
+                               for k, t in enumerate(values))
+                out.append(f'<DataArray {attributes} format="ascii">\n{body}\n</DataArray>\n')
+        out.append(f"</{section}>\n")
+    out.append("</Piece>\n</UnstructuredGrid>\n")
+    if not binary:
+        return ("".join(out) + "</VTKFile>\n").encode()
+    return "".join(out).encode() + APPENDED + b"".join(appended) + TAIL
 
 
 def _concatenate(parts):
@@ -115,7 +164,7 @@ def _shifted(values, shift):
 
 
 def merge_pvtu(path):
-    """The text of the one-rank vtu equal to the pieces of the pvtu @p path."""
+    """The bytes of the one-rank vtu equal to the pieces of the pvtu @p path."""
     folder = os.path.dirname(path)
     sources = [p.get("Source") for p in ET.parse(path).getroot().iter("Piece")]
     points, cells, point_data, cell_data = [], {}, {}, {}
@@ -124,15 +173,14 @@ def merge_pvtu(path):
     head = attr_points = None
     empty_cell = {}  # cell data of a placeholder cell, by array
     for source in sources:
-        with open(os.path.join(folder, source)) as f:
-            text = f.read()
+        text, appended = _read(os.path.join(folder, source))
         if head is None:
             head = text[:text.index("<UnstructuredGrid>")]
-        (attr_points, pts), = _arrays(text, "<Points>", "</Points>")
+        (attr_points, pts), = _arrays(text, appended, "<Points>", "</Points>")
         n_points = len(pts) // 3
         points.append(pts)
         cell_arrays = {_attribute(a, "Name"): (a, t)
-                       for a, t in _arrays(text, "<Cells>", "</Cells>")}
+                       for a, t in _arrays(text, appended, "<Cells>", "</Cells>")}
         # a crack piece without cracks holds one placeholder cell (a
         # poly-vertex of no points, VTK type 2): left out here, put back
         # below if the whole has no cells
@@ -145,7 +193,7 @@ def merge_pvtu(path):
             cells.setdefault(name, (cell_arrays[name][0], []))[1].append(values)
         for target, order, start, end in ((point_data, order_point, "<PointData>", "</PointData>"),
                                           (cell_data, order_cell, "<CellData>", "</CellData>")):
-            for a, t in _arrays(text, start, end):
+            for a, t in _arrays(text, appended, start, end):
                 if a not in target:
                     target[a] = []
                     order.append(a)
@@ -165,17 +213,11 @@ def merge_pvtu(path):
                            else [str(value)])
         for a in order_cell:
             cell_data[a] = [empty_cell[a]]
-    n_cells = len(cells["types"][1])
-    out = [head, '<UnstructuredGrid>\n'
-           f'<Piece NumberOfPoints="{len(points) // 3}" NumberOfCells="{n_cells}">\n'
-           '<Points>\n', _data_array(attr_points, points), "</Points>\n<Cells>\n"]
-    out += [_data_array(*cells[name]) for name in ("connectivity", "offsets", "types")]
-    out.append("</Cells>\n<PointData>\n")
-    out += [_data_array(a, _concatenate(point_data[a])) for a in order_point]
-    out.append("</PointData>\n<CellData>\n")
-    out += [_data_array(a, _concatenate(cell_data[a])) for a in order_cell]
-    out.append("</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n")
-    return "".join(out)
+    return _document(head, len(points) // 3, len(cells["types"][1]),
+                     [[(attr_points, points)],
+                      [cells[name] for name in ("connectivity", "offsets", "types")],
+                      [(a, _concatenate(point_data[a])) for a in order_point],
+                      [(a, _concatenate(cell_data[a])) for a in order_cell]])
 
 
 def merged_view(folder, merged):
@@ -192,7 +234,7 @@ def merged_view(folder, merged):
         target = os.path.join(merged, os.path.relpath(path, folder))
         os.makedirs(os.path.dirname(target), exist_ok=True)
         if path.endswith(".pvtu"):
-            with open(target[:-len(".pvtu")] + ".vtu", "w") as f:
+            with open(target[:-len(".pvtu")] + ".vtu", "wb") as f:
                 f.write(merge_pvtu(path))
         elif path.endswith(".pvd"):
             with open(path) as f:

@@ -393,13 +393,31 @@ namespace tmfdem
       "Vtu format",
       "binary",
       Patterns::Selection("binary|ascii"),
-      "Encoding of the vtu files of both layers (solution, cracks, their "
-      "MPI pieces, failure_state.vtu and last_good_state.vtu): binary: VTK "
-      "XML binary, every array zlib-compressed and base64-encoded (a "
-      "fraction of the size, read by ParaView, VTK and meshio); ascii: "
-      "plain text, every value written as the shortest number that reads "
-      "back as exactly the same value. Both hold the same arrays and "
-      "values.");
+      "Encoding of the vtu files (solution, cracks, their MPI pieces, "
+      "failure_state.vtu and last_good_state.vtu): binary: VTK XML binary, "
+      "every array zlib-compressed (the discrete layer: appended raw data, "
+      "one zlib block per array; the continuum layer: deal.II's "
+      "base64-encoded blocks), a fraction of the size, read by ParaView, "
+      "VTK and meshio; ascii: the discrete layer's files as plain text, "
+      "every value written as the shortest number that reads back as "
+      "exactly the same value (the same arrays and values as binary); "
+      "deal.II's DataOut writes the continuum layer's files base64-encoded "
+      "either way, with ascii its zlib blocks uncompressed.");
+    prm.declare_entry(
+      "Vtu precision",
+      "single",
+      Patterns::Selection("single|double"),
+      "Floating-point type of the discrete layer's vtu files (solution, "
+      "cracks, their MPI pieces, failure_state.vtu and last_good_state.vtu): "
+      "single: point coordinates and every real point and cell array as "
+      "Float32, each value the double of the computation rounded to the "
+      "nearest float (about 7 significant digits; the size deal.II's "
+      "DataOut writes, so the continuum layer's vtu files are Float32 "
+      "either way); double: as Float64, the computed doubles themselves "
+      "(for comparisons to round-off). Integer arrays (connectivity, ids, "
+      "failure modes) are exact either way, and Vtu format = ascii and "
+      "binary hold the same values at either precision. Monitors "
+      "(probes.csv, lines.csv, history.csv) do not depend on it.");
     prm.declare_entry("Write final mesh",
                       "false",
                       Patterns::Bool(),
@@ -426,11 +444,12 @@ namespace tmfdem
       directory = "output/" + prm_stem;
     times = Utilities::string_to_double(
       Utilities::split_string_list(prm.get("Times"), ','));
-    interval          = prm.get_double("Interval");
-    write_vtu         = prm.get_bool("Write vtu");
-    binary_vtu        = prm.get("Vtu format") == "binary";
-    write_final_mesh  = prm.get_bool("Write final mesh");
-    progress_interval = prm.get_double("Progress interval");
+    interval             = prm.get_double("Interval");
+    write_vtu            = prm.get_bool("Write vtu");
+    binary_vtu           = prm.get("Vtu format") == "binary";
+    single_precision_vtu = prm.get("Vtu precision") == "single";
+    write_final_mesh     = prm.get_bool("Write final mesh");
+    progress_interval    = prm.get_double("Progress interval");
     prm.leave_subsection();
     for (unsigned int i = 1; i < times.size(); ++i)
       if (!(times[i] > times[i - 1]))

@@ -150,13 +150,14 @@ namespace tmfdem
             if (!distributed)
               series.write(time,
                            discrete_solution_vtu(model,
-                                                 parameters.output.binary_vtu,
+                                                 vtu_encoding(
+                                                   parameters.output),
                                                  {{"T", &T}}));
             else
               {
                 const std::string piece =
                   discrete_solution_vtu(model,
-                                        parameters.output.binary_vtu,
+                                        vtu_encoding(parameters.output),
                                         {{"T", &T}},
                                         partition.begin(),
                                         partition.end());

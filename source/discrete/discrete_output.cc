@@ -3,15 +3,18 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <iomanip>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <tmfdem/base/parameters.h>
 #include <tmfdem/base/polar_stress.h>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/temperature_source.h>
 #include <tmfdem/io/output_files.h>
+#include <type_traits>
 #include <zlib.h>
 
 namespace tmfdem
@@ -30,110 +33,120 @@ namespace tmfdem
         out.append(text, result.ptr);
       }
 
-      /** Appends @p bytes base64-encoded (RFC 4648, with padding). */
-      void
-      append_base64(std::string         &out,
-                    const unsigned char *bytes,
-                    const std::size_t    n)
+      /** The VTK type name of the C++ type @p Stored. */
+      template <typename Stored>
+      constexpr const char *
+      vtk_type_name()
       {
-        static const char digits[] =
-          "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-        out.reserve(out.size() + 4 * ((n + 2) / 3));
-        std::size_t i = 0;
-        for (; i + 2 < n; i += 3)
+        if constexpr (std::is_same_v<Stored, float>)
+          return "Float32";
+        else if constexpr (std::is_same_v<Stored, double>)
+          return "Float64";
+        else if constexpr (std::is_same_v<Stored, std::int64_t>)
+          return "Int64";
+        else if constexpr (std::is_same_v<Stored, std::int32_t>)
+          return "Int32";
+        else
           {
-            const std::uint32_t v =
-              (bytes[i] << 16) | (bytes[i + 1] << 8) | bytes[i + 2];
-            out += digits[v >> 18];
-            out += digits[(v >> 12) & 63];
-            out += digits[(v >> 6) & 63];
-            out += digits[v & 63];
-          }
-        if (i < n)
-          {
-            const std::uint32_t v =
-              (bytes[i] << 16) | (i + 1 < n ? bytes[i + 1] << 8 : 0);
-            out += digits[v >> 18];
-            out += digits[(v >> 12) & 63];
-            out += i + 1 < n ? digits[(v >> 6) & 63] : '=';
-            out += '=';
+            static_assert(std::is_same_v<Stored, std::uint8_t>,
+                          "a vtu array of a type without a VTK name");
+            return "UInt8";
           }
       }
 
       /**
-       * The body of a binary DataArray as VTK's XML readers expect it with
-       * compressor="vtkZLibDataCompressor" and header_type="UInt64": the
-       * header [number of blocks, block size, size of the last block,
-       * compressed size of each block] and the zlib-compressed values, each
-       * base64-encoded. Always one block (zlib's fastest level), also for an
-       * empty array (header [1, 0, 0, size of an empty zlib stream]: meshio
-       * cannot read a header without blocks).
+       * Appends one DataArray's block of appended raw data as VTK's XML
+       * readers expect it with compressor="vtkZLibDataCompressor" and
+       * header_type="UInt64": the header [number of blocks, block size,
+       * size of the last block, compressed size of each block] and the
+       * zlib-compressed values (level vtu_zlib_level), as raw bytes. Always
+       * one block, also for an empty array (header [1, 0, 0, size of an
+       * empty zlib stream]: meshio cannot read a header without blocks).
        */
       void
       append_compressed(std::string &out, const void *data, const std::size_t n)
       {
-        uLongf                     size = compressBound(n);
-        std::vector<unsigned char> compressed(size);
-        const int                  status = compress2(compressed.data(),
+        uLongf            size = compressBound(n);
+        const std::size_t at   = out.size();
+        out.resize(at + 4 * sizeof(std::uint64_t) + size);
+        const int status = compress2(reinterpret_cast<Bytef *>(
+                                       &out[at + 4 * sizeof(std::uint64_t)]),
                                      &size,
                                      static_cast<const Bytef *>(data),
                                      n,
-                                     Z_BEST_SPEED);
+                                     vtu_zlib_level);
         if (status != Z_OK)
-          throw std::runtime_error("zlib failed to compress a vtu array");
+          throw std::runtime_error("zlib failed to compress a vtu array (" +
+                                   std::to_string(n) + " bytes, zlib status " +
+                                   std::to_string(status) + ")");
         const std::uint64_t header[4] = {1, n, n, size};
-        append_base64(out,
-                      reinterpret_cast<const unsigned char *>(header),
-                      sizeof(header));
-        append_base64(out, compressed.data(), size);
+        std::memcpy(&out[at], header, sizeof(header));
+        out.resize(at + sizeof(header) + size);
       }
 
       /**
        * One VTK XML UnstructuredGrid piece written as text: every DataArray
-       * either ascii (the shortest text that reads back as the same value,
-       * 9 values a line) or binary (append_compressed()), the same arrays,
-       * names and values in either.
+       * either ascii (the shortest text that reads back as the same stored
+       * value, 9 values a line) or binary (a declaration with its offset in
+       * the appended raw data, append_compressed()), the same arrays,
+       * names, types and values in either.
        */
       class VtuText
       {
       public:
-        explicit VtuText(const bool binary)
-          : binary(binary)
+        explicit VtuText(const VtuEncoding &encoding)
+          : encoding(encoding)
         {}
 
-        /** A DataArray of VTK type @p type (Float64, Int64, Int32, UInt8)
-         *  holding @p values converted to the C++ type @p Stored of that
-         *  VTK type. */
+        /** A DataArray of @p values converted to the C++ type @p Stored
+         *  (float, double, std::int64_t, std::int32_t, std::uint8_t; real
+         *  values rounded to the nearest), of that type's VTK type. */
         template <typename Stored, typename T>
         void
-        data_array(const std::string    &type,
-                   const std::string    &name,
+        data_array(const std::string    &name,
                    const unsigned int    components,
                    const std::vector<T> &values)
         {
-          text += "<DataArray type=\"" + type + "\"";
+          text +=
+            std::string("<DataArray type=\"") + vtk_type_name<Stored>() + "\"";
           if (!name.empty())
             text += " Name=\"" + name + "\"";
-          text += " NumberOfComponents=\"" + std::to_string(components) +
-                  "\" format=\"" + (binary ? "binary" : "ascii") + "\">\n";
-          if (binary)
+          text += " NumberOfComponents=\"" + std::to_string(components) + "\"";
+          if (encoding.binary)
             {
+              // the offset counts from the byte after the mark '_'
+              text += " format=\"appended\" offset=\"" +
+                      std::to_string(appended.size()) + "\"/>\n";
               const std::vector<Stored> stored(values.begin(), values.end());
-              append_compressed(text,
+              append_compressed(appended,
                                 stored.data(),
                                 stored.size() * sizeof(Stored));
+              return;
             }
-          else
-            for (std::size_t i = 0; i < values.size(); ++i)
-              {
-                // UInt8 as a number, not as a character
-                if constexpr (sizeof(Stored) == 1)
-                  append_number(text, static_cast<int>(values[i]));
-                else
-                  append_number(text, static_cast<Stored>(values[i]));
-                text += (i + 1) % 9 == 0 ? '\n' : ' ';
-              }
+          text += " format=\"ascii\">\n";
+          for (std::size_t i = 0; i < values.size(); ++i)
+            {
+              // UInt8 as a number, not as a character
+              if constexpr (sizeof(Stored) == 1)
+                append_number(text, static_cast<int>(values[i]));
+              else
+                append_number(text, static_cast<Stored>(values[i]));
+              text += (i + 1) % 9 == 0 ? '\n' : ' ';
+            }
           text += "\n</DataArray>\n";
+        }
+
+        /** A DataArray of real @p values: Float32 (each rounded to the
+         *  nearest float) or Float64, as the encoding's precision says. */
+        void
+        real_array(const std::string         &name,
+                   const unsigned int         components,
+                   const std::vector<double> &values)
+        {
+          if (encoding.single_precision)
+            data_array<float>(name, components, values);
+          else
+            data_array<double>(name, components, values);
         }
 
         void
@@ -142,7 +155,9 @@ namespace tmfdem
           text += markup;
         }
 
-        /** The document, the header naming the compressor if binary. */
+        /** The document, the header naming the compressor and the appended
+         *  raw data (after the mark '_', a line break after it) if
+         *  binary. */
         std::string
         document() const
         {
@@ -150,20 +165,33 @@ namespace tmfdem
           const std::uint16_t one = 1;
           const bool          little_endian =
             *reinterpret_cast<const unsigned char *>(&one) == 1;
-          return std::string("<?xml version=\"1.0\"?>\n<VTKFile "
-                             "type=\"UnstructuredGrid\" version=\"1.0\" "
-                             "byte_order=\"") +
-                 (little_endian ? "LittleEndian" : "BigEndian") + "\"" +
-                 (binary ? " header_type=\"UInt64\" "
-                           "compressor=\"vtkZLibDataCompressor\"" :
-                           "") +
-                 ">\n<UnstructuredGrid>\n" + text +
-                 "</UnstructuredGrid>\n</VTKFile>\n";
+          std::string out =
+            std::string("<?xml version=\"1.0\"?>\n<VTKFile "
+                        "type=\"UnstructuredGrid\" version=\"1.0\" "
+                        "byte_order=\"") +
+            (little_endian ? "LittleEndian" : "BigEndian") + "\"" +
+            (encoding.binary ? " header_type=\"UInt64\" "
+                               "compressor=\"vtkZLibDataCompressor\"" :
+                               "") +
+            ">\n<UnstructuredGrid>\n";
+          out.reserve(out.size() + text.size() + appended.size() + 64);
+          out += text;
+          out += "</UnstructuredGrid>\n";
+          if (encoding.binary)
+            {
+              out += "<AppendedData encoding=\"raw\">\n_";
+              out += appended;
+              out += "\n</AppendedData>\n";
+            }
+          out += "</VTKFile>\n";
+          return out;
         }
 
       private:
-        bool        binary;
+        VtuEncoding encoding;
         std::string text;
+        /** The appended raw data of the binary arrays so far. */
+        std::string appended;
       };
 
       /** The point and cell data arrays of a piece: added to a VtuText in
@@ -173,7 +201,7 @@ namespace tmfdem
       /** A piece of @p n_cells cells of VTK type @p vtk_type with
        *  @p nodes_per_cell nodes each. */
       std::string
-      grid(const bool                       binary,
+      grid(const VtuEncoding               &encoding,
            const std::vector<double>       &points_xy,
            const std::vector<unsigned int> &connectivity,
            const std::size_t                n_cells,
@@ -183,7 +211,7 @@ namespace tmfdem
            const ArrayWriter               &cell_data)
       {
         const std::size_t n_points = points_xy.size() / 2;
-        VtuText           out(binary);
+        VtuText           out(encoding);
         out.add("<Piece NumberOfPoints=\"" + std::to_string(n_points) +
                 "\" NumberOfCells=\"" + std::to_string(n_cells) +
                 "\">\n<Points>\n");
@@ -193,15 +221,15 @@ namespace tmfdem
             points[3 * i]     = points_xy[2 * i];
             points[3 * i + 1] = points_xy[2 * i + 1];
           }
-        out.data_array<double>("Float64", "", 3, points);
+        out.real_array("", 3, points);
         out.add("</Points>\n<Cells>\n");
-        out.data_array<std::int64_t>("Int64", "connectivity", 1, connectivity);
+        out.data_array<std::int64_t>("connectivity", 1, connectivity);
         std::vector<std::size_t>  offsets(n_cells);
         std::vector<unsigned int> types(n_cells, vtk_type);
         for (std::size_t c = 0; c < n_cells; ++c)
           offsets[c] = (c + 1) * nodes_per_cell;
-        out.data_array<std::int64_t>("Int64", "offsets", 1, offsets);
-        out.data_array<std::uint8_t>("UInt8", "types", 1, types);
+        out.data_array<std::int64_t>("offsets", 1, offsets);
+        out.data_array<std::uint8_t>("types", 1, types);
         out.add("</Cells>\n<PointData>\n");
         if (point_data)
           point_data(out);
@@ -211,6 +239,12 @@ namespace tmfdem
         return out.document();
       }
     } // namespace
+
+    VtuEncoding
+    vtu_encoding(const OutputParameters &output)
+    {
+      return {output.binary_vtu, output.single_precision_vtu};
+    }
 
     VtuSeries::VtuSeries(const std::string &folder,
                          const std::string &base_name)
@@ -296,8 +330,9 @@ namespace tmfdem
            << parallel_declarations(piece_text, "<PointData>", "</PointData>")
            << "</PPointData>\n<PCellData>\n"
            << parallel_declarations(piece_text, "<CellData>", "</CellData>")
-           << "</PCellData>\n<PPoints>\n<PDataArray type=\"Float64\" "
-              "NumberOfComponents=\"3\"/>\n</PPoints>\n";
+           << "</PCellData>\n<PPoints>\n"
+           << parallel_declarations(piece_text, "<Points>", "</Points>")
+           << "</PPoints>\n";
       for (unsigned int r = 0; r < n_ranks; ++r)
         pvtu << "<Piece Source=\"" << piece_name(stem, r) << "\"/>\n";
       pvtu << "</PUnstructuredGrid>\n</VTKFile>\n";
@@ -338,7 +373,7 @@ namespace tmfdem
     std::string
     discrete_solution_vtu(
       const DiscreteModel &model,
-      const bool           binary,
+      const VtuEncoding   &encoding,
       const std::vector<std::pair<std::string, const std::vector<double> *>>
                                   &extra_point_fields,
       const unsigned int           first_element,
@@ -367,15 +402,14 @@ namespace tmfdem
           velocity[3 * i + 2]     = 0.;
         }
       const auto point_data = [&](VtuText &out) {
-        out.data_array<double>("Float64", "displacement", 3, displacement);
-        out.data_array<double>("Float64", "velocity", 3, velocity);
+        out.real_array("displacement", 3, displacement);
+        out.real_array("velocity", 3, velocity);
         for (const auto &[name, values] : extra_point_fields)
-          out.data_array<double>("Float64",
-                                 name,
-                                 1,
-                                 std::vector<double>(values->begin() + node0,
-                                                     values->begin() + node0 +
-                                                       n_points));
+          out.real_array(name,
+                         1,
+                         std::vector<double>(values->begin() + node0,
+                                             values->begin() + node0 +
+                                               n_points));
       };
 
       std::vector<double> sxx(n_cells), syy(n_cells), sxy(n_cells),
@@ -407,12 +441,12 @@ namespace tmfdem
             }
         }
       const auto cell_data = [&](VtuText &out) {
-        out.data_array<double>("Float64", "sxx", 1, sxx);
-        out.data_array<double>("Float64", "syy", 1, syy);
-        out.data_array<double>("Float64", "sxy", 1, sxy);
-        out.data_array<double>("Float64", "joint_damage", 1, damage);
-        out.data_array<std::int32_t>("Int32", "material_id", 1, material);
-        out.data_array<std::int32_t>("Int32", "body", 1, body);
+        out.real_array("sxx", 1, sxx);
+        out.real_array("syy", 1, syy);
+        out.real_array("sxy", 1, sxy);
+        out.real_array("joint_damage", 1, damage);
+        out.data_array<std::int32_t>("material_id", 1, material);
+        out.data_array<std::int32_t>("body", 1, body);
         if (polar_centre)
           {
             std::vector<double> srr(n_cells), stt(n_cells);
@@ -429,18 +463,17 @@ namespace tmfdem
                 srr[c]           = polar[0];
                 stt[c]           = polar[1];
               }
-            out.data_array<double>("Float64", "srr", 1, srr);
-            out.data_array<double>("Float64", "stt", 1, stt);
+            out.real_array("srr", 1, srr);
+            out.real_array("stt", 1, stt);
           }
         if (!model.expansion_factor.empty())
-          out.data_array<double>(
-            "Float64",
+          out.real_array(
             "expansion_factor",
             1,
             std::vector<double>(model.expansion_factor.begin() + first,
                                 model.expansion_factor.begin() + end));
       };
-      return grid(binary,
+      return grid(encoding,
                   points,
                   connectivity,
                   n_cells,
@@ -452,7 +485,7 @@ namespace tmfdem
 
     std::string
     crack_vtu(const DiscreteModel &model,
-              const bool           binary,
+              const VtuEncoding   &encoding,
               const unsigned int   first_joint,
               const unsigned int   end_joint)
     {
@@ -486,10 +519,10 @@ namespace tmfdem
           break_time.push_back(std::numeric_limits<double>::quiet_NaN());
         }
       const auto cell_data = [&](VtuText &out) {
-        out.data_array<std::int32_t>("Int32", "failure_mode", 1, mode);
-        out.data_array<double>("Float64", "break_time", 1, break_time);
+        out.data_array<std::int32_t>("failure_mode", 1, mode);
+        out.real_array("break_time", 1, break_time);
       };
-      return grid(binary,
+      return grid(encoding,
                   points,
                   connectivity,
                   mode.size(),

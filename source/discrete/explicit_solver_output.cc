@@ -8,6 +8,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -61,7 +62,13 @@ namespace tmfdem
       synchronise();
       contact.synchronise_pairs(partition);
       if (partition.distributed() && parameters.output.write_vtu)
-        write_vtu_pieces();
+        {
+          const auto start = std::chrono::steady_clock::now();
+          write_vtu_pieces();
+          vtu_write_time += std::chrono::duration<double>(
+                              std::chrono::steady_clock::now() - start)
+                              .count();
+        }
       on_rank_zero([this]() { write_output_files(); });
     }
 
@@ -80,7 +87,7 @@ namespace tmfdem
         {parameters.mechanics.polar_centre[0],
          parameters.mechanics.polar_centre[1]}};
       return discrete_solution_vtu(model,
-                                   parameters.output.binary_vtu,
+                                   vtu_encoding(parameters.output),
                                    fields,
                                    first,
                                    end,
@@ -95,7 +102,7 @@ namespace tmfdem
       const std::string solution =
         solution_vtu(partition.begin(), partition.end());
       const std::string cracks = crack_vtu(model,
-                                           parameters.output.binary_vtu,
+                                           vtu_encoding(parameters.output),
                                            partition.first_joint(),
                                            partition.end_joint());
       std::string       failure;
@@ -137,9 +144,14 @@ namespace tmfdem
     {
       if (parameters.output.write_vtu && !partition.distributed())
         {
+          const auto start = std::chrono::steady_clock::now();
           solution_series->write(time, solution_vtu());
           crack_series->write(time,
-                              crack_vtu(model, parameters.output.binary_vtu));
+                              crack_vtu(model,
+                                        vtu_encoding(parameters.output)));
+          vtu_write_time += std::chrono::duration<double>(
+                              std::chrono::steady_clock::now() - start)
+                              .count();
         }
       // monitor stresses: recovered at the mesh vertices (vtu files hold
       // the raw element values); stress_recovery.h. What is known on each
@@ -301,6 +313,8 @@ namespace tmfdem
                             communicator);
       const double communication_max =
         Utilities::MPI::max(partition.communication_time(), communicator);
+      const double vtu_write_max =
+        Utilities::MPI::max(vtu_write_time, communicator);
       const unsigned int contact_pairs = contact.n_mechanical_pairs(partition);
       const double       joint_steps =
         Utilities::MPI::sum(joint_steps_done, communicator);
@@ -411,6 +425,7 @@ namespace tmfdem
                static_cast<long long>(partition.n_synchronisations()))
           .add("synchronisation_bytes", sync_bytes)
           .add("communication_time_s", communication_max)
+          .add("vtu_write_time_s", vtu_write_max)
           .add("momentum_x", px)
           .add("momentum_y", py)
           .add("energy", energies)

@@ -159,7 +159,8 @@ namespace tmfdem
     DataOutBase::VtkFlags flags;
     flags.time  = time;
     flags.cycle = records.size();
-    // deal.II writes ascii without compression
+    // deal.II 9.4 writes base64 blocks whenever it has zlib: ascii leaves
+    // them uncompressed
     flags.compression_level = binary ? DataOutBase::VtkFlags::best_speed :
                                        DataOutBase::VtkFlags::no_compression;
     data_out.set_flags(flags);

@@ -84,7 +84,7 @@ VOLATILE = {"wall_time", "element_steps_per_second",
             "cpu_time_other_threads_s",
             # traffic of a run that was cut off and resumed differs
             "ghost_exchange_bytes", "synchronisations", "synchronisation_bytes",
-            "communication_time_s"}
+            "communication_time_s", "vtu_write_time_s"}
 
 
 def command(folder, *settings, resume=False):

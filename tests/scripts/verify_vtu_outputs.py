@@ -5,14 +5,20 @@
     verify_vtu_outputs.py TMFDEM MPIRUN|none OUT paraview
 
 formats: the quenched disc (prm/thermal_shock_disc.prm, coarse, T0 = 800 C,
-Weibull joint strengths: joints break by 6 ms) run with Output/Vtu format = ascii and = binary, on one rank and
-on two: the same files; every vtu (pieces included) holds the same
-DataArrays, in the same order, with the same attributes and bitwise the
-same values (decoded by scripts/vtu_pieces.py and by VTK,
-vtkmodules); pvd and pvtu records identical; the binary files hold only
-binary arrays and are at least 2x smaller than the (lossless) ascii; the two-rank pieces merge into
-the one-rank files byte for byte; meshio reads every vtu, also the crack
-file written before any joint breaks.
+Weibull joint strengths: joints break by 6 ms) run with Output/Vtu format =
+ascii and = binary at Output/Vtu precision = single and = double, on one rank
+and on two: the same files; at either precision every vtu (pieces included)
+holds the same DataArrays, in the same order, with the same attributes and
+bitwise the same values in both encodings (decoded by scripts/vtu_pieces.py
+and by VTK, vtkmodules); pvd and pvtu records identical; the binary files
+hold only appended raw data (no ascii arrays, no base64), zlib-compressed;
+single precision: coordinates and real arrays Float32, bitwise the double
+run's values rounded to float, integer arrays equal; double: Float64. The
+binary single-precision folder at least 3x smaller than the double-precision
+ascii one (whole folder), binary at least 2x smaller than ascii at double
+precision (vtu files); the two-rank pieces merge into the one-rank files
+byte for byte at either precision, and VTK reads the two-rank pvtu; meshio
+reads every vtu, also the crack file written before any joint breaks.
 
 paraview: ParaView's own readers (pvbatch under xvfb-run) open the
 continuum and the discrete solution.pvd, cracks.pvd and a two-rank pvtu:
@@ -50,10 +56,11 @@ SOLUTION = ({"displacement", "velocity", "T"},
 CRACKS = (set(), {"failure_mode", "break_time"})
 
 
-def disc_run(folder, fmt, ranks=1):
+def disc_run(folder, fmt, ranks=1, precision="single"):
     if not os.path.exists(os.path.join(folder, "summary.json")):
         shutil.rmtree(folder, ignore_errors=True)
         run(binary, PRM, folder, *DISC, f"Output/Vtu format={fmt}",
+            f"Output/Vtu precision={precision}",
             mpirun=mpirun if ranks > 1 else None, np=ranks)
     return folder
 
@@ -67,7 +74,24 @@ def same_bits(a, b):
     return a.dtype == b.dtype and a.shape == b.shape and a.tobytes() == b.tobytes()
 
 
-def compare(ascii_folder, binary_folder):
+def xml_part(path):
+    """The XML of a vtu file: all of an ascii one, a binary one's up to its
+    appended raw data."""
+    with open(path, "rb") as f:
+        data = f.read()
+    at = data.find(b"<AppendedData")
+    return data[:at if at >= 0 else len(data)].decode()
+
+
+def appended_raw(path):
+    """Does the file end in appended raw data (after its mark '_')?"""
+    with open(path, "rb") as f:
+        data = f.read()
+    return data.find(b'<AppendedData encoding="raw">\n_') > 0 and \
+        data.endswith(b"\n</AppendedData>\n</VTKFile>\n")
+
+
+def compare(ascii_folder, binary_folder, precision):
     """Every vtu of the two folders: same arrays and values; records equal."""
     ok = check(files(ascii_folder, ".vtu") == files(binary_folder, ".vtu") and
                files(ascii_folder, ".vtu"),
@@ -76,12 +100,17 @@ def compare(ascii_folder, binary_folder):
         ok &= check(filecmp.cmp(os.path.join(ascii_folder, record),
                                 os.path.join(binary_folder, record), shallow=False),
                     f"{record} identical")
+    real = "Float32" if precision == "single" else "Float64"
+    other = "Float64" if precision == "single" else "Float32"
     n_arrays = 0
     for name in files(binary_folder, ".vtu"):
         pa, pb = os.path.join(ascii_folder, name), os.path.join(binary_folder, name)
-        with open(pb) as f:
-            text = f.read()
-        fine = 'format="ascii"' not in text and 'compressor="vtkZLibDataCompressor"' in text
+        text, text_a = xml_part(pb), xml_part(pa)
+        fine = ('format="ascii"' not in text and 'format="binary"' not in text and
+                'compressor="vtkZLibDataCompressor"' in text and
+                text.count('format="appended"') == text.count("<DataArray") and
+                appended_raw(pb))
+        fine &= all(f'type="{real}"' in t and f'type="{other}"' not in t for t in (text, text_a))
         own_a, own_b = vtu_pieces.read_arrays(pa), vtu_pieces.read_arrays(pb)
         fine &= len(own_a) == len(own_b)
         for (sa, aa, va), (sb, ab, vb) in zip(own_a, own_b):
@@ -92,12 +121,37 @@ def compare(ascii_folder, binary_folder):
             fine &= same_bits(xa, xb)
         for da, db in zip(vtk_a[4:], vtk_b[4:]):
             fine &= list(da) == list(db) and all(same_bits(da[k], db[k]) for k in da)
+        fine &= vtk_b[0].dtype == (np.float32 if precision == "single" else np.float64)
         expected = CRACKS if os.path.basename(name).startswith("cracks") else SOLUTION
         fine &= set(vtk_b[4]) == expected[0] and set(vtk_b[5]) == expected[1]
         if not fine:
             ok &= check(False, f"{name}: ascii and binary differ")
-    return ok & check(n_arrays > 0, f"{n_arrays} DataArrays bitwise equal in ascii and binary "
-                      f"(attributes, order, values; read by vtu_pieces.py and by VTK)")
+    return ok & check(n_arrays > 0, f"{precision} precision: {n_arrays} DataArrays bitwise "
+                      f"equal in ascii and binary (attributes, order, values; read by "
+                      f"vtu_pieces.py and by VTK), real arrays {real}, binary arrays appended "
+                      f"raw")
+
+
+def rounded(single_folder, double_folder):
+    """The single-precision files hold the double ones' values rounded to
+    float (integer arrays equal)."""
+    ok, n_real = True, 0
+    for name in files(double_folder, ".vtu"):
+        a = vtu_pieces.read_arrays(os.path.join(single_folder, name))
+        b = vtu_pieces.read_arrays(os.path.join(double_folder, name))
+        fine = len(a) == len(b)
+        for (sa, aa, va), (sb, ab, vb) in zip(a, b):
+            fine &= sa == sb and aa.replace("Float32", "Float64") == ab
+            if vb.dtype == np.float64:
+                fine &= va.dtype == np.float32 and same_bits(va, vb.astype(np.float32))
+                n_real += 1
+            else:
+                fine &= same_bits(va, vb)
+        if not fine:
+            ok &= check(False, f"{name}: the single-precision values are not the double "
+                        f"ones rounded to float")
+    return ok & check(n_real > 0, f"{n_real} real arrays of {len(files(double_folder, '.vtu'))} "
+                      f"files: single precision = the double values rounded to float, bitwise")
 
 
 def size(folder, ext=""):
@@ -108,31 +162,50 @@ def formats():
     ok = True
     folders = {}
     for ranks in ([1, 2] if mpirun else [1]):
-        for fmt in ("ascii", "binary"):
-            folders[ranks, fmt] = disc_run(os.path.join(out, f"np{ranks}_{fmt}"), fmt, ranks)
-        print(f"-- {ranks} rank(s)", flush=True)
-        ok &= compare(folders[ranks, "ascii"], folders[ranks, "binary"])
-    a, b = folders[1, "ascii"], folders[1, "binary"]
+        for precision in ("single", "double"):
+            for fmt in ("ascii", "binary"):
+                tag = f"np{ranks}_{fmt}" + ("" if precision == "single" else "_double")
+                folders[ranks, fmt, precision] = disc_run(os.path.join(out, tag), fmt, ranks,
+                                                          precision)
+            print(f"-- {ranks} rank(s), {precision} precision", flush=True)
+            ok &= compare(folders[ranks, "ascii", precision], folders[ranks, "binary", precision],
+                          precision)
+    ok &= rounded(folders[1, "binary", "single"], folders[1, "binary", "double"])
+    a, b = folders[1, "ascii", "double"], folders[1, "binary", "double"]
     ratio = size(a, ".vtu") / size(b, ".vtu")
-    ok &= check(ratio >= 2, f"vtu files: ascii {size(a, '.vtu')} bytes, binary "
-                f"{size(b, '.vtu')} bytes ({ratio:.1f}x smaller); whole folder "
-                f"{size(a)} -> {size(b)} bytes")
-    first = os.path.join(b, "cracks_00000.vtu")
+    ok &= check(ratio >= 2, f"double precision: vtu files: ascii {size(a, '.vtu')} bytes, binary "
+                f"{size(b, '.vtu')} bytes ({ratio:.1f}x smaller)")
+    s = folders[1, "binary", "single"]
+    ratio = size(a) / size(s)
+    ok &= check(ratio >= 3, f"the binary single-precision folder {size(s)} bytes against the "
+                f"double-precision ascii one {size(a)} bytes: {ratio:.2f}x smaller (>= 3); vtu "
+                f"files {size(a, '.vtu')} -> {size(s, '.vtu')} bytes "
+                f"({size(a, '.vtu') / size(s, '.vtu'):.2f}x)")
+    first = os.path.join(s, "cracks_00000.vtu")
     _, _, _, types, _, cell_data = grid_arrays(read_grid(first))
     ok &= check(list(types) == [2] and cell_data["failure_mode"].tolist() == [0],
                 "cracks_00000.vtu (no broken joint): one placeholder cell, a poly-vertex of "
                 "no points, failure_mode 0")
-    _, _, _, types, _, _ = grid_arrays(read_grid(sorted(glob.glob(os.path.join(b, "cracks_*.vtu")))[-1]))
+    _, _, _, types, _, _ = grid_arrays(read_grid(sorted(glob.glob(os.path.join(s, "cracks_*.vtu")))[-1]))
     ok &= check(len(types) > 0 and set(types.tolist()) == {3},
                 f"the last crack file: {len(types)} line cells")
     if mpirun:
-        merged = os.path.join(out, "np2_binary_merged")
-        records = vtu_pieces.merged_view(folders[2, "binary"], merged)
-        same = [n for n in files(b, ".vtu")
-                if filecmp.cmp(os.path.join(b, n), os.path.join(merged, n), shallow=False)]
-        ok &= check(records > 0 and len(same) == len(files(b, ".vtu")),
-                    f"2-rank binary pieces merged ({records} pvtu records): {len(same)} of "
-                    f"{len(files(b, '.vtu'))} files byte for byte the 1-rank ones")
+        for precision in ("single", "double"):
+            one = folders[1, "binary", precision]
+            merged = os.path.join(out, f"np2_binary_{precision}_merged")
+            records = vtu_pieces.merged_view(folders[2, "binary", precision], merged)
+            same = [n for n in files(one, ".vtu")
+                    if filecmp.cmp(os.path.join(one, n), os.path.join(merged, n), shallow=False)]
+            ok &= check(records > 0 and len(same) == len(files(one, ".vtu")),
+                        f"{precision} precision: 2-rank binary pieces merged ({records} pvtu "
+                        f"records): {len(same)} of {len(files(one, '.vtu'))} files byte for "
+                        f"byte the 1-rank ones")
+            pvtu = files(folders[2, "binary", precision], ".pvtu")[-1]
+            points = grid_arrays(read_grid(os.path.join(folders[2, "binary", precision], pvtu)))[0]
+            one_points = grid_arrays(read_grid(os.path.join(one, pvtu[:-len(".pvtu")] + ".vtu")))[0]
+            ok &= check(same_bits(points, one_points),
+                        f"{precision} precision: VTK reads the 2-rank {pvtu}: the 1-rank "
+                        f"file's {len(points)} points ({points.dtype})")
     try:
         import meshio
     except ImportError:
@@ -140,9 +213,16 @@ def formats():
         print("meshio not installed (python3-meshio): its check left out")
     if meshio:
         import warnings
-        read = 0
-        for folder in (a, b):
+        read, empty = 0, []
+        for key in sorted(folders):
+            folder = folders[key]
             for name in files(folder, ".vtu"):
+                if 'NumberOfCells="0"' in xml_part(os.path.join(folder, name)):
+                    # a piece of a rank without triangles (the coarse disc's
+                    # 508 triangles are one chunk): meshio reads no vtu
+                    # without cells
+                    empty.append(f"{os.path.basename(folder)}/{name}")
+                    continue
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore")
                     mesh = meshio.read(os.path.join(folder, name))
@@ -151,7 +231,15 @@ def formats():
                     ok &= check(sum(len(c.data) for c in mesh.cells) == 0,
                                 f"meshio reads {os.path.basename(folder)}/{name}: "
                                 f"{len(mesh.points)} points, no cells")
-        ok &= check(read > 0, f"meshio {meshio.__version__} reads all {read} vtu files")
+                elif name == "solution_00000.vtu" and key[0] == 1:
+                    mine = vtu_pieces.read_arrays(os.path.join(folder, name))[0][2]
+                    ok &= check(same_bits(np.asarray(mesh.points).ravel(), mine),
+                                f"meshio reads {os.path.basename(folder)}/{name}: its "
+                                f"{len(mesh.points)} points bitwise ({mine.dtype})")
+        ok &= check(read > 0 and all(".0000.vtu" in e for e in empty),
+                    f"meshio {meshio.__version__} reads all {read} vtu files with cells "
+                    f"(left out: {len(empty)} pieces of no cells, of rank 0, e.g. "
+                    f"{empty[0] if empty else '-'})")
     return ok
 
 

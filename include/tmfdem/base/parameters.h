@@ -432,9 +432,14 @@ namespace tmfdem
     std::vector<double> times;            ///< output times [s]
     double              interval  = 0.;   ///< output every ... [s], 0: off
     bool                write_vtu = true; ///< solution.pvd and vtu files
-    /** Vtu format: VTK XML binary (zlib-compressed, base64) if true, plain
-     *  ascii text otherwise. */
+    /** Vtu format: VTK XML binary if true (the discrete layer: appended
+     *  raw data, every array one zlib block; the continuum layer: deal.II's
+     *  zlib-compressed base64), plain ascii text otherwise. */
     bool binary_vtu = true;
+    /** Vtu precision = single: the discrete layer's vtu files hold point
+     *  coordinates and real point and cell data as Float32 (rounded from
+     *  the doubles); false: Float64, the doubles themselves. */
+    bool single_precision_vtu = true;
     /** Discrete mechanics: write the deformed mesh at the end as
      *  <directory>/final_mesh.msh (gmsh 2.2, ASCII). */
     bool   write_final_mesh  = false;

@@ -18,12 +18,41 @@
 namespace tmfdem
 {
   class JsonObject;
+  struct OutputParameters;
 } // namespace tmfdem
 
 namespace tmfdem
 {
   namespace discrete
   {
+    /**
+     * How the discrete layer's vtu files hold their arrays (Output/Vtu
+     * format, Output/Vtu precision).
+     */
+    struct VtuEncoding
+    {
+      /** true: VTK XML appended raw data (`<AppendedData
+       *  encoding="raw">`), every DataArray one zlib block with a UInt64
+       *  header (vtkZLibDataCompressor, level vtu_zlib_level); false:
+       *  ascii, each value the shortest text that reads back as exactly
+       *  the stored value. */
+      bool binary = true;
+      /** true: point coordinates and real point and cell data as Float32,
+       *  each the double rounded to the nearest float; false: Float64.
+       *  Integer arrays keep their types either way. */
+      bool single_precision = true;
+    };
+
+    /** The encoding that @p output (Output/Vtu format, Vtu precision)
+     *  names. */
+    VtuEncoding
+    vtu_encoding(const OutputParameters &output);
+
+    /** zlib level of every binary DataArray (1: fastest; higher levels
+     *  save a few per cent of the size at several times the time,
+     *  doc/performance.md "Output files"). */
+    constexpr int vtu_zlib_level = 1;
+
     /**
      * A vtu time series: `<base>_NNNNN.vtu` files and `<base>.pvd`, each
      * written atomically. On several MPI ranks each output is one piece per
@@ -75,10 +104,10 @@ namespace tmfdem
       std::vector<std::pair<double, std::string>> records;
     };
 
-    /** The exploded mesh as a VTK UnstructuredGrid document, @p binary:
-     *  every DataArray zlib-compressed and base64-encoded (VTK XML binary,
-     *  UInt64 headers), otherwise ascii (doubles with 17 significant
-     *  digits, so both hold the same values). Extra nodal scalar fields
+    /** The exploded mesh as a VTK UnstructuredGrid document in the
+     *  @p encoding (binary documents hold raw bytes after their
+     *  `<AppendedData encoding="raw">` mark; ascii and binary hold the
+     *  same values). Extra nodal scalar fields
      *  (name, values per node) are added as point data. Only the triangles
      *  [@p first_element, @p end_element) and their nodes (one rank's
      *  piece); end_element = -1: to the last. With a @p polar_centre
@@ -87,7 +116,7 @@ namespace tmfdem
     std::string
     discrete_solution_vtu(
       const DiscreteModel &model,
-      const bool           binary,
+      const VtuEncoding   &encoding,
       const std::vector<std::pair<std::string, const std::vector<double> *>>
                                   &extra_point_fields = {},
       const unsigned int           first_element      = 0,
@@ -100,10 +129,10 @@ namespace tmfdem
      *  Without broken joints the piece holds one placeholder cell, a
      *  poly-vertex (VTK type 2) of no points with failure_mode 0 and
      *  break_time NaN, as meshio reads no vtu file without cells (it skips
-     *  this cell type). @p binary as in discrete_solution_vtu(). */
+     *  this cell type). @p encoding as in discrete_solution_vtu(). */
     std::string
     crack_vtu(const DiscreteModel &model,
-              const bool           binary,
+              const VtuEncoding   &encoding,
               const unsigned int   first_joint = 0,
               const unsigned int   end_joint   = static_cast<unsigned int>(-1));
 

@@ -461,6 +461,10 @@ namespace tmfdem
       double element_steps_done = 0., joint_steps_done = 0.;
       double loop_cpu_time  = 0.; ///< process CPU, time loop [s]
       double loop_wall_time = 0.; ///< wall, time loop, this run [s]
+      /** Wall time this rank spent composing and writing the solution and
+       *  crack vtu files (pieces, records and pvd) in this run
+       *  (summary.json vtu_write_time_s: the largest of the ranks) [s]. */
+      double vtu_write_time = 0.;
       /// CPU time of each thread in the time loop, largest first [s]
       std::vector<double> loop_thread_cpu_times;
 

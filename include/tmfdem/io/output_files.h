@@ -50,8 +50,9 @@ namespace tmfdem
   class SolutionSeries
   {
   public:
-    /** @p binary: VTK XML binary (zlib-compressed) vtu files, otherwise
-     *  ascii. */
+    /** @p binary: vtu files with zlib-compressed blocks (deal.II's
+     *  fastest level), otherwise uncompressed ones (deal.II 9.4 writes
+     *  base64-encoded Float32 blocks whenever it has zlib). */
     SolutionSeries(const std::string &folder,
                    const std::string &base_name,
                    MPI_Comm           communicator,
