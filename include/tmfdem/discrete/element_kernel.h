@@ -36,6 +36,28 @@ namespace tmfdem
     };
 
     /**
+     * [u1 - u0, u2 - u0; v1 - v0, v2 - v0] times the inverse initial basis
+     * @p ib (row-major 2x2) [1/m], written row-major to @p G: the
+     * deformation gradient from the nodes' positions (@p u, @p v = x, y)
+     * and its rate from their velocities, in the order of Eigen's 2x2
+     * product.
+     */
+    template <typename Number>
+    __attribute__((always_inline)) inline void
+    times_inverse_basis(const Number *u,
+                        const Number *v,
+                        const Number *ib,
+                        Number       *G)
+    {
+      const Number b00 = u[1] - u[0], b01 = u[2] - u[0];
+      const Number b10 = v[1] - v[0], b11 = v[2] - v[0];
+      G[0] = b00 * ib[0] + b01 * ib[2];
+      G[1] = b00 * ib[1] + b01 * ib[3];
+      G[2] = b10 * ib[0] + b11 * ib[2];
+      G[3] = b10 * ib[1] + b11 * ib[3];
+    }
+
+    /**
      * The stress and nodal forces of a constant-strain triangle with
      * current nodes @p x, @p y [m] and nodal velocities @p vx, @p vy [m/s]
      * (three each), inverse initial basis @p inverse_basis (row-major 2x2)
@@ -58,15 +80,11 @@ namespace tmfdem
                      const Number             eta,
                      ElementResponse<Number> &r)
     {
-      const Number *ib = inverse_basis;
       // F = [x1 - x0, x2 - x0; y1 - y0, y2 - y0] Fi^-1
-      const Number b00 = x[1] - x[0], b01 = x[2] - x[0];
-      const Number b10 = y[1] - y[0], b11 = y[2] - y[0];
-      const Number F00 = b00 * ib[0] + b01 * ib[2];
-      const Number F01 = b00 * ib[1] + b01 * ib[3];
-      const Number F10 = b10 * ib[0] + b11 * ib[2];
-      const Number F11 = b10 * ib[1] + b11 * ib[3];
-      r.det            = F00 * F11 - F10 * F01;
+      Number F[4];
+      times_inverse_basis(x, y, inverse_basis, F);
+      const Number F00 = F[0], F01 = F[1], F10 = F[2], F11 = F[3];
+      r.det = F00 * F11 - F10 * F01;
       // F_e = F / s; Eq. 44 and the anisotropic correction on it
       const Number f00 = F00 * inverse_stretch, f01 = F01 * inverse_stretch;
       const Number f10 = F10 * inverse_stretch, f11 = F11 * inverse_stretch;
@@ -102,12 +120,10 @@ namespace tmfdem
             r.fvx[k] = r.fvy[k] = zero;
           return;
         }
-      const Number d00 = vx[1] - vx[0], d01 = vx[2] - vx[0];
-      const Number d10 = vy[1] - vy[0], d11 = vy[2] - vy[0];
-      const Number D00 = d00 * ib[0] + d01 * ib[2];
-      const Number D01 = d00 * ib[1] + d01 * ib[3];
-      const Number D10 = d10 * ib[0] + d11 * ib[2];
-      const Number D11 = d10 * ib[1] + d11 * ib[3];
+      // dF/dt from the nodal velocities
+      Number D[4];
+      times_inverse_basis(vx, vy, inverse_basis, D);
+      const Number D00 = D[0], D01 = D[1], D10 = D[2], D11 = D[3];
       // F^-1 as Eigen forms it: 1 / det, then the cofactors times it
       const Number invdet = 1. / r.det;
       const Number G00 = F11 * invdet, G10 = -F10 * invdet;
