@@ -6,6 +6,7 @@
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/discrete/heterogeneity.h>
+#include <tmfdem/discrete/joint_kernel.h>
 #include <tmfdem/discrete/joints.h>
 
 namespace tmfdem
@@ -14,10 +15,6 @@ namespace tmfdem
   {
     namespace
     {
-      /** Gauss points of a joint, parameter u in [0, 1] along the edge. */
-      constexpr double gauss_0 = 0.21132486540518713,
-                       gauss_1 = 0.78867513459481287;
-
       /** Joint elements per chunk of the threaded loop. */
       constexpr unsigned int joint_chunk_size = 512;
 
@@ -28,82 +25,71 @@ namespace tmfdem
        */
       constexpr unsigned int frame_block_size = 32;
 
-      /**
-       * The frame of joint @p j at the current state: the gaps d0, d1 of
-       * its two node pairs (B - A) and the unit tangent and normal of the
-       * mean edge (normal outward of element A).
-       */
-      struct JointFrame
+      /** The frame of joint @p j at the current state (joint_frame()). */
+      inline JointFrameT<double>
+      joint_frame_of(const DiscreteModel &m, const unsigned int j)
       {
-        double d0x, d0y, d1x, d1y;
-        double L, tx, ty, nx, ny;
-      };
-
-      inline JointFrame
-      joint_frame(const DiscreteModel &m, const unsigned int j)
-      {
-        JointFrame          g;
         const unsigned int *n = &m.joint_nodes[4 * j];
-        g.d0x                 = m.x[n[2]] - m.x[n[0]];
-        g.d0y                 = m.y[n[2]] - m.y[n[0]];
-        g.d1x                 = m.x[n[3]] - m.x[n[1]];
-        g.d1y                 = m.y[n[3]] - m.y[n[1]];
-        const double ex = 0.5 * (m.x[n[1]] + m.x[n[3]] - m.x[n[0]] - m.x[n[2]]);
-        const double ey = 0.5 * (m.y[n[1]] + m.y[n[3]] - m.y[n[0]] - m.y[n[2]]);
-        g.L             = std::sqrt(ex * ex + ey * ey);
-        const double inverse_L = 1. / g.L;
-        g.tx                   = ex * inverse_L;
-        g.ty                   = ey * inverse_L;
-        g.nx                   = g.ty;
-        g.ny                   = -g.tx;
-        return g;
+        double              x[4], y[4];
+        for (unsigned int a = 0; a < 4; ++a)
+          {
+            x[a] = m.x[n[a]];
+            y[a] = m.y[n[a]];
+          }
+        return joint_frame(x, y);
       }
 
-      /** Is the comparison @p mask true in some lane? */
-      template <typename Mask>
-      inline bool
-      any_lane(const Mask mask)
+      /**
+       * Writes the forces @p f of joint @p j to
+       * DiscreteModel::node_joint_force: a0 and b1 start the joint's edge
+       * (slot 0), a1 and b0 end it (slot 2).
+       */
+      inline void
+      write_joint_forces(DiscreteModel    &m,
+                         const std::size_t j,
+                         const double      a0x,
+                         const double      a0y,
+                         const double      a1x,
+                         const double      a1y)
       {
-        for (unsigned int l = 0; l < sizeof(Mask) / sizeof(long long); ++l)
-          if (mask[l] != 0)
-            return true;
-        return false;
-      }
-
-      /** |v| lane by lane (the sign bit cleared, as std::abs). */
-      template <typename Lanes, typename Mask>
-      inline Lanes
-      lanes_abs(const Lanes v)
-      {
-        return reinterpret_cast<Lanes>(reinterpret_cast<Mask>(v) &
-                                       0x7fffffffffffffffLL);
+        const unsigned int *n  = &m.joint_nodes[4 * j];
+        double             *a0 = &m.node_joint_force[4 * n[0]];
+        double             *a1 = &m.node_joint_force[4 * n[1]];
+        double             *b0 = &m.node_joint_force[4 * n[2]];
+        double             *b1 = &m.node_joint_force[4 * n[3]];
+        a0[0]                  = a0x;
+        a0[1]                  = a0y;
+        a1[2]                  = a1x;
+        a1[3]                  = a1y;
+        b0[2]                  = -a0x;
+        b0[3]                  = -a0y;
+        b1[0]                  = -a1x;
+        b1[1]                  = -a1y;
       }
 
       /**
        * The forces of the joints j0 ... j0 + joint_lanes - 1 if all are
        * intact and undamaged and stay below their peaks at both Gauss points
-       * (the cohesive law's rising branch, z = 1, no new damage: the common
-       * case), written to DiscreteModel::node_joint_force; returns true. The
-       * operations are those of joint_frame(), cohesive_traction() and
-       * joint_closed_part() in the same order, one joint per lane (no FMA
-       * contraction: this file is compiled with -ffp-contract=off), so the
-       * forces are bitwise those of the joint-by-joint loop. Returns false,
+       * (the cohesive law's rising branch, no new damage: the common case),
+       * written to DiscreteModel::node_joint_force; returns true. One joint
+       * per lane through joint_response(), the kernel of the joint-by-joint
+       * loop, so the forces are bitwise those of that loop. Returns false,
        * having written nothing, where any joint of the batch needs that
-       * loop (damaged, broken, softening). Compiled once per instruction
-       * set (the wrappers below).
+       * loop (damaged, broken, softening). The lane whose joint is not
+       * closed at one end skips nothing: it forms the closed part too and
+       * discards it. Compiled once per instruction set (the wrappers
+       * below); the softening law does not matter below the peak.
        */
       template <unsigned int joint_lanes>
       __attribute__((always_inline)) inline bool
       elastic_joint_batch(DiscreteModel &m, const std::size_t j0)
       {
         using JointLanes = typename LaneVector<joint_lanes>::type;
-        using JointMask  = typename LaneVector<joint_lanes>::mask;
         for (unsigned int l = 0; l < joint_lanes; ++l)
           if (m.joint_status[j0 + l] != JointStatus::intact ||
               m.joint_damage[2 * (j0 + l)] != 0. ||
               m.joint_damage[2 * (j0 + l) + 1] != 0.)
             return false;
-        // joint_frame()
         JointLanes x[4], y[4];
         for (unsigned int l = 0; l < joint_lanes; ++l)
           {
@@ -114,108 +100,15 @@ namespace tmfdem
                 y[a][l] = m.y[n[a]];
               }
           }
-        const JointLanes d0x = x[2] - x[0], d0y = y[2] - y[0];
-        const JointLanes d1x = x[3] - x[1], d1y = y[3] - y[1];
-        const JointLanes ex = 0.5 * (x[1] + x[3] - x[0] - x[2]);
-        const JointLanes ey = 0.5 * (y[1] + y[3] - y[0] - y[2]);
-        const JointLanes L2 = ex * ex + ey * ey;
-        JointLanes       L;
+        const JointFrameT<JointLanes>        g = joint_frame(x, y);
+        const JointConstantLanes<JointLanes> k(&m.joint_constants[j0]);
+        JointLanes                           damage[2] = {};
+        JointResponse<JointLanes>            f;
+        joint_response<SofteningLaw::linear>(g, k, damage, f);
+        if (any_lane(f.beyond_peak))
+          return false;
         for (unsigned int l = 0; l < joint_lanes; ++l)
-          L[l] = std::sqrt(L2[l]);
-        const JointLanes inverse_L = 1. / L;
-        const JointLanes tx = ex * inverse_L, ty = ey * inverse_L;
-        const JointLanes nx = ty, ny = -tx;
-        // the joints' constants
-        JointLanes kn, kt, ft, coh, ftan, inv_op, inv_sp;
-        for (unsigned int l = 0; l < joint_lanes; ++l)
-          {
-            const JointConstants &k = m.joint_constants[j0 + l];
-            kn[l]                   = k.normal_stiffness;
-            kt[l]                   = k.tangential_stiffness;
-            ft[l]                   = k.tensile_strength;
-            coh[l]                  = k.cohesion;
-            ftan[l]                 = k.friction_tangent;
-            inv_op[l]               = k.inverse_opening_peak;
-            inv_sp[l]               = k.inverse_slip_peak_open;
-          }
-        const JointLanes zero          = {};
-        const JointLanes o_start       = d0x * nx + d0y * ny;
-        const JointLanes o_end         = d1x * nx + d1y * ny;
-        const JointMask  partly_closed = (o_start < 0.) != (o_end < 0.);
-        JointLanes       fa0x = zero, fa0y = zero, fa1x = zero, fa1y = zero;
-        JointMask        beyond_peak = {};
-        for (unsigned int q = 0; q < 2; ++q)
-          {
-            const double     u  = q == 0 ? gauss_0 : gauss_1;
-            const JointLanes dx = (1. - u) * d0x + u * d1x;
-            const JointLanes dy = (1. - u) * d0y + u * d1y;
-            const JointLanes o  = dx * nx + dy * ny;
-            const JointLanes s  = dx * tx + dy * ty;
-            // cohesive_traction() with z = 1
-            const JointMask  closed      = o < 0.;
-            const JointLanes compression = closed ? kn * o : zero;
-            const JointLanes fs    = closed ? coh - compression * ftan : coh;
-            const JointLanes abs_s = lanes_abs<JointLanes, JointMask>(s);
-            const JointLanes r     = o * inv_op;
-            // the division only where some joint of the batch is closed
-            JointLanes r_s = abs_s * inv_sp;
-            if (any_lane(closed))
-              r_s = closed ? abs_s * kt / (2. * fs) : r_s;
-            beyond_peak |= (r > 1.) | (r_s > 1.);
-            const JointLanes rising = ft * r * (2. - r);
-            const JointLanes normal =
-              closed ? compression : (r <= 1. ? rising : ft);
-            const JointLanes shear_magnitude =
-              fs * (r_s < 1. ? r_s * (2. - r_s) : 1. + zero);
-            const JointLanes shear =
-              s < 0. ? -shear_magnitude : shear_magnitude;
-            const JointLanes w      = 0.5 * L;
-            const JointLanes n_used = (partly_closed & closed) ? zero : normal;
-            const JointLanes px     = w * (n_used * nx + shear * tx);
-            const JointLanes py     = w * (n_used * ny + shear * ty);
-            fa0x += (1. - u) * px;
-            fa0y += (1. - u) * py;
-            fa1x += u * px;
-            fa1y += u * py;
-          }
-        for (unsigned int l = 0; l < joint_lanes; ++l)
-          if (beyond_peak[l])
-            return false;
-        // joint_closed_part() where the joint is closed at one end only
-        if (any_lane(partly_closed))
-          {
-            const JointMask  at_start = o_start < 0.;
-            const JointLanes oc       = at_start ? o_start : o_end;
-            const JointLanes oo       = at_start ? o_end : o_start;
-            const JointLanes w        = oc / (oc - oo);
-            const JointLanes scale    = kn * L * oc;
-            const JointLanes closed   = scale * w * (0.5 - w / 6.);
-            const JointLanes open     = scale * w * w / 6.;
-            const JointLanes f_start  = at_start ? closed : open;
-            const JointLanes f_end    = at_start ? open : closed;
-            fa0x = partly_closed ? fa0x + f_start * nx : fa0x;
-            fa0y = partly_closed ? fa0y + f_start * ny : fa0y;
-            fa1x = partly_closed ? fa1x + f_end * nx : fa1x;
-            fa1y = partly_closed ? fa1y + f_end * ny : fa1y;
-          }
-        // a0 and b1 start the joint's edge (slot 0), a1 and b0 end it
-        // (slot 2): DiscreteModel::node_joint_force
-        for (unsigned int l = 0; l < joint_lanes; ++l)
-          {
-            const unsigned int *n  = &m.joint_nodes[4 * (j0 + l)];
-            double             *a0 = &m.node_joint_force[4 * n[0]];
-            double             *a1 = &m.node_joint_force[4 * n[1]];
-            double             *b0 = &m.node_joint_force[4 * n[2]];
-            double             *b1 = &m.node_joint_force[4 * n[3]];
-            a0[0]                  = fa0x[l];
-            a0[1]                  = fa0y[l];
-            a1[2]                  = fa1x[l];
-            a1[3]                  = fa1y[l];
-            b0[2]                  = -fa0x[l];
-            b0[3]                  = -fa0y[l];
-            b1[0]                  = -fa1x[l];
-            b1[1]                  = -fa1y[l];
-          }
+          write_joint_forces(m, j0 + l, f.a0x[l], f.a0y[l], f.a1x[l], f.a1y[l]);
         return true;
       }
 
@@ -284,7 +177,7 @@ namespace tmfdem
           [&](const std::size_t begin,
               const std::size_t end,
               const std::size_t c) {
-            JointFrame frames[frame_block_size];
+            JointFrameT<double> frames[frame_block_size];
             for (std::size_t block_begin = begin; block_begin < end;
                  block_begin += frame_block_size)
               {
@@ -312,7 +205,7 @@ namespace tmfdem
                                              subset.others[b - n_range];
                     if (!(vectorised >> (b - block_begin) & 1u) &&
                         m.joint_status[jb] == JointStatus::intact)
-                      frames[b - block_begin] = joint_frame(m, jb);
+                      frames[b - block_begin] = joint_frame_of(m, jb);
                   }
                 for (std::size_t i = block_begin; i < block_end; ++i)
                   {
@@ -325,81 +218,25 @@ namespace tmfdem
                     if (m.joint_status[j] != JointStatus::intact)
                       continue;
                     ++tally[c].intact;
-                    const JointFrame     &g = frames[block];
-                    const JointConstants &k = m.joint_constants[j];
-                    double fa0x = 0, fa0y = 0, fa1x = 0, fa1y = 0;
-                    double last_do = 0., last_ds = 0.;
-                    // the openings at the two ends: a joint closed at one end
-                    // and open at the other takes its compression exactly
-                    // (below), not at the Gauss points
-                    const double o_start       = g.d0x * g.nx + g.d0y * g.ny;
-                    const double o_end         = g.d1x * g.nx + g.d1y * g.ny;
-                    const bool   partly_closed = (o_start < 0.) != (o_end < 0.);
-                    for (unsigned int q = 0; q < 2; ++q)
-                      {
-                        const double        u  = q == 0 ? gauss_0 : gauss_1;
-                        const double        dx = (1. - u) * g.d0x + u * g.d1x;
-                        const double        dy = (1. - u) * g.d0y + u * g.d1y;
-                        const double        o  = dx * g.nx + dy * g.ny;
-                        const double        s  = dx * g.tx + dy * g.ty;
-                        const JointTraction tr =
-                          cohesive_traction<law>(o,
-                                                 s,
-                                                 k,
-                                                 m.joint_damage[2 * j + q]);
-                        last_do = std::max(last_do, tr.d_opening);
-                        last_ds = std::max(last_ds, tr.d_slip);
-                        // traction on A (pulls A toward B), weight L/2
-                        const double w = 0.5 * g.L;
-                        const double normal =
-                          partly_closed && o < 0. ? 0. : tr.normal;
-                        const double px = w * (normal * g.nx + tr.shear * g.tx);
-                        const double py = w * (normal * g.ny + tr.shear * g.ty);
-                        fa0x += (1. - u) * px;
-                        fa0y += (1. - u) * py;
-                        fa1x += u * px;
-                        fa1y += u * py;
-                      }
-                    if (partly_closed)
-                      {
-                        // k_n o(u) over the closed part, with the shape
-                        // functions of the two ends (joint_closed_part())
-                        const ClosedPart c =
-                          joint_closed_part(o_start, o_end, g.L, k);
-                        fa0x += c.force_start * g.nx;
-                        fa0y += c.force_start * g.ny;
-                        fa1x += c.force_end * g.nx;
-                        fa1y += c.force_end * g.ny;
-                      }
+                    JointResponse<double> f;
+                    joint_response<law>(frames[block],
+                                        m.joint_constants[j],
+                                        &m.joint_damage[2 * j],
+                                        f);
                     if (m.joint_damage[2 * j] >= 1. &&
                         m.joint_damage[2 * j + 1] >= 1.)
                       {
+                        const double d_o = f.d_opening, d_s = f.d_slip;
                         const double ratio =
-                          last_do * last_do /
-                          std::max(1e-300,
-                                   last_do * last_do + last_ds * last_ds);
+                          d_o * d_o / std::max(1e-300, d_o * d_o + d_s * d_s);
                         m.joint_status[j] = ratio > 0.9 ? JointStatus::mode_I :
                                             ratio < 0.1 ? JointStatus::mode_II :
                                                           JointStatus::mixed;
                         m.joint_break_time[j] = t;
-                        fa0x = fa0y = fa1x = fa1y = 0.;
-                        tally[c].broke            = true;
+                        f.a0x = f.a0y = f.a1x = f.a1y = 0.;
+                        tally[c].broke                = true;
                       }
-                    // a0 and b1 start the joint's edge (slot 0), a1 and b0 end
-                    // it (slot 2): DiscreteModel::node_joint_force
-                    const unsigned int *nodes = &m.joint_nodes[4 * j];
-                    double             *a0 = &m.node_joint_force[4 * nodes[0]];
-                    double             *a1 = &m.node_joint_force[4 * nodes[1]];
-                    double             *b0 = &m.node_joint_force[4 * nodes[2]];
-                    double             *b1 = &m.node_joint_force[4 * nodes[3]];
-                    a0[0]                  = fa0x;
-                    a0[1]                  = fa0y;
-                    a1[2]                  = fa1x;
-                    a1[3]                  = fa1y;
-                    b0[2]                  = -fa0x;
-                    b0[3]                  = -fa0y;
-                    b1[0]                  = -fa1x;
-                    b1[1]                  = -fa1y;
+                    write_joint_forces(m, j, f.a0x, f.a0y, f.a1x, f.a1y);
                   }
               }
           });
@@ -513,10 +350,10 @@ namespace tmfdem
               model.joint_damage[2 * j] > 0. ||
               model.joint_damage[2 * j + 1] > 0.)
             continue;
-          const JointFrame      g       = joint_frame(model, j);
-          const JointConstants &k       = model.joint_constants[j];
-          double                highest = 0.;
-          for (const double u : {gauss_0, gauss_1})
+          const JointFrameT<double> g       = joint_frame_of(model, j);
+          const JointConstants     &k       = model.joint_constants[j];
+          double                    highest = 0.;
+          for (const double u : joint_gauss_points)
             {
               const double dx = (1. - u) * g.d0x + u * g.d1x;
               const double dy = (1. - u) * g.d0y + u * g.d1y;

@@ -10,6 +10,7 @@
 #include <tmfdem/discrete/cohesive_law.h>
 #include <tmfdem/discrete/contact.h>
 #include <tmfdem/discrete/contact_law.h>
+#include <tmfdem/discrete/joint_kernel.h>
 #include <tmfdem/discrete/solid.h>
 
 using namespace tmfdem::discrete;
@@ -250,6 +251,105 @@ TEST(CohesiveLaw, ClosedPartOfAHingedJointIsIntegratedExactly)
           EXPECT_NEAR(c.energy, energy, 1e-6 * energy);
           EXPECT_LT(c.force_start + c.force_end, 0.); // pushes apart
         }
+}
+
+namespace
+{
+  /**
+   * joint_response() one joint at a time (double) and four per vector
+   * (one joint per lane) on the same random joints: stretched, sheared,
+   * compressed, hinged, past the peak and damaged (the lanes' softening
+   * and square roots included, which the explicit loop's batches leave to
+   * the one-at-a-time loop). Forces, softening displacements, the damage
+   * written and the beyond-peak flag must be bitwise the same.
+   */
+  template <SofteningLaw law>
+  void
+  check_joint_lanes_match_one_joint_at_a_time()
+  {
+    using Lanes = LaneVector<4>::type;
+    std::mt19937                           random(7);
+    std::uniform_real_distribution<double> gap(-4e-6, 4e-6), unit(0., 1.);
+    const double                           h = 0.004;
+    std::vector<JointConstants>            k(4);
+    // lanes met: below the peak, past it, closed at both ends, hinged
+    unsigned int below = 0, past = 0, closed = 0, hinged = 0;
+    for (unsigned int round = 0; round < 400; ++round)
+      {
+        double x[4][4], y[4][4], damage[4][2];
+        for (unsigned int l = 0; l < 4; ++l)
+          {
+            ASSERT_TRUE(make_joint_constants(3e6 * (0.5 + unit(random)),
+                                             8e6 * (0.5 + unit(random)),
+                                             30.,
+                                             120.,
+                                             600.,
+                                             10 * E,
+                                             10 * E,
+                                             h,
+                                             law,
+                                             k[l]));
+            // a0 = (0, 0), a1 = (h, 0); b0, b1 near them by the gaps
+            x[0][l] = 0.;
+            y[0][l] = 0.;
+            x[1][l] = h;
+            y[1][l] = 0.;
+            // gaps from 4 nm (below the peak) to 4 um (far past it)
+            const double scale = std::pow(10., -3. * unit(random));
+            x[2][l]            = scale * gap(random);
+            y[2][l]            = -scale * gap(random);
+            x[3][l]            = h + scale * gap(random);
+            y[3][l]            = -scale * gap(random);
+            for (unsigned int q = 0; q < 2; ++q)
+              damage[l][q] = unit(random) < 0.5 ? 0. : 0.9 * unit(random);
+          }
+        Lanes X[4], Y[4], D[2];
+        for (unsigned int a = 0; a < 4; ++a)
+          for (unsigned int l = 0; l < 4; ++l)
+            {
+              X[a][l] = x[a][l];
+              Y[a][l] = y[a][l];
+            }
+        for (unsigned int q = 0; q < 2; ++q)
+          for (unsigned int l = 0; l < 4; ++l)
+            D[q][l] = damage[l][q];
+        const JointConstantLanes<Lanes> kl(k.data());
+        JointResponse<Lanes>            fl;
+        joint_response<law>(joint_frame(X, Y), kl, D, fl);
+        for (unsigned int l = 0; l < 4; ++l)
+          {
+            const double          xs[4] = {x[0][l], x[1][l], x[2][l], x[3][l]};
+            const double          ys[4] = {y[0][l], y[1][l], y[2][l], y[3][l]};
+            JointResponse<double> f;
+            joint_response<law>(joint_frame(xs, ys), k[l], damage[l], f);
+            EXPECT_EQ(f.a0x, fl.a0x[l]);
+            EXPECT_EQ(f.a0y, fl.a0y[l]);
+            EXPECT_EQ(f.a1x, fl.a1x[l]);
+            EXPECT_EQ(f.a1y, fl.a1y[l]);
+            EXPECT_EQ(f.d_opening, fl.d_opening[l]);
+            EXPECT_EQ(f.d_slip, fl.d_slip[l]);
+            EXPECT_EQ(damage[l][0], D[0][l]);
+            EXPECT_EQ(damage[l][1], D[1][l]);
+            EXPECT_EQ(f.beyond_peak, fl.beyond_peak[l] != 0);
+            const JointFrameT<double> g       = joint_frame(xs, ys);
+            const double              o_start = g.d0x * g.nx + g.d0y * g.ny,
+                         o_end                = g.d1x * g.nx + g.d1y * g.ny;
+            (f.beyond_peak ? past : below) += 1;
+            closed += o_start < 0. && o_end < 0.;
+            hinged += (o_start < 0.) != (o_end < 0.);
+          }
+      }
+    EXPECT_GT(below, 100u);
+    EXPECT_GT(past, 100u);
+    EXPECT_GT(closed, 100u);
+    EXPECT_GT(hinged, 100u);
+  }
+} // namespace
+
+TEST(JointKernel, LanesMatchOneJointAtATimeBitwisePastThePeakToo)
+{
+  check_joint_lanes_match_one_joint_at_a_time<SofteningLaw::linear>();
+  check_joint_lanes_match_one_joint_at_a_time<SofteningLaw::munjiza>();
 }
 
 TEST(CohesiveLaw, PenaltyTooSoftForTheFractureEnergyIsRefused)

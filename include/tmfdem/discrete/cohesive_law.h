@@ -22,6 +22,7 @@
 
 #include <cmath>
 #include <string>
+#include <tmfdem/discrete/vector_instructions.h>
 #include <vector>
 
 namespace tmfdem
@@ -85,80 +86,113 @@ namespace tmfdem
       double inverse_slip_peak_open;
     };
 
-    /** Tractions on a joint face pair [Pa]. */
-    struct JointTraction
+    /**
+     * Tractions on a joint face pair [Pa], for one joint (Number = double)
+     * or one per lane of a vector batch.
+     */
+    template <typename Number>
+    struct JointTractionT
     {
-      double normal;    ///< tension positive (resists opening)
-      double shear;     ///< along the slip (resists slip)
-      double d_opening; ///< normalised softening opening d_o >= 0
-      double d_slip;    ///< normalised softening slip d_s >= 0
+      Number normal; ///< tension positive (resists opening)
+      Number shear;  ///< along the slip (resists slip)
+      Number
+        d_opening;   ///< normalised softening opening d_o (> 0 past the peak)
+      Number d_slip; ///< normalised softening slip d_s (> 0 past the peak)
+      /** r = o / o_p > 1 or r_s = |s| / s_p > 1: past a peak (a comparison
+       *  result: bool, or a lane mask) */
+      decltype(Number() > 1.) beyond_peak;
     };
+
+    /** The tractions of one joint. */
+    using JointTraction = JointTractionT<double>;
 
     /**
      * The cohesive tractions for opening @p o and slip @p s [m]; @p damage
-     * is the history variable in [0, 1], updated in place.
+     * is the history variable in [0, 1], updated in place. Written once
+     * for one joint (Number = double, @p k a JointConstants) and for the
+     * lanes of a vector batch (Number a lane vector, @p k a struct of lane
+     * vectors with JointConstants' member names: joint_kernel.h); both
+     * perform the same operations in the same order.
      */
-    template <SofteningLaw law>
-    inline JointTraction
-    cohesive_traction(const double          o,
-                      const double          s,
-                      const JointConstants &k,
-                      double               &damage)
+    template <SofteningLaw law, typename Number, typename Constants>
+    __attribute__((always_inline)) inline JointTractionT<Number>
+    cohesive_traction(const Number     o,
+                      const Number     s,
+                      const Constants &k,
+                      Number          &damage)
     {
-      JointTraction t{0., 0., 0., 0.};
-      const double  ft          = k.tensile_strength;
-      const double  compression = o < 0. ? k.normal_stiffness * o : 0.;
+      const Number           zero{};
+      JointTractionT<Number> t;
+      const Number           ft     = k.tensile_strength;
+      const auto             closed = o < 0.;
+      const Number compression      = closed ? k.normal_stiffness * o : zero;
       // opening and slip relative to their peaks, r = o / o_p and
       // r_s = |s| / s_p (o_p = 2 f_t / k_n, s_p = 2 f_s / k_t): products
       // with the stored reciprocals where f_s = c (no compression); under
       // compression Mohr-Coulomb f_s = c - sigma_n tan(phi) grows with it
-      const double fs =
-        o < 0. ? k.cohesion - compression * k.friction_tangent : k.cohesion;
-      const double abs_s = std::abs(s);
-      const double r     = o * k.inverse_opening_peak;
-      const double r_s   = o < 0. ? abs_s * k.tangential_stiffness / (2. * fs) :
-                                    abs_s * k.inverse_slip_peak_open;
+      const Number fs =
+        closed ? k.cohesion - compression * k.friction_tangent : k.cohesion;
+      const Number abs_s = lane_abs(s);
+      const Number r     = o * k.inverse_opening_peak;
+      // the division only where the joint (some joint of the batch) is
+      // closed
+      Number r_s = abs_s * k.inverse_slip_peak_open;
+      if (any_lane(closed))
+        r_s = closed ? abs_s * k.tangential_stiffness / (2. * fs) : r_s;
+      const auto past_opening = r > 1., past_slip = r_s > 1.;
+      t.beyond_peak = past_opening | past_slip;
       // beyond a peak: the softening displacements (rare; divisions here)
-      if (r > 1.)
-        t.d_opening = (o - 2. * ft / k.normal_stiffness) / k.softening_width_I;
-      if (r_s > 1.)
-        t.d_slip =
-          (abs_s - 2. * fs / k.tangential_stiffness) / k.softening_width_II;
-      double D = damage;
-      if (t.d_opening > 0. || t.d_slip > 0.)
+      t.d_opening = zero;
+      t.d_slip    = zero;
+      if (any_lane(past_opening))
+        t.d_opening = past_opening ? (o - 2. * ft / k.normal_stiffness) /
+                                       k.softening_width_I :
+                                     zero;
+      if (any_lane(past_slip))
+        t.d_slip = past_slip ? (abs_s - 2. * fs / k.tangential_stiffness) /
+                                 k.softening_width_II :
+                               zero;
+      Number     D       = damage;
+      const auto softens = (t.d_opening > 0.) | (t.d_slip > 0.);
+      if (any_lane(softens))
         {
-          const double D_now =
-            std::sqrt(t.d_opening * t.d_opening + t.d_slip * t.d_slip);
-          D      = D_now > D ? D_now : D;
-          D      = D < 1. ? D : 1.;
-          damage = D;
+          const Number D_now =
+            lane_sqrt(t.d_opening * t.d_opening + t.d_slip * t.d_slip);
+          Number D_new = D_now > D ? D_now : D;
+          D_new        = D_new < 1. ? D_new : zero + 1.;
+          D            = softens ? D_new : D;
+          damage       = D;
         }
-      const double z = D > 0. ? softening<law>(D) : 1.;
+      Number z = zero + 1.;
+      if (any_lane(D > 0.))
+        z = D > 0. ?
+              lane_map([](const double d) { return softening<law>(d); }, D) :
+              z;
 
-      if (o < 0.)
-        t.normal = compression;
-      else if (r <= 1.)
-        t.normal = z * ft * r * (2. - r);
-      else
-        t.normal = z * ft;
-
-      const double shear_magnitude =
-        z * fs * (r_s < 1. ? r_s * (2. - r_s) : 1.);
+      t.normal =
+        closed ? compression : (r <= 1. ? z * ft * r * (2. - r) : z * ft);
+      const Number shear_magnitude =
+        z * fs * (r_s < 1. ? r_s * (2. - r_s) : zero + 1.);
       t.shear = s < 0. ? -shear_magnitude : shear_magnitude;
       return t;
     }
 
     /** The compression of a joint closed over part of its length: the
-     *  normal forces on its two node pairs and the energy it stores. */
-    struct ClosedPart
+     *  normal forces on its two node pairs and the energy it stores (one
+     *  joint, or one per lane). */
+    template <typename Number>
+    struct ClosedPartT
     {
       /** int k_n o(u) N(u) L du over the closed part, N = 1 - u for the
        *  pair that starts the edge, u for the pair that ends it [N/m];
        *  negative (pushes the faces apart), like JointTraction::normal. */
-      double force_start = 0., force_end = 0.;
+      Number force_start, force_end;
       /** k_n / 2 int o^2 L du over the closed part [J/m]. */
-      double energy = 0.;
+      Number energy;
     };
+
+    /** The closed part of one joint. */
+    using ClosedPart = ClosedPartT<double>;
 
     /**
      * The compression of a joint whose opening is linear along its edge,
@@ -174,25 +208,29 @@ namespace tmfdem
      * The two Gauss points of the cohesive law miss the closed part where
      * it is shorter than 0.21 of the edge (a hinge): the faces would
      * interpenetrate there unresisted, and the contact that takes over at
-     * the break would find that overlap (doc/theory.md 5.4).
+     * the break would find that overlap (doc/theory.md 5.4). Written once
+     * for a joint and for the lanes of a batch, as cohesive_traction(); in
+     * a lane whose joint is not closed at one end only the result is
+     * meaningless (the caller selects).
      */
-    inline ClosedPart
-    joint_closed_part(const double          o_start,
-                      const double          o_end,
-                      const double          length,
-                      const JointConstants &k)
+    template <typename Number, typename Constants>
+    __attribute__((always_inline)) inline ClosedPartT<Number>
+    joint_closed_part(const Number     o_start,
+                      const Number     o_end,
+                      const Number     length,
+                      const Constants &k)
     {
-      const bool   at_start = o_start < 0.;
-      const double oc       = at_start ? o_start : o_end,
-                   oo       = at_start ? o_end : o_start;
-      const double w        = oc / (oc - oo);
-      const double scale    = k.normal_stiffness * length * oc;
-      ClosedPart   c;
-      const double closed = scale * w * (0.5 - w / 6.),
-                   open   = scale * w * w / 6.;
-      c.force_start       = at_start ? closed : open;
-      c.force_end         = at_start ? open : closed;
-      c.energy            = scale * oc * w / 6.;
+      const auto          at_start = o_start < 0.;
+      const Number        oc       = at_start ? o_start : o_end;
+      const Number        oo       = at_start ? o_end : o_start;
+      const Number        w        = oc / (oc - oo);
+      const Number        scale    = k.normal_stiffness * length * oc;
+      ClosedPartT<Number> c;
+      const Number        closed = scale * w * (0.5 - w / 6.),
+                   open          = scale * w * w / 6.;
+      c.force_start              = at_start ? closed : open;
+      c.force_end                = at_start ? open : closed;
+      c.energy                   = scale * oc * w / 6.;
       return c;
     }
 

@@ -10,8 +10,10 @@
 #ifndef tmfdem_discrete_vector_instructions_h
 #define tmfdem_discrete_vector_instructions_h
 
+#include <cmath>
 #include <cstddef>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -53,6 +55,83 @@ namespace tmfdem
       typedef long long mask
         __attribute__((vector_size(lanes * sizeof(double))));
     };
+
+    /**
+     * @name Lane by lane
+     * What a kernel written once for double and for the lane vectors
+     * (element_kernel.h, joint_kernel.h) needs beyond the arithmetic
+     * operators and the ternary `mask ? a : b`, which GCC's vector
+     * extension provides for both: the same call on a double and on a
+     * vector, the vector version doing per lane what the double version
+     * does, so that both round alike.
+     */
+    ///@{
+    /** Is the comparison @p b true (a double's comparison)? */
+    inline bool
+    any_lane(const bool b)
+    {
+      return b;
+    }
+
+    /** Is the comparison @p mask true in some lane? */
+    template <typename Mask,
+              typename = std::enable_if_t<!std::is_arithmetic_v<Mask>>>
+    inline bool
+    any_lane(const Mask mask)
+    {
+      for (unsigned int l = 0; l < sizeof(Mask) / sizeof(mask[0]); ++l)
+        if (mask[l] != 0)
+          return true;
+      return false;
+    }
+
+    /** @p f applied to each lane of @p v (to @p v itself for a double). */
+    template <typename Number, typename Function>
+    inline Number
+    lane_map(const Function &f, const Number v)
+    {
+      if constexpr (std::is_arithmetic_v<Number>)
+        return f(v);
+      else
+        {
+          Number r = v;
+          for (unsigned int l = 0; l < sizeof(Number) / sizeof(double); ++l)
+            r[l] = f(v[l]);
+          return r;
+        }
+    }
+
+    /** The square root, lane by lane. */
+    template <typename Number>
+    inline Number
+    lane_sqrt(const Number v)
+    {
+      return lane_map([](const double a) { return std::sqrt(a); }, v);
+    }
+
+    /** |v|, lane by lane (the sign bit cleared, as std::abs does). */
+    template <typename Number>
+    inline Number
+    lane_abs(const Number v)
+    {
+      if constexpr (std::is_arithmetic_v<Number>)
+        return std::abs(v);
+      else
+        {
+          using Mask = decltype(v < v);
+          return reinterpret_cast<Number>(reinterpret_cast<Mask>(v) &
+                                          0x7fffffffffffffffLL);
+        }
+    }
+
+    /** The larger of @p a and @p b, lane by lane, as std::max picks it. */
+    template <typename Number>
+    inline Number
+    lane_max(const Number a, const Number b)
+    {
+      return a < b ? b : a;
+    }
+    ///@}
 
     /** Names of the instruction sets (prm entry Discrete
      *  mechanics/Vector instructions, besides "auto"). */

@@ -1,0 +1,168 @@
+/**
+ * @file
+ * One joint's forces in one explicit step, written once for the
+ * joint-by-joint loop (Number = double) and for the vector batches (Number
+ * = a GCC vector of doubles, one joint per lane; source/discrete/joints.cc):
+ * the frame of the joint's mean edge from its four nodes, the cohesive
+ * tractions at the two Gauss points (cohesive_law.h), the exact compression
+ * of a joint closed at one end only (joint_closed_part()) and the forces on
+ * the node pairs. Both instantiations perform the same operations in the
+ * same order, so a joint in a batch gets bitwise the forces of the
+ * joint-by-joint loop (joints.cc is compiled without FMA contraction).
+ */
+#ifndef tmfdem_discrete_joint_kernel_h
+#define tmfdem_discrete_joint_kernel_h
+
+#include <tmfdem/discrete/cohesive_law.h>
+#include <tmfdem/discrete/vector_instructions.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    /** Gauss points of a joint, parameter u in [0, 1] along the edge. */
+    constexpr double joint_gauss_points[2] = {0.21132486540518713,
+                                              0.78867513459481287};
+
+    /**
+     * The frame of a joint at the current state: the gaps d0, d1 of its two
+     * node pairs (B - A) [m], the length L of the mean edge [m] and its unit
+     * tangent t and normal n (outward of element A).
+     */
+    template <typename Number>
+    struct JointFrameT
+    {
+      Number d0x, d0y, d1x, d1y;
+      Number L, tx, ty, nx, ny;
+    };
+
+    /**
+     * The frame of a joint with nodes a0, a1 (element A, along its edge)
+     * and b0, b1 (element B, b0 facing a0) at @p x, @p y [m] (in the order
+     * a0, a1, b0, b1; DiscreteModel::joint_nodes).
+     */
+    template <typename Number>
+    __attribute__((always_inline)) inline JointFrameT<Number>
+    joint_frame(const Number *x, const Number *y)
+    {
+      JointFrameT<Number> g;
+      g.d0x                  = x[2] - x[0];
+      g.d0y                  = y[2] - y[0];
+      g.d1x                  = x[3] - x[1];
+      g.d1y                  = y[3] - y[1];
+      const Number ex        = 0.5 * (x[1] + x[3] - x[0] - x[2]);
+      const Number ey        = 0.5 * (y[1] + y[3] - y[0] - y[2]);
+      g.L                    = lane_sqrt(ex * ex + ey * ey);
+      const Number inverse_L = 1. / g.L;
+      g.tx                   = ex * inverse_L;
+      g.ty                   = ey * inverse_L;
+      g.nx                   = g.ty;
+      g.ny                   = -g.tx;
+      return g;
+    }
+
+    /**
+     * The constants of the joints of a batch, one per lane, under the
+     * member names of JointConstants (what cohesive_traction() reads).
+     */
+    template <typename Number>
+    struct JointConstantLanes
+    {
+      Number normal_stiffness, tangential_stiffness, tensile_strength, cohesion,
+        friction_tangent, softening_width_I, softening_width_II,
+        inverse_opening_peak, inverse_slip_peak_open;
+
+      /** Lane l holds @p first [l] (the constants of consecutive
+       *  joints). */
+      explicit JointConstantLanes(const JointConstants *first)
+      {
+        for (unsigned int l = 0; l < sizeof(Number) / sizeof(double); ++l)
+          {
+            const JointConstants &k   = first[l];
+            normal_stiffness[l]       = k.normal_stiffness;
+            tangential_stiffness[l]   = k.tangential_stiffness;
+            tensile_strength[l]       = k.tensile_strength;
+            cohesion[l]               = k.cohesion;
+            friction_tangent[l]       = k.friction_tangent;
+            softening_width_I[l]      = k.softening_width_I;
+            softening_width_II[l]     = k.softening_width_II;
+            inverse_opening_peak[l]   = k.inverse_opening_peak;
+            inverse_slip_peak_open[l] = k.inverse_slip_peak_open;
+          }
+      }
+    };
+
+    /** What joint_response() computes for one joint (or one per lane). */
+    template <typename Number>
+    struct JointResponse
+    {
+      /** Force on a0 (start of the edge) and a1 (its end) [N/m]; b0 gets
+       *  minus the first, b1 minus the second. */
+      Number a0x, a0y, a1x, a1y;
+      /** The larger of the Gauss points' normalised softening opening and
+       *  slip (cohesive_traction()) [-]. */
+      Number d_opening, d_slip;
+      /** Past a peak at a Gauss point (bool, or a lane mask). */
+      decltype(Number() > 1.) beyond_peak;
+    };
+
+    /**
+     * The forces of a joint with frame @p g, constants @p k (JointConstants,
+     * or JointConstantLanes for a batch) and the damage of its two Gauss
+     * points @p damage (updated in place): the cohesive tractions at the
+     * Gauss points, weighted L / 2, distributed to the node pairs by the
+     * linear shape functions; a joint closed at one end and open at the
+     * other takes its compression exactly over the closed part
+     * (joint_closed_part()) instead of at the Gauss points.
+     */
+    template <SofteningLaw law, typename Number, typename Constants>
+    __attribute__((always_inline)) inline void
+    joint_response(const JointFrameT<Number> &g,
+                   const Constants           &k,
+                   Number                    *damage,
+                   JointResponse<Number>     &f)
+    {
+      const Number zero{};
+      f.a0x = f.a0y = f.a1x = f.a1y = zero;
+      f.d_opening = f.d_slip     = zero;
+      f.beyond_peak              = decltype(f.beyond_peak){};
+      const Number o_start       = g.d0x * g.nx + g.d0y * g.ny;
+      const Number o_end         = g.d1x * g.nx + g.d1y * g.ny;
+      const auto   partly_closed = (o_start < 0.) != (o_end < 0.);
+      for (unsigned int q = 0; q < 2; ++q)
+        {
+          const double                 u  = joint_gauss_points[q];
+          const Number                 dx = (1. - u) * g.d0x + u * g.d1x;
+          const Number                 dy = (1. - u) * g.d0y + u * g.d1y;
+          const Number                 o  = dx * g.nx + dy * g.ny;
+          const Number                 s  = dx * g.tx + dy * g.ty;
+          const JointTractionT<Number> tr =
+            cohesive_traction<law>(o, s, k, damage[q]);
+          f.d_opening = lane_max(f.d_opening, tr.d_opening);
+          f.d_slip    = lane_max(f.d_slip, tr.d_slip);
+          f.beyond_peak |= tr.beyond_peak;
+          // traction on A (pulls A toward B), weight L/2; the closed part
+          // of a partly closed joint below
+          const Number w      = 0.5 * g.L;
+          const Number normal = (partly_closed & (o < 0.)) ? zero : tr.normal;
+          const Number px     = w * (normal * g.nx + tr.shear * g.tx);
+          const Number py     = w * (normal * g.ny + tr.shear * g.ty);
+          f.a0x += (1. - u) * px;
+          f.a0y += (1. - u) * py;
+          f.a1x += u * px;
+          f.a1y += u * py;
+        }
+      if (any_lane(partly_closed))
+        {
+          const ClosedPartT<Number> c =
+            joint_closed_part(o_start, o_end, g.L, k);
+          f.a0x = partly_closed ? f.a0x + c.force_start * g.nx : f.a0x;
+          f.a0y = partly_closed ? f.a0y + c.force_start * g.ny : f.a0y;
+          f.a1x = partly_closed ? f.a1x + c.force_end * g.nx : f.a1x;
+          f.a1y = partly_closed ? f.a1y + c.force_end * g.ny : f.a1y;
+        }
+    }
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif
