@@ -132,41 +132,42 @@ namespace tmfdem
         Lanes t_unbalanced[3], t_internal[3], t_kinetic[3];
         for (unsigned int k = 0; k < 3; ++k)
           {
-            const Lanes fex = r.fex[k], fey = r.fey[k];
-            const Lanes fvx = r.fvx[k], fvy = r.fvy[k];
-            const Lanes fjx =
-              0. + gather<Lanes>(&m.node_joint_force[4 * (n0 + k)], 12) +
-              gather<Lanes>(&m.node_joint_force[4 * (n0 + k) + 2], 12);
-            const Lanes fjy =
-              0. + gather<Lanes>(&m.node_joint_force[4 * (n0 + k) + 1], 12) +
-              gather<Lanes>(&m.node_joint_force[4 * (n0 + k) + 3], 12);
-            Lanes fcx = zero, fcy = zero;
+            NodeForces<Lanes> f;
+            f.elastic[0] = r.fex[k];
+            f.elastic[1] = r.fey[k];
+            f.viscous[0] = r.fvx[k];
+            f.viscous[1] = r.fvy[k];
+            for (unsigned int i = 0; i < 2; ++i)
+              f.joint[i] =
+                0. + gather<Lanes>(&m.node_joint_force[4 * (n0 + k) + i], 12) +
+                gather<Lanes>(&m.node_joint_force[4 * (n0 + k) + 2 + i], 12);
+            f.contact[0] = f.contact[1] = zero;
             if (in.contact_forces != nullptr)
-              {
-                fcx = gather<Lanes>(&in.contact_forces[2 * k], 6);
-                fcy = gather<Lanes>(&in.contact_forces[2 * k + 1], 6);
-              }
-            const Lanes fgx = mass[k] * in.gravity_x;
-            const Lanes fgy = mass[k] * in.gravity_y;
-            const Lanes fx  = fex + fvx + fjx + fcx + fgx;
-            const Lanes fy  = fey + fvy + fjy + fcy + fgy;
+              for (unsigned int i = 0; i < 2; ++i)
+                f.contact[i] = gather<Lanes>(&in.contact_forces[2 * k + i], 6);
+            f.gravity[0]    = mass[k] * in.gravity_x;
+            f.gravity[1]    = mass[k] * in.gravity_y;
+            const Lanes fx  = f.total(0);
+            const Lanes fy  = f.total(1);
             const Lanes b_m = in.damp_b / mass[k];
-            const Lanes vx  = in.damp_a * VX[k] + b_m * fx;
-            const Lanes vy  = in.damp_a * VY[k] + b_m * fy;
+            const Lanes vx  = damped_velocity<Lanes>(in.damp_a, VX[k], b_m, fx);
+            const Lanes vy  = damped_velocity<Lanes>(in.damp_a, VY[k], b_m, fy);
             const Lanes ax  = 0.5 * in.dt * (VX[k] + vx);
             const Lanes ay  = 0.5 * in.dt * (VY[k] + vy);
-            t_elastic[k]    = fex * ax + fey * ay;
-            t_viscous[k]    = fvx * ax + fvy * ay;
-            t_damping[k]    = in.c_damp * mass[k] / in.dt * (ax * ax + ay * ay);
-            t_joint[k]      = fjx * ax + fjy * ay;
-            t_contact[k]    = fcx * ax + fcy * ay;
+            const NodeWorks<Lanes> w = node_works(f, ax, ay);
+            t_elastic[k]             = w.elastic;
+            t_viscous[k]             = w.viscous;
+            t_damping[k] = in.c_damp * mass[k] / in.dt * (ax * ax + ay * ay);
+            t_joint[k]   = w.joint;
+            t_contact[k] = w.contact;
             if constexpr (diagnostics)
               {
-                const Lanes ux = fx - fvx, uy = fy - fvy;
+                const Lanes ux = fx - f.viscous[0], uy = fy - f.viscous[1];
                 t_unbalanced[k] = ux * ux + uy * uy;
-                t_internal[k]   = fex * fex + fey * fey;
+                t_internal[k] =
+                  f.elastic[0] * f.elastic[0] + f.elastic[1] * f.elastic[1];
               }
-            t_external[k] = fgx * ax + fgy * ay;
+            t_external[k] = w.gravity;
             scatter(vx, &m.vx[n0 + k], 3);
             scatter(vy, &m.vy[n0 + k], 3);
             scatter(X[k] + in.dt * vx, &m.x[n0 + k], 3);
@@ -443,15 +444,20 @@ namespace tmfdem
                 const unsigned int node = n0 + k;
                 // joints: node k starts edge k and ends edge k+2, in that
                 // order (zero slots where an edge has no intact joint)
-                const double *jf   = &m.node_joint_force[4 * node];
-                const double  fjx  = 0. + jf[0] + jf[2];
-                const double  fjy  = 0. + jf[1] + jf[3];
-                const double  mass = node_mass[k];
-                const double  fgx = mass * gravity_x, fgy = mass * gravity_y;
-                const double  fx =
-                  f_el[2 * k] + f_v[2 * k] + fjx + f_contact[2 * k] + fgx;
-                const double fy = f_el[2 * k + 1] + f_v[2 * k + 1] + fjy +
-                                  f_contact[2 * k + 1] + fgy;
+                const double      *jf   = &m.node_joint_force[4 * node];
+                const double       mass = node_mass[k];
+                NodeForces<double> f;
+                for (unsigned int i = 0; i < 2; ++i)
+                  {
+                    f.elastic[i] = f_el[2 * k + i];
+                    f.viscous[i] = f_v[2 * k + i];
+                    f.joint[i]   = 0. + jf[i] + jf[2 + i];
+                    f.contact[i] = f_contact[2 * k + i];
+                  }
+                f.gravity[0]               = mass * gravity_x;
+                f.gravity[1]               = mass * gravity_y;
+                const double        fx     = f.total(0);
+                const double        fy     = f.total(1);
                 const double        vx_old = m.vx[node], vy_old = m.vy[node];
                 double              vx_new, vy_new;
                 const unsigned char b    = d.node_body[node];
@@ -462,8 +468,8 @@ namespace tmfdem
                     const Drivers::NodeCondition &nc = d.node_conditions[slot];
                     const double tx = nc.force[0], ty = nc.force[1];
                     double       gx = fx + tx, gy = fy + ty;
-                    vx_new = damp_a * vx_old + b_m[k] * gx;
-                    vy_new = damp_a * vy_old + b_m[k] * gy;
+                    vx_new = damped_velocity(damp_a, vx_old, b_m[k], gx);
+                    vy_new = damped_velocity(damp_a, vy_old, b_m[k], gy);
                     if constexpr (diagnostics)
                       {
                         if (!nc.prescribed[0])
@@ -493,8 +499,8 @@ namespace tmfdem
                 else if (b == no_body ||
                          d.body_motion[b] == DiscreteBody::Motion::free)
                   {
-                    vx_new = damp_a * vx_old + b_m[k] * fx;
-                    vy_new = damp_a * vy_old + b_m[k] * fy;
+                    vx_new = damped_velocity(damp_a, vx_old, b_m[k], fx);
+                    vy_new = damped_velocity(damp_a, vy_old, b_m[k], fy);
                     if constexpr (diagnostics)
                       {
                         const double ux = fx - f_v[2 * k],
@@ -520,13 +526,14 @@ namespace tmfdem
                     sums[n_sums + 2 * b] += rx;
                     sums[n_sums + 2 * b + 1] += ry;
                   }
-                const double ax = 0.5 * dt * (vx_old + vx_new);
-                const double ay = 0.5 * dt * (vy_old + vy_new);
-                w_elastic += f_el[2 * k] * ax + f_el[2 * k + 1] * ay;
+                const double            ax = 0.5 * dt * (vx_old + vx_new);
+                const double            ay = 0.5 * dt * (vy_old + vy_new);
+                const NodeWorks<double> w  = node_works(f, ax, ay);
+                w_elastic += w.elastic;
                 if constexpr (diagnostics)
                   internal += f_el[2 * k] * f_el[2 * k] +
                               f_el[2 * k + 1] * f_el[2 * k + 1];
-                w_viscous += f_v[2 * k] * ax + f_v[2 * k + 1] * ay;
+                w_viscous += w.viscous;
                 if (c_damp > 0. &&
                     (b == no_body ||
                      d.body_motion[b] == DiscreteBody::Motion::free))
@@ -537,9 +544,9 @@ namespace tmfdem
                     w_viscous -= c_damp * mass / dt *
                                  ((px ? 0. : ax * ax) + (py ? 0. : ay * ay));
                   }
-                w_joint += fjx * ax + fjy * ay;
-                w_contact += f_contact[2 * k] * ax + f_contact[2 * k + 1] * ay;
-                w_external += fgx * ax + fgy * ay;
+                w_joint += w.joint;
+                w_contact += w.contact;
+                w_external += w.gravity;
                 m.vx[node] = vx_new;
                 m.vy[node] = vy_new;
                 m.x[node] += dt * vx_new;

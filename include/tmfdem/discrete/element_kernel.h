@@ -9,9 +9,12 @@
  * (constitutive::elastic_stress()) plus the anisotropic correction of joint
  * compliance compensation (anisotropic_stress()), the viscous stress
  * 2 eta sym(dF/dt F^-1) (Eqs. 45-46) and the nodal forces of both
- * (nodal_forces()). Both instantiations perform the same operations in the
- * same order, so a triangle in a batch gets bitwise the forces of the
- * scalar loop (node_update.cc is compiled without FMA contraction).
+ * (nodal_forces()); then each node's resultant, its damped velocity
+ * update and the works of its forces over the step (NodeForces,
+ * damped_velocity(), node_works()). Both instantiations perform the same
+ * operations in the same order, so a triangle in a batch gets bitwise the
+ * forces and nodes of the scalar loop (node_update.cc is compiled without
+ * FMA contraction).
  */
 #ifndef tmfdem_discrete_element_kernel_h
 #define tmfdem_discrete_element_kernel_h
@@ -141,6 +144,64 @@ namespace tmfdem
           r.fvx[k] = viscous ? fvx[k] : zero;
           r.fvy[k] = viscous ? fvy[k] : zero;
         }
+    }
+
+    /**
+     * The forces on one node (or one per lane) in an explicit step, by
+     * origin [N/m]: component 0 along x, 1 along y.
+     */
+    template <typename Number>
+    struct NodeForces
+    {
+      Number elastic[2], viscous[2], joint[2], contact[2], gravity[2];
+
+      /** The resultant along component @p i, summed in this order. */
+      __attribute__((always_inline)) Number
+      total(const unsigned int i) const
+      {
+        return elastic[i] + viscous[i] + joint[i] + contact[i] + gravity[i];
+      }
+    };
+
+    /**
+     * The new velocity of a node [m/s] under mass-proportional damping c
+     * integrated exactly: v_new = a v_old + b / m f with
+     * a = (1 - c dt / 2) / (1 + c dt / 2), @p b_over_mass = dt / ((1 + c dt
+     * / 2) m) [s/kg m], the resultant force @p force [N/m].
+     */
+    template <typename Number>
+    __attribute__((always_inline)) inline Number
+    damped_velocity(const double damping_a,
+                    const Number velocity_old,
+                    const Number b_over_mass,
+                    const Number force)
+    {
+      return damping_a * velocity_old + b_over_mass * force;
+    }
+
+    /** The works of a node's forces over one step [J/m], by origin. */
+    template <typename Number>
+    struct NodeWorks
+    {
+      Number elastic, viscous, joint, contact, gravity;
+    };
+
+    /**
+     * The works of the forces @p f over the step's displacement
+     * (@p ax, @p ay) = dt (v_old + v_new) / 2 [m] (the trapezoidal rule of
+     * the energy balance, doc/theory.md).
+     */
+    template <typename Number>
+    __attribute__((always_inline)) inline NodeWorks<Number>
+    node_works(const NodeForces<Number> &f, const Number ax, const Number ay)
+    {
+      NodeWorks<Number> w;
+      w.elastic = f.elastic[0] * ax + f.elastic[1] * ay;
+      w.viscous = f.viscous[0] * ax + f.viscous[1] * ay;
+      w.joint   = f.joint[0] * ax + f.joint[1] * ay;
+      w.contact = f.contact[0] * ax + f.contact[1] * ay;
+      w.gravity = f.gravity[0] * ax + f.gravity[1] * ay;
+      return w;
     }
   } // namespace discrete
 } // namespace tmfdem
