@@ -141,33 +141,36 @@ namespace tmfdem
         r_s = closed ? abs_s * k.tangential_stiffness / (2. * fs) : r_s;
       const auto past_opening = r > 1., past_slip = r_s > 1.;
       t.beyond_peak = past_opening | past_slip;
-      // beyond a peak: the softening displacements (rare; divisions here)
+      // beyond a peak: the softening displacements and the damage (rare;
+      // divisions here); z(D) where the joint is damaged
       t.d_opening = zero;
       t.d_slip    = zero;
-      if (any_lane(past_opening))
-        t.d_opening = past_opening ? (o - 2. * ft / k.normal_stiffness) /
-                                       k.softening_width_I :
-                                     zero;
-      if (any_lane(past_slip))
-        t.d_slip = past_slip ? (abs_s - 2. * fs / k.tangential_stiffness) /
-                                 k.softening_width_II :
-                               zero;
-      Number     D       = damage;
-      const auto softens = (t.d_opening > 0.) | (t.d_slip > 0.);
-      if (any_lane(softens))
+      Number D    = damage;
+      Number z    = zero + 1.;
+      if (any_lane(t.beyond_peak | (D > 0.)))
         {
-          const Number D_now =
-            lane_sqrt(t.d_opening * t.d_opening + t.d_slip * t.d_slip);
-          Number D_new = D_now > D ? D_now : D;
-          D_new        = D_new < 1. ? D_new : zero + 1.;
-          D            = softens ? D_new : D;
-          damage       = D;
+          t.d_opening = past_opening ? (o - 2. * ft / k.normal_stiffness) /
+                                         k.softening_width_I :
+                                       zero;
+          t.d_slip    = past_slip ? (abs_s - 2. * fs / k.tangential_stiffness) /
+                                   k.softening_width_II :
+                                    zero;
+          const auto softens = (t.d_opening > 0.) | (t.d_slip > 0.);
+          if (any_lane(softens))
+            {
+              const Number D_now =
+                lane_sqrt(t.d_opening * t.d_opening + t.d_slip * t.d_slip);
+              Number D_new = D_now > D ? D_now : D;
+              D_new        = D_new < 1. ? D_new : zero + 1.;
+              D            = softens ? D_new : D;
+              damage       = D;
+            }
+          if (any_lane(D > 0.))
+            z =
+              D > 0. ?
+                lane_map([](const double d) { return softening<law>(d); }, D) :
+                z;
         }
-      Number z = zero + 1.;
-      if (any_lane(D > 0.))
-        z = D > 0. ?
-              lane_map([](const double d) { return softening<law>(d); }, D) :
-              z;
 
       t.normal =
         closed ? compression : (r <= 1. ? z * ft * r * (2. - r) : z * ft);

@@ -73,16 +73,17 @@ namespace tmfdem
       return b;
     }
 
-    /** Is the comparison @p mask true in some lane? */
+    /** Is the comparison @p mask true in some lane? (The lanes or-ed
+     *  together, no branch per lane.) */
     template <typename Mask,
               typename = std::enable_if_t<!std::is_arithmetic_v<Mask>>>
     inline bool
     any_lane(const Mask mask)
     {
-      for (unsigned int l = 0; l < sizeof(Mask) / sizeof(mask[0]); ++l)
-        if (mask[l] != 0)
-          return true;
-      return false;
+      auto bits = mask[0];
+      for (unsigned int l = 1; l < sizeof(Mask) / sizeof(mask[0]); ++l)
+        bits |= mask[l];
+      return bits != 0;
     }
 
     /** @p f applied to each lane of @p v (to @p v itself for a double). */
