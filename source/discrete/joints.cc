@@ -104,7 +104,7 @@ namespace tmfdem
         const JointConstantLanes<JointLanes> k(&m.joint_constants[j0]);
         JointLanes                           damage[2] = {};
         JointResponse<JointLanes>            f;
-        joint_response<SofteningLaw::linear>(g, k, damage, f);
+        joint_response<SofteningLaw::linear, false>(g, k, damage, f);
         if (any_lane(f.beyond_peak))
           return false;
         for (unsigned int l = 0; l < joint_lanes; ++l)

@@ -112,9 +112,15 @@ namespace tmfdem
      * for one joint (Number = double, @p k a JointConstants) and for the
      * lanes of a vector batch (Number a lane vector, @p k a struct of lane
      * vectors with JointConstants' member names: joint_kernel.h); both
-     * perform the same operations in the same order.
+     * perform the same operations in the same order. With @p with_softening =
+     * false only the rising branch is formed (z = 1, no damage; the caller
+     * discards the result where beyond_peak is set, as the explicit loop's
+     * batches do).
      */
-    template <SofteningLaw law, typename Number, typename Constants>
+    template <SofteningLaw law,
+              bool         with_softening = true,
+              typename Number,
+              typename Constants>
     __attribute__((always_inline)) inline JointTractionT<Number>
     cohesive_traction(const Number     o,
                       const Number     s,
@@ -147,7 +153,7 @@ namespace tmfdem
       t.d_slip    = zero;
       Number D    = damage;
       Number z    = zero + 1.;
-      if (any_lane(t.beyond_peak | (D > 0.)))
+      if (with_softening && any_lane(t.beyond_peak | (D > 0.)))
         {
           t.d_opening = past_opening ? (o - 2. * ft / k.normal_stiffness) /
                                          k.softening_width_I :

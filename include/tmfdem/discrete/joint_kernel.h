@@ -113,9 +113,13 @@ namespace tmfdem
      * Gauss points, weighted L / 2, distributed to the node pairs by the
      * linear shape functions; a joint closed at one end and open at the
      * other takes its compression exactly over the closed part
-     * (joint_closed_part()) instead of at the Gauss points.
+     * (joint_closed_part()) instead of at the Gauss points. With
+     * @p with_softening = false the rising branch only (cohesive_traction()).
      */
-    template <SofteningLaw law, typename Number, typename Constants>
+    template <SofteningLaw law,
+              bool         with_softening = true,
+              typename Number,
+              typename Constants>
     __attribute__((always_inline)) inline void
     joint_response(const JointFrameT<Number> &g,
                    const Constants           &k,
@@ -137,7 +141,7 @@ namespace tmfdem
           const Number                 o  = dx * g.nx + dy * g.ny;
           const Number                 s  = dx * g.tx + dy * g.ty;
           const JointTractionT<Number> tr =
-            cohesive_traction<law>(o, s, k, damage[q]);
+            cohesive_traction<law, with_softening>(o, s, k, damage[q]);
           f.d_opening = lane_max(f.d_opening, tr.d_opening);
           f.d_slip    = lane_max(f.d_slip, tr.d_slip);
           f.beyond_peak |= tr.beyond_peak;
