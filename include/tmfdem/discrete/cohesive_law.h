@@ -93,11 +93,10 @@ namespace tmfdem
     template <typename Number>
     struct JointTractionT
     {
-      Number normal; ///< tension positive (resists opening)
-      Number shear;  ///< along the slip (resists slip)
-      Number
-        d_opening;   ///< normalised softening opening d_o (> 0 past the peak)
-      Number d_slip; ///< normalised softening slip d_s (> 0 past the peak)
+      Number normal;    ///< tension positive (resists opening)
+      Number shear;     ///< along the slip (resists slip)
+      Number d_opening; ///< normalised softening opening d_o (past the peak)
+      Number d_slip;    ///< normalised softening slip d_s (past the peak)
       /** r = o / o_p > 1 or r_s = |s| / s_p > 1: past a peak (a comparison
        *  result: bool, or a lane mask) */
       decltype(Number() > 1.) beyond_peak;
