@@ -75,9 +75,9 @@ namespace tmfdem
        * per lane through joint_response(), the kernel of the joint-by-joint
        * loop, so the forces are bitwise those of that loop. Returns false,
        * having written nothing, where any joint of the batch needs that
-       * loop (damaged, broken, softening). The lane whose joint is not
-       * closed at one end skips nothing: it forms the closed part too and
-       * discards it. Compiled once per instruction set (the wrappers
+       * loop (damaged, broken, softening). Where some joint of the batch is
+       * closed at one end only, every lane forms the closed part and the others
+       * discard it. Compiled once per instruction set (the wrappers
        * below); the softening law does not matter below the peak.
        */
       template <unsigned int joint_lanes>

@@ -261,7 +261,9 @@ namespace
    * compressed, hinged, past the peak and damaged (the lanes' softening
    * and square roots included, which the explicit loop's batches leave to
    * the one-at-a-time loop). Forces, softening displacements, the damage
-   * written and the beyond-peak flag must be bitwise the same.
+   * written and the beyond-peak flag must be bitwise the same; and the
+   * batches' instantiation (the rising branch only) must give the same
+   * forces for every undamaged joint below its peak.
    */
   template <SofteningLaw law>
   void
@@ -274,6 +276,8 @@ namespace
     std::vector<JointConstants>            k(4);
     // lanes met: below the peak, past it, closed at both ends, hinged
     unsigned int below = 0, past = 0, closed = 0, hinged = 0;
+    // undamaged lanes below the peak compared with the rising branch only
+    unsigned int rising_compared = 0;
     for (unsigned int round = 0; round < 400; ++round)
       {
         double x[4][4], y[4][4], damage[4][2];
@@ -314,14 +318,28 @@ namespace
           for (unsigned int l = 0; l < 4; ++l)
             D[q][l] = damage[l][q];
         const JointConstantLanes<Lanes> kl(k.data());
-        JointResponse<Lanes>            fl;
+        // the batches' instantiation: the rising branch only, undamaged
+        Lanes                undamaged[2] = {};
+        JointResponse<Lanes> rising;
+        joint_response<law, false>(joint_frame(X, Y), kl, undamaged, rising);
+        JointResponse<Lanes> fl;
         joint_response<law>(joint_frame(X, Y), kl, D, fl);
         for (unsigned int l = 0; l < 4; ++l)
           {
-            const double          xs[4] = {x[0][l], x[1][l], x[2][l], x[3][l]};
-            const double          ys[4] = {y[0][l], y[1][l], y[2][l], y[3][l]};
+            const double xs[4]       = {x[0][l], x[1][l], x[2][l], x[3][l]};
+            const double ys[4]       = {y[0][l], y[1][l], y[2][l], y[3][l]};
+            const bool was_undamaged = damage[l][0] == 0. && damage[l][1] == 0.;
             JointResponse<double> f;
             joint_response<law>(joint_frame(xs, ys), k[l], damage[l], f);
+            EXPECT_EQ(f.beyond_peak, rising.beyond_peak[l] != 0);
+            if (was_undamaged && !f.beyond_peak)
+              {
+                ++rising_compared;
+                EXPECT_EQ(f.a0x, rising.a0x[l]);
+                EXPECT_EQ(f.a0y, rising.a0y[l]);
+                EXPECT_EQ(f.a1x, rising.a1x[l]);
+                EXPECT_EQ(f.a1y, rising.a1y[l]);
+              }
             EXPECT_EQ(f.a0x, fl.a0x[l]);
             EXPECT_EQ(f.a0y, fl.a0y[l]);
             EXPECT_EQ(f.a1x, fl.a1x[l]);
@@ -343,6 +361,7 @@ namespace
     EXPECT_GT(past, 100u);
     EXPECT_GT(closed, 100u);
     EXPECT_GT(hinged, 100u);
+    EXPECT_GT(rising_compared, 100u);
   }
 } // namespace
 

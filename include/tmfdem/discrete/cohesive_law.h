@@ -112,9 +112,9 @@ namespace tmfdem
      * lanes of a vector batch (Number a lane vector, @p k a struct of lane
      * vectors with JointConstants' member names: joint_kernel.h); both
      * perform the same operations in the same order. With @p with_softening =
-     * false only the rising branch is formed (z = 1, no damage; the caller
-     * discards the result where beyond_peak is set, as the explicit loop's
-     * batches do).
+     * false only the rising branch is formed (z = 1, @p damage not
+     * updated): for joints whose damage is 0, and the caller discards the
+     * result where beyond_peak is set, as the explicit loop's batches do.
      */
     template <SofteningLaw law,
               bool         with_softening = true,
@@ -152,29 +152,33 @@ namespace tmfdem
       t.d_slip    = zero;
       Number D    = damage;
       Number z    = zero + 1.;
-      if (with_softening && any_lane(t.beyond_peak | (D > 0.)))
+      if constexpr (with_softening)
         {
-          t.d_opening = past_opening ? (o - 2. * ft / k.normal_stiffness) /
-                                         k.softening_width_I :
-                                       zero;
-          t.d_slip    = past_slip ? (abs_s - 2. * fs / k.tangential_stiffness) /
-                                   k.softening_width_II :
-                                    zero;
-          const auto softens = (t.d_opening > 0.) | (t.d_slip > 0.);
-          if (any_lane(softens))
+          if (any_lane(t.beyond_peak | (D > 0.)))
             {
-              const Number D_now =
-                lane_sqrt(t.d_opening * t.d_opening + t.d_slip * t.d_slip);
-              Number D_new = D_now > D ? D_now : D;
-              D_new        = D_new < 1. ? D_new : zero + 1.;
-              D            = softens ? D_new : D;
-              damage       = D;
+              t.d_opening = past_opening ? (o - 2. * ft / k.normal_stiffness) /
+                                             k.softening_width_I :
+                                           zero;
+              t.d_slip    = past_slip ?
+                              (abs_s - 2. * fs / k.tangential_stiffness) /
+                             k.softening_width_II :
+                              zero;
+              const auto softens = (t.d_opening > 0.) | (t.d_slip > 0.);
+              if (any_lane(softens))
+                {
+                  const Number D_now =
+                    lane_sqrt(t.d_opening * t.d_opening + t.d_slip * t.d_slip);
+                  Number D_new = D_now > D ? D_now : D;
+                  D_new        = D_new < 1. ? D_new : zero + 1.;
+                  D            = softens ? D_new : D;
+                  damage       = D;
+                }
+              if (any_lane(D > 0.))
+                z = D > 0. ?
+                      lane_map([](const double d) { return softening<law>(d); },
+                               D) :
+                      z;
             }
-          if (any_lane(D > 0.))
-            z =
-              D > 0. ?
-                lane_map([](const double d) { return softening<law>(d); }, D) :
-                z;
         }
 
       t.normal =

@@ -63,11 +63,16 @@ namespace tmfdem
      * operators and the ternary `mask ? a : b`, which GCC's vector
      * extension provides for both: the same call on a double and on a
      * vector, the vector version doing per lane what the double version
-     * does, so that both round alike.
+     * does, so that both round alike. Idioms of such kernels: `Number
+     * zero{}` and `zero + 1.` make a zero and a one of either type (a
+     * double, or one in every lane); `decltype(Number() > 1.)` is the type
+     * of a comparison (bool, or a lane mask: all bits set where true);
+     * `a & b` and `a | b` of two comparisons are an int for doubles and a
+     * mask for vectors, and either selects in `cond ? x : y`.
      */
     ///@{
     /** Is the comparison @p b true (a double's comparison)? */
-    inline bool
+    __attribute__((always_inline)) inline bool
     any_lane(const bool b)
     {
       return b;
@@ -77,7 +82,7 @@ namespace tmfdem
      *  together, no branch per lane.) */
     template <typename Mask,
               typename = std::enable_if_t<!std::is_arithmetic_v<Mask>>>
-    inline bool
+    __attribute__((always_inline)) inline bool
     any_lane(const Mask mask)
     {
       auto bits = mask[0];
@@ -88,7 +93,7 @@ namespace tmfdem
 
     /** @p f applied to each lane of @p v (to @p v itself for a double). */
     template <typename Number, typename Function>
-    inline Number
+    __attribute__((always_inline)) inline Number
     lane_map(const Function &f, const Number v)
     {
       if constexpr (std::is_arithmetic_v<Number>)
@@ -104,7 +109,7 @@ namespace tmfdem
 
     /** The square root, lane by lane. */
     template <typename Number>
-    inline Number
+    __attribute__((always_inline)) inline Number
     lane_sqrt(const Number v)
     {
       return lane_map([](const double a) { return std::sqrt(a); }, v);
@@ -112,7 +117,7 @@ namespace tmfdem
 
     /** |v|, lane by lane (the sign bit cleared, as std::abs does). */
     template <typename Number>
-    inline Number
+    __attribute__((always_inline)) inline Number
     lane_abs(const Number v)
     {
       if constexpr (std::is_arithmetic_v<Number>)
@@ -127,7 +132,7 @@ namespace tmfdem
 
     /** The larger of @p a and @p b, lane by lane, as std::max picks it. */
     template <typename Number>
-    inline Number
+    __attribute__((always_inline)) inline Number
     lane_max(const Number a, const Number b)
     {
       return a < b ? b : a;
