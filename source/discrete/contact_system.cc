@@ -383,9 +383,10 @@ namespace tmfdem
                   bool          entered = false;
                   for (unsigned int edge = 0; edge < 3; ++edge)
                     {
-                      double            &slip = pair.slip[3 * direction + edge];
-                      const unsigned int a    = 3 * c + edge,
-                                         b    = 3 * c + (edge + 1) % 3;
+                      EdgeFriction &history =
+                        pair.friction[3 * direction + edge];
+                      const unsigned int a = 3 * c + edge,
+                                         b = 3 * c + (edge + 1) % 3;
                       EdgePotentialIntegrals I;
                       if (!edge_potential_integrals(m.x[a],
                                                     m.y[a],
@@ -395,7 +396,7 @@ namespace tmfdem
                                                     ty,
                                                     I))
                         {
-                          slip = 0.; // the edge left the target
+                          history = EdgeFriction(); // the edge left the target
                           continue;
                         }
                       entered = true;
@@ -410,7 +411,7 @@ namespace tmfdem
                                                          3 * t,
                                                          I,
                                                          dt,
-                                                         slip,
+                                                         history,
                                                          fc,
                                                          ft);
                     }

@@ -129,6 +129,33 @@ namespace tmfdem
                       Patterns::Double(0.),
                       "Coulomb friction coefficient between broken faces "
                       "and bodies [-].");
+    prm.declare_entry(
+      "Friction memory slip",
+      "1e-7",
+      Patterns::Double(0.),
+      "Memory slip L of the regularised Coulomb friction [m]: a contact's "
+      "friction strength follows mu times its normal force, and the slip "
+      "rate its rate effect compares with follows the slip rate, over this "
+      "much slip (Prakash-Clifton; doc/theory.md 5.5, 'Regularised "
+      "friction'). It removes the friction-excited vibration in which a "
+      "block on an incline at a small margin mu - tan(theta) walks downhill "
+      "(doc/cases/block_on_incline.md); a new contact slips a few L / "
+      "(margin) before it sticks. Steady sliding and rest are Coulomb's. "
+      "0: plain Coulomb friction, the strength mu N at every instant.");
+    prm.declare_entry(
+      "Friction rate effect",
+      "0.01",
+      Patterns::Double(0., 1.),
+      "Rate effect a of the regularised friction [-]: the strength times "
+      "1 + a ln((v0 + |v|) / (v0 + remembered slip rate)), stronger while "
+      "the slip accelerates, Coulomb's in steady sliding (rate-and-state "
+      "friction with equal direct and evolution effects; rocks: 0.005 to "
+      "0.02). Needs Friction memory slip > 0.");
+    prm.declare_entry("Friction reference slip rate",
+                      "1e-6",
+                      Patterns::Double(0.),
+                      "Reference slip rate v0 of the rate effect [m/s] "
+                      "(> 0).");
     prm.declare_entry("Softening law",
                       "Munjiza",
                       Patterns::Selection(
@@ -299,6 +326,20 @@ namespace tmfdem
     contact_tangential_penalty_factor =
       prm.get_double("Contact tangential penalty factor");
     friction_coefficient = prm.get_double("Friction coefficient");
+    friction_memory_slip = prm.get_double("Friction memory slip");
+    friction_rate_effect = prm.get_double("Friction rate effect");
+    friction_reference_slip_rate =
+      prm.get_double("Friction reference slip rate");
+    if (friction_rate_effect > 0. && !(friction_memory_slip > 0.))
+      throw InputError(
+        "Discrete mechanics/Friction rate effect = " +
+        Utilities::to_string(friction_rate_effect) +
+        " needs a memory: set Friction memory slip > 0 [m] (the slip over "
+        "which the remembered slip rate follows the slip rate), or Friction "
+        "rate effect = 0 for plain Coulomb friction.");
+    if (!(friction_reference_slip_rate > 0.))
+      throw InputError("Discrete mechanics/Friction reference slip rate must "
+                       "be > 0 [m/s].");
     contact_broken_faces_at_joint_stiffness =
       prm.get("Contact of broken joint faces") == "joint stiffness";
     contact_potential_gradient_on_target =

@@ -343,7 +343,11 @@ namespace tmfdem
         dm.contact_penalty_factor * E_max;
       settings.penalty_coulomb.tangential_penalty =
         dm.contact_tangential_penalty_factor * E_max;
-      settings.penalty_coulomb.friction = dm.friction_coefficient;
+      settings.penalty_coulomb.friction    = dm.friction_coefficient;
+      settings.penalty_coulomb.memory_slip = dm.friction_memory_slip;
+      settings.penalty_coulomb.rate_effect = dm.friction_rate_effect;
+      settings.penalty_coulomb.reference_slip_rate =
+        dm.friction_reference_slip_rate;
       settings.penalty_coulomb.potential_gradient_on_target =
         dm.contact_potential_gradient_on_target;
       settings.match_broken_joints = dm.contact_broken_faces_at_joint_stiffness;

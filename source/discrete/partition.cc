@@ -686,14 +686,15 @@ namespace tmfdem
 
     namespace
     {
-      /** A pair's friction history is kept where any slip has a bit set
-       *  (-0 included). */
+      /** A pair's friction history is kept where any of its values has a
+       *  bit set (-0 included). */
       inline bool
       sliding(const ContactPair &pair)
       {
         bool any = false;
-        for (const double s : pair.slip)
-          any |= s != 0. || std::signbit(s);
+        for (const EdgeFriction &f : pair.friction)
+          for (const double s : {f.slip, f.strength, f.remembered_rate})
+            any |= s != 0. || std::signbit(s);
         return any;
       }
 
@@ -718,9 +719,9 @@ namespace tmfdem
       constexpr int      tag = 4714;
       // a pair (a, b), a < b, made here (a mine) goes to the owner of b
       // when that is another, higher, rank: per such rank the message
-      // [n, (a, b) n times as 32-bit ids, (index, six slips) per sliding
-      // pair], in bytes. The list is sorted by a, not by the owner of b:
-      // one pass that fills every rank's message.
+      // [n, (a, b) n times as 32-bit ids, (index, six edges' friction history)
+      // per sliding pair], in bytes. The list is sorted by a, not by the owner
+      // of b: one pass that fills every rank's message.
       std::vector<unsigned int> partners;
       if (by_regions)
         partners = region_partners;
@@ -753,7 +754,9 @@ namespace tmfdem
           if (sliding(pair))
             {
               put_bytes(records[k], &index, sizeof(index));
-              put_bytes(records[k], pair.slip.data(), sizeof(pair.slip));
+              put_bytes(records[k],
+                        pair.friction.data(),
+                        sizeof(pair.friction));
             }
         }
       std::vector<std::vector<unsigned char>> send(n_higher);
@@ -785,7 +788,7 @@ namespace tmfdem
           std::memcpy(&n, received.data(), sizeof(n));
           const std::size_t ids_end = sizeof(n) + sizeof(std::uint32_t) * 2 * n;
           constexpr std::size_t record =
-            sizeof(std::uint32_t) + sizeof(ContactPair::slip);
+            sizeof(std::uint32_t) + sizeof(ContactPair::friction);
           AssertThrow(received.size() >= ids_end &&
                         (received.size() - ids_end) % record == 0,
                       ExcInternalError());
@@ -807,9 +810,9 @@ namespace tmfdem
               std::uint32_t index = 0;
               std::memcpy(&index, received.data() + b, sizeof(index));
               AssertThrow(index < n, ExcInternalError());
-              std::memcpy(joined[first + index].slip.data(),
+              std::memcpy(joined[first + index].friction.data(),
                           received.data() + b + sizeof(index),
-                          sizeof(ContactPair::slip));
+                          sizeof(ContactPair::friction));
             }
         }
       joined.insert(joined.end(), pairs.begin(), pairs.end());
@@ -829,7 +832,8 @@ namespace tmfdem
       CommunicationTimer timer(communication_seconds);
       // most candidate pairs are not touching and have no friction history:
       // the pairs go as two 32-bit ids (8 B), and only the pairs with a
-      // slip (any bit set, -0 included) add their index and six slips
+      // friction history (any bit set, -0 included) add their index and the
+      // six edges' slip, strength and remembered rate
       std::vector<std::uint32_t> ids(2 * pairs.size());
       std::vector<double>        slips;
       for (std::size_t p = 0; p < pairs.size(); ++p)
@@ -839,9 +843,9 @@ namespace tmfdem
           if (sliding(pairs[p]))
             {
               slips.push_back(static_cast<double>(p));
-              slips.insert(slips.end(),
-                           pairs[p].slip.begin(),
-                           pairs[p].slip.end());
+              for (const EdgeFriction &f : pairs[p].friction)
+                slips.insert(slips.end(),
+                             {f.slip, f.strength, f.remembered_rate});
             }
         }
       // one rank's block of a gathered array, by rank
@@ -872,14 +876,16 @@ namespace tmfdem
           pairs[p].first  = all_ids[2 * p];
           pairs[p].second = all_ids[2 * p + 1];
         }
-      constexpr unsigned int record = 7; // index, six slips
+      constexpr unsigned int record = 19; // index, six edges' three values
       for (unsigned int r = 0; r < n_ranks; ++r)
         for (int k = slip_offsets[r]; k < slip_offsets[r + 1]; k += record)
           {
             ContactPair &pair =
               pairs[id_offsets[r] / 2 + static_cast<std::size_t>(scratch[k])];
             for (unsigned int i = 0; i < 6; ++i)
-              pair.slip[i] = scratch[k + 1 + i];
+              pair.friction[i] = {scratch[k + 1 + 3 * i],
+                                  scratch[k + 2 + 3 * i],
+                                  scratch[k + 3 + 3 * i]};
           }
       if (values != nullptr)
         {

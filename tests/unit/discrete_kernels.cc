@@ -502,7 +502,7 @@ namespace
                                           y + t0,
                                           I))
               continue;
-            double slip = 0.;
+            EdgeFriction slip;
             law.edge_forces(x,
                             y,
                             v,
@@ -772,4 +772,63 @@ TEST(Contact, LinkedCellsFindAllOverlappingBoxes)
           ++expected;
       }
   EXPECT_EQ(pairs.size(), expected);
+}
+
+// The regularised friction law (theory manual 5.5, "Regularised friction"):
+// plain Coulomb without a memory slip; otherwise the strength follows mu N
+// as exp(-slip / L), stays put at rest, and the rate effect strengthens a
+// sudden acceleration by a ln(v2 / v1) and vanishes in steady sliding.
+TEST(RegularisedFriction, WithoutMemoryTheLimitIsMuN)
+{
+  PenaltyCoulombContact law;
+  law.friction = 0.6;
+  EdgeFriction history;
+  EXPECT_EQ(law.friction_limit(123.4, 0.5, 1e-6, history), 123.4);
+  EXPECT_EQ(history.strength, 0.);
+  EXPECT_EQ(history.remembered_rate, 0.);
+}
+
+TEST(RegularisedFriction, StrengthFollowsTheNormalForceOverTheMemorySlip)
+{
+  PenaltyCoulombContact law;
+  law.memory_slip = 1e-7;
+  law.rate_effect = 0.01;
+  const double v = 0.1, dt = 0.1 * law.memory_slip / v; // L / 10 per step
+  EdgeFriction history;
+  double       limit = 0.;
+  // steady sliding over 30 L from a fresh contact: Coulomb's mu N
+  for (unsigned int i = 0; i < 300; ++i)
+    limit = law.friction_limit(100., v, dt, history);
+  EXPECT_NEAR(limit, 100., 1e-9);
+  // mu N doubles: after a slip of exactly L, 200 - 100 / e
+  for (unsigned int i = 0; i < 10; ++i)
+    limit = law.friction_limit(200., v, dt, history);
+  EXPECT_NEAR(limit, 200. - 100. * std::exp(-1.), 1e-9);
+  // at rest it keeps its strength, whatever mu N does
+  const double strength = history.strength;
+  for (unsigned int i = 0; i < 1000; ++i)
+    law.friction_limit(50., 0., dt, history);
+  EXPECT_EQ(history.strength, strength);
+}
+
+TEST(RegularisedFriction, RateEffectStrengthensASuddenAccelerationOnly)
+{
+  PenaltyCoulombContact law;
+  law.memory_slip         = 1e-7;
+  law.rate_effect         = 0.01;
+  law.reference_slip_rate = 1e-6;
+  EdgeFriction history;
+  const double v1 = 1e-3, v2 = 1e-2, dt = 1e-5;
+  for (unsigned int i = 0; i < 1000; ++i) // 100 L at v1
+    law.friction_limit(100., v1, dt, history);
+  // ten times faster over a slip of L / 1000: strength up by about
+  // a ln(10) (the remembered rate has moved 0.1 % of the way)
+  const double limit = law.friction_limit(100., v2, 1e-3 * 1e-7 / v2, history);
+  EXPECT_GT(limit, 100. * (1. + 0.99 * 0.01 * std::log(10.)));
+  EXPECT_LT(limit, 100. * (1. + 0.01 * std::log(10.)));
+  // steady at v2 again after 30 L: Coulomb's
+  double steady = 0.;
+  for (unsigned int i = 0; i < 3000; ++i)
+    steady = law.friction_limit(100., v2, 1e-7 / v2 / 100., history);
+  EXPECT_NEAR(steady, 100., 1e-9);
 }

@@ -318,10 +318,31 @@ namespace tmfdem
      * history: accumulated elastic slip per contactor edge [m], edges 0-2 of
      * `first` against `second`, then edges 0-2 of `second` against
      * `first`. */
+    /**
+     * The friction history of one contactor edge inside one target
+     * (PenaltyCoulombContact::edge_forces()): its elastic slip, and with the
+     * regularised law the friction strength and the slip rate it remembers.
+     */
+    struct EdgeFriction
+    {
+      /** Elastic slip of the tangential spring, scaled by the clipped length
+       *  fraction when it was loaded [m]. */
+      double slip = 0.;
+      /** Friction strength S that follows mu N over the memory slip (Coulomb
+       *  law: unused, 0) [N/m]. */
+      double strength = 0.;
+      /** Slip rate that the rate effect compares with, following the slip
+       *  rate over the memory slip (Coulomb law: unused, 0) [m/s]. */
+      double remembered_rate = 0.;
+    };
+
+    /** Two triangles that may touch: their indices (first < second) and the
+     *  friction history of each edge of each as the contactor in the other
+     *  (entry 3 direction + edge; direction 0: first in second). */
     struct ContactPair
     {
-      unsigned int          first, second;
-      std::array<double, 6> slip{{0., 0., 0., 0., 0., 0.}};
+      unsigned int                first, second;
+      std::array<EdgeFriction, 6> friction{};
     };
 
     /**
@@ -590,7 +611,7 @@ namespace tmfdem
             ++old;
           if (old < pairs.size() && pairs[old].first == p.first &&
               pairs[old].second == p.second)
-            p.slip = pairs[old].slip;
+            p.friction = pairs[old].friction;
         }
       pairs.swap(new_pairs);
     }

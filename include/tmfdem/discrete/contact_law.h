@@ -17,6 +17,7 @@
 #ifndef tmfdem_discrete_contact_law_h
 #define tmfdem_discrete_contact_law_h
 
+#include <algorithm>
 #include <cmath>
 #include <tmfdem/discrete/contact.h>
 
@@ -44,6 +45,18 @@ namespace tmfdem
       double normal_penalty     = 0.; ///< p_n [Pa]
       double tangential_penalty = 0.; ///< p_t [Pa]
       double friction           = 0.; ///< Coulomb coefficient mu [-]
+      /**
+       * Memory slip L of the regularised friction law [m]: the strength
+       * follows mu N, and the remembered slip rate the slip rate, over this
+       * much slip (doc/theory.md 5.5, "Regularised friction"); 0: plain
+       * Coulomb friction, the strength mu N at every instant.
+       */
+      double memory_slip = 0.;
+      /** Rate effect a of the regularised law [-]: the strength times
+       *  1 + a ln((v0 + |v|) / (v0 + remembered rate)). */
+      double rate_effect = 0.;
+      /** Reference slip rate v0 of the rate effect [m/s]. */
+      double reference_slip_rate = 1e-6;
       /**
        * How the target's nodes get the normal force (`Contact force on the
        * target`). true: minus the gradient of p int_S phi_t dA with respect
@@ -99,13 +112,46 @@ namespace tmfdem
       }
 
       /**
+       * The largest tangential force of one contactor edge [N/m] whose
+       * Coulomb strength is @p coulomb (mu N) [N/m] and whose slip rate is
+       * @p slip_rate [m/s] over the step @p dt [s]. Plain Coulomb
+       * (memory_slip = 0): @p coulomb. Regularised: the strength S and the
+       * remembered rate V of @p history relax towards mu N and |v| over the
+       * memory slip L (Prakash and Clifton's law for the normal-stress
+       * dependence; for the rate, the evolution of rate-and-state friction
+       * with equal direct and evolution effects), dS = -(S - mu N) |v| dt /
+       * L, integrated exactly over the step, and the limit is
+       * S (1 + a ln((v0 + |v|) / (v0 + V))): mu N in steady sliding and at
+       * rest, stronger while the slip accelerates.
+       */
+      double
+      friction_limit(const double  coulomb,
+                     const double  slip_rate,
+                     const double  dt,
+                     EdgeFriction &history) const
+      {
+        if (!(memory_slip > 0.))
+          return coulomb;
+        const double keep = std::exp(-slip_rate * dt / memory_slip);
+        history.strength  = coulomb + (history.strength - coulomb) * keep;
+        history.remembered_rate =
+          slip_rate + (history.remembered_rate - slip_rate) * keep;
+        const double factor =
+          1. + rate_effect *
+                 std::log((reference_slip_rate + slip_rate) /
+                          (reference_slip_rate + history.remembered_rate));
+        return history.strength * std::max(factor, 0.);
+      }
+
+      /**
        * Forces of the contactor edge from node @p a (local node @p ka of
        * the contactor) to node @p b (local @p kb) inside the target whose
        * first node is @p t0 (its nodes t0, t0+1, t0+2), with the potential
        * integrals @p I along the edge [N/m]: added to the contactor's six
-       * nodal components @p fc and the target's @p ft. @p slip is the
-       * edge's elastic slip history [m], updated over the step @p dt [s].
-       * Returns the energy dissipated by friction [J/m].
+       * nodal components @p fc and the target's @p ft. @p history is the
+       * edge's friction history (elastic slip [m]; with the regularised
+       * law its strength and remembered slip rate), updated over the step
+       * @p dt [s]. Returns the energy dissipated by friction [J/m].
        */
       double
       edge_forces(const double                 *x,
@@ -119,7 +165,7 @@ namespace tmfdem
                   const unsigned int            t0,
                   const EdgePotentialIntegrals &I,
                   const double                  dt,
-                  double                       &slip,
+                  EdgeFriction                 &history,
                   double                       *fc,
                   double                       *ft) const
       {
@@ -140,12 +186,13 @@ namespace tmfdem
               ft[2 * k] += scale * I.phi_target[k] * nx;
               ft[2 * k + 1] += scale * I.phi_target[k] * ny;
             }
-        // Coulomb friction with elastic slip history
+        // Coulomb friction with elastic slip history (and, regularised, a
+        // strength and slip rate remembered over the memory slip)
         const double normal_force = fa + fb;
         const double mu           = friction;
         if (!(normal_force > 0.) || mu <= 0.)
           {
-            slip = 0.;
+            history = EdgeFriction();
             return 0.;
           }
         const double total = I.total();
@@ -162,19 +209,20 @@ namespace tmfdem
             vty += lt[k] * vy[t0 + k];
           }
         const double rate      = (vcx - vtx) * tx_u + (vcy - vty) * ty_u;
-        const double trial     = slip + rate * dt;
+        const double trial     = history.slip + rate * dt;
         const double stiffness = tangential_penalty * I.clipped_length_fraction;
         double       tangential = -stiffness * trial;
-        const double limit      = mu * normal_force;
-        double       new_slip   = trial;
-        double       dissipated = 0.;
+        const double limit =
+          friction_limit(mu * normal_force, std::abs(rate), dt, history);
+        double new_slip   = trial;
+        double dissipated = 0.;
         if (std::abs(tangential) > limit)
           {
             tangential = trial > 0. ? -limit : limit;
             new_slip   = -tangential / stiffness;
             dissipated = limit * (std::abs(trial) - std::abs(new_slip));
           }
-        slip = new_slip;
+        history.slip = new_slip;
         fc[2 * ka] += (1. - u) * tangential * tx_u;
         fc[2 * ka + 1] += (1. - u) * tangential * ty_u;
         fc[2 * kb] += u * tangential * tx_u;

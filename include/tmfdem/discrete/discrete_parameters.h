@@ -44,6 +44,12 @@ namespace tmfdem
     double contact_penalty_factor                    = 10.; ///< p_c / E [-]
     double contact_tangential_penalty_factor         = 1.;  ///< p_ct / E [-]
     double friction_coefficient                      = 0.5; ///< mu [-]
+    /** Memory slip L of the regularised friction [m]; 0: plain Coulomb. */
+    double friction_memory_slip = 1e-7;
+    /** Rate effect a of the regularised friction [-]. */
+    double friction_rate_effect = 0.01;
+    /** Reference slip rate v0 of the rate effect [m/s]. */
+    double friction_reference_slip_rate = 1e-6;
     /** The target's share of the normal contact force as the exact
      *  gradient of the contact energy (false: at the contact points). */
     bool contact_potential_gradient_on_target = true;
