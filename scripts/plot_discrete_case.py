@@ -11,7 +11,7 @@ several runs read one sub-folder per run, the layout the verification
 scripts write:
 
     joint_pull:        OUTPUT_FOLDER/{Munjiza,linear}_{I,II}/   (verify_discrete_joint.py)
-    block_on_incline:  OUTPUT_FOLDER/theta_<deg>_mu_<mu>/ (verify_discrete_dynamics.py incline)
+    block_on_incline:  OUTPUT_FOLDER/theta_<deg>_mu_<mu>[_damping_0.2]/ (verify_discrete_dynamics.py incline)
     plate_transient:   OUTPUT_FOLDER/{h0.05,continuum_P1,beta100,beta1000,beta10000}/
                        (verify_discrete_plate.py)
     contact_conduction: OUTPUT_FOLDER/{steady,equilibrate}/  (verify_discrete_contact_heat.py)
@@ -196,6 +196,17 @@ def plot_block_on_incline(folder, png):
             ax_e.plot(t, 1e6 * ux, "o-", color=c, ms=2, lw=0.8,
                       label=f"{degrees:g} deg, mu = {mu} >= tan = {math.tan(theta):.3f}: "
                             f"max |u_x| {1e6 * np.max(np.abs(ux)):.3f} um")
+    # the sticking cases again at Damping ratio 0.2
+    for degrees, mu, c in sticks:
+        theta = math.radians(degrees)
+        run = os.path.join(folder, f"theta_{degrees:g}_mu_{mu}_damping_0.2")
+        ensure_run(run, "block_on_incline.prm", f"Discrete mechanics/Friction coefficient={mu}",
+                   f"Discrete mechanics/Gravity={g * math.sin(theta)!r}, {-g * math.cos(theta)!r}",
+                   "Discrete mechanics/Damping ratio=0.2")
+        p = read_csv(os.path.join(run, "probes.csv"))
+        ax_e.plot(p["time"], 1e6 * p["ux"], "--", color=c, lw=1.0,
+                  label=f"{degrees:g} deg, Damping ratio 0.2: "
+                        f"max |u_x| {1e6 * np.max(np.abs(p['ux'])):.3f} um")
     ax_u.set_ylabel("u_x of the block centre [mm]")
     ax_u.set_title("Block on an incline: sliding (30 deg) and sticking cases")
     ax_u.legend(fontsize=7)
