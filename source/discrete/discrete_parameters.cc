@@ -150,7 +150,7 @@ namespace tmfdem
       "1 + a ln((v0 + |v|) / (v0 + remembered slip rate)), stronger while "
       "the slip accelerates, Coulomb's in steady sliding (rate-and-state "
       "friction with equal direct and evolution effects; rocks: 0.005 to "
-      "0.02). Needs Friction memory slip > 0.");
+      "0.02). Unused with Friction memory slip = 0 (plain Coulomb).");
     prm.declare_entry("Friction reference slip rate",
                       "1e-6",
                       Patterns::Double(0.),
@@ -330,13 +330,6 @@ namespace tmfdem
     friction_rate_effect = prm.get_double("Friction rate effect");
     friction_reference_slip_rate =
       prm.get_double("Friction reference slip rate");
-    if (friction_rate_effect > 0. && !(friction_memory_slip > 0.))
-      throw InputError(
-        "Discrete mechanics/Friction rate effect = " +
-        Utilities::to_string(friction_rate_effect) +
-        " needs a memory: set Friction memory slip > 0 [m] (the slip over "
-        "which the remembered slip rate follows the slip rate), or Friction "
-        "rate effect = 0 for plain Coulomb friction.");
     if (!(friction_reference_slip_rate > 0.))
       throw InputError("Discrete mechanics/Friction reference slip rate must "
                        "be > 0 [m/s].");
