@@ -691,10 +691,11 @@ namespace tmfdem
       inline bool
       sliding(const ContactPair &pair)
       {
+        std::array<double, friction_history_values> values;
+        std::memcpy(values.data(), pair.friction.data(), sizeof(values));
         bool any = false;
-        for (const EdgeFriction &f : pair.friction)
-          for (const double s : {f.slip, f.strength, f.remembered_rate})
-            any |= s != 0. || std::signbit(s);
+        for (const double s : values)
+          any |= s != 0. || std::signbit(s);
         return any;
       }
 
@@ -835,17 +836,19 @@ namespace tmfdem
       // friction history (any bit set, -0 included) add their index and the
       // six edges' slip, strength and remembered rate
       std::vector<std::uint32_t> ids(2 * pairs.size());
-      std::vector<double>        slips;
+      std::vector<double>        histories;
       for (std::size_t p = 0; p < pairs.size(); ++p)
         {
           ids[2 * p]     = pairs[p].first;
           ids[2 * p + 1] = pairs[p].second;
           if (sliding(pairs[p]))
             {
-              slips.push_back(static_cast<double>(p));
-              for (const EdgeFriction &f : pairs[p].friction)
-                slips.insert(slips.end(),
-                             {f.slip, f.strength, f.remembered_rate});
+              histories.push_back(static_cast<double>(p));
+              histories.resize(histories.size() + friction_history_values);
+              std::memcpy(histories.data() + histories.size() -
+                            friction_history_values,
+                          pairs[p].friction.data(),
+                          sizeof(pairs[p].friction));
             }
         }
       // one rank's block of a gathered array, by rank
@@ -869,23 +872,24 @@ namespace tmfdem
       std::vector<std::uint32_t> all_ids;
       const std::vector<int> id_offsets = gather(ids, all_ids, MPI_UINT32_T);
       scratch.clear();
-      const std::vector<int> slip_offsets = gather(slips, scratch, MPI_DOUBLE);
+      const std::vector<int> history_offsets =
+        gather(histories, scratch, MPI_DOUBLE);
       pairs.assign(all_ids.size() / 2, ContactPair());
       for (std::size_t p = 0; p < pairs.size(); ++p)
         {
           pairs[p].first  = all_ids[2 * p];
           pairs[p].second = all_ids[2 * p + 1];
         }
-      constexpr unsigned int record = 19; // index, six edges' three values
+      constexpr unsigned int record = 1 + friction_history_values; // index
       for (unsigned int r = 0; r < n_ranks; ++r)
-        for (int k = slip_offsets[r]; k < slip_offsets[r + 1]; k += record)
+        for (int k = history_offsets[r]; k < history_offsets[r + 1];
+             k += record)
           {
             ContactPair &pair =
               pairs[id_offsets[r] / 2 + static_cast<std::size_t>(scratch[k])];
-            for (unsigned int i = 0; i < 6; ++i)
-              pair.friction[i] = {scratch[k + 1 + 3 * i],
-                                  scratch[k + 2 + 3 * i],
-                                  scratch[k + 3 + 3 * i]};
+            std::memcpy(pair.friction.data(),
+                        &scratch[k + 1],
+                        sizeof(pair.friction));
           }
       if (values != nullptr)
         {

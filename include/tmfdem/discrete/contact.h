@@ -314,10 +314,6 @@ namespace tmfdem
       return energy;
     }
 
-    /** A candidate pair of elements (first < second) and its friction
-     * history: accumulated elastic slip per contactor edge [m], edges 0-2 of
-     * `first` against `second`, then edges 0-2 of `second` against
-     * `first`. */
     /**
      * The friction history of one contactor edge inside one target
      * (PenaltyCoulombContact::edge_forces()): its elastic slip, and with the
@@ -344,6 +340,12 @@ namespace tmfdem
       unsigned int                first, second;
       std::array<EdgeFriction, 6> friction{};
     };
+
+    /** The doubles of a pair's friction history, as messages carry it. */
+    constexpr unsigned int friction_history_values =
+      sizeof(ContactPair::friction) / sizeof(double);
+    static_assert(sizeof(EdgeFriction) == 3 * sizeof(double),
+                  "EdgeFriction is three doubles, copied as such");
 
     /**
      * The search box of a triangle with node coordinates @p xe, @p ye (three
