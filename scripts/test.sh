@@ -7,4 +7,4 @@ bash scripts/install-dependencies.sh
 bash scripts/build.sh Release
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 cd build-release
-ctest -j "${TMFDEM_JOBS:-2}" --output-on-failure --timeout 1200
+ctest -j "${TMFDEM_JOBS:-$(nproc)}" --output-on-failure --timeout 1200

@@ -6,14 +6,16 @@ relaxations_at_cap = 0: every thermal step ends in equilibrium, also where
 cracks run unstably, which the step control finds and the fracture event
 runs with inertia).
 
-    verify_relaxations_converge.py TMFDEM OUT [PRM ...]
+    verify_relaxations_converge.py TMFDEM OUT [PRM ...] [--except NAME ...]
 
-Without PRM arguments it finds the files itself; it prints per file the
-thermal steps, the re-run and unstable steps, the fracture events and the
-broken joints. prm/thermal_shock_disc.prm is left to the tests that run it
-with the same check: verify.discrete_thermal_shock_pattern (the showcase,
-400 C, to the prm's End time) and verify.discrete_thermal_shock (300 C,
-the prm's own temperature, and 500 C, to 50 ms).
+Without PRM arguments it finds the files itself (at least 6) and leaves out
+those named after --except (file names, run by a test of their own); it
+prints per file the thermal steps, the re-run and unstable steps, the
+fracture events and the broken joints. prm/thermal_shock_disc.prm is left
+to the tests that run it with the same check:
+verify.discrete_thermal_shock_pattern (the showcase, 400 C, to the prm's End
+time) and verify.discrete_thermal_shock (300 C, the prm's own temperature,
+and 500 C, to 50 ms).
 """
 import glob
 import os
@@ -23,15 +25,27 @@ import sys
 from common import run, summary, check
 
 binary, out = sys.argv[1], sys.argv[2]
+arguments = sys.argv[3:]
+excluded = set()
+if "--except" in arguments:
+    excluded = set(arguments[arguments.index("--except") + 1:])
+    arguments = arguments[:arguments.index("--except")]
 root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
-files = sys.argv[3:] or sorted(glob.glob(os.path.join(root, "prm", "*.prm")) +
-                               glob.glob(os.path.join(root, "doc", "tutorial", "prm", "*.prm")))
+files = arguments or sorted(glob.glob(os.path.join(root, "prm", "*.prm")) +
+                            glob.glob(os.path.join(root, "doc", "tutorial", "prm", "*.prm")))
 CHECKED_ELSEWHERE = {"thermal_shock_disc.prm"}
 quasi_static = [f for f in files
                 if re.search(r"^\s*set\s+Coupling\s*=\s*quasi-static", open(f).read(), re.M)]
-ok = check(len(quasi_static) >= 6, f"{len(quasi_static)} quasi-static prm files found (>= 6)")
-if not sys.argv[3:]:
-    quasi_static = [f for f in quasi_static if os.path.basename(f) not in CHECKED_ELSEWHERE]
+if arguments:
+    ok = check(len(quasi_static) == len(arguments),
+               f"{len(quasi_static)} of the {len(arguments)} prm files given are quasi-static")
+else:
+    ok = check(len(quasi_static) >= 6, f"{len(quasi_static)} quasi-static prm files found (>= 6)")
+    missing = excluded - {os.path.basename(f) for f in quasi_static}
+    ok &= check(not missing, f"the files left out are quasi-static prm files ({sorted(missing)} "
+                             f"are not)")
+    quasi_static = [f for f in quasi_static
+                    if os.path.basename(f) not in CHECKED_ELSEWHERE | excluded]
 for prm in quasi_static:
     name = os.path.splitext(os.path.basename(prm))[0]
     folder = os.path.join(out, name)
