@@ -4,14 +4,16 @@ the thermal step, the element size and the coupling.
 
     thermal_shock_step_study.py TMFDEM OUT_FOLDER
         [--temperatures 300,400,500] [--steps 0.02,0.005,0.001]
-        [--sizes 0.4e-3] [--dynamic] [--end 0.1] [--jobs 2]
+        [--sizes 0.4e-3] [--dynamic] [--mass-scaling 1e4,1e3] [--end 0.1] [--jobs 2]
         [--set "Entry=value" ...]
 
 For every initial temperature T0, element size h and maximum thermal step it
 runs the prm (quasi-static coupling, the shipped step control) to --end and,
 with --dynamic, once per T0 and h fully dynamic instead (Coupling = dynamic:
 one physical clock, the mechanical step of the mesh, the heat every 1000
-mechanical steps). It prints one markdown row per run: broken joints,
+mechanical steps), and with --mass-scaling F,... once per factor F
+dynamic with Discrete mechanics/Mass scaling factor = F (sqrt(F) times
+fewer mechanical steps; doc/theory.md 5.6). It prints one markdown row per run: broken joints,
 cracks (connected sets of broken joints), deep cracks (reaching more than
 1 mm inside the rim), the summed length of the broken joints [mm], the
 longest crack's depth below the rim [mm], thermal steps, re-run steps,
@@ -68,6 +70,7 @@ def main():
     ap.add_argument("--steps", default="0.02,0.005,0.001")
     ap.add_argument("--sizes", default="0.4e-3")
     ap.add_argument("--dynamic", action="store_true")
+    ap.add_argument("--mass-scaling", default="")
     ap.add_argument("--end", default="0.1")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--set", action="append", default=[], dest="settings")
@@ -82,15 +85,21 @@ def main():
                 label = f"h {float(h) * 1e3:g} mm, T0 {T0} C, max step {float(step) * 1e3:g} ms"
                 folder = os.path.join(args.out, f"h{h}_T{T0}_step{step}")
                 runs.append((label, folder, common + [f"Discrete heat/Maximum thermal step={step}"]))
-            if args.dynamic:
-                label = f"h {float(h) * 1e3:g} mm, T0 {T0} C, dynamic"
-                folder = os.path.join(args.out, f"h{h}_T{T0}_dynamic")
-                runs.append((label, folder, common + [
-                    "Discrete heat/Coupling=dynamic",
-                    "Discrete heat/Mechanical steps per thermal step=1000",
-                    "Discrete heat/Thermal step growth factor=1",
-                    "Discrete heat/Relaxation damping=mass",
-                    "Discrete heat/Fracture event duration=0"]))
+            dynamic = ["Discrete heat/Coupling=dynamic",
+                       "Discrete heat/Mechanical steps per thermal step=1000",
+                       "Discrete heat/Thermal step growth factor=1",
+                       "Discrete heat/Maximum thermal step=0",
+                       "Discrete heat/Relaxation damping=mass",
+                       "Discrete heat/Fracture event duration=0"]
+            scalings = (["1"] if args.dynamic else []) + \
+                [f for f in args.mass_scaling.split(",") if f]
+            for f in scalings:
+                label = f"h {float(h) * 1e3:g} mm, T0 {T0} C, dynamic" + \
+                    (f", mass scaling {f}" if f != "1" else "")
+                folder = os.path.join(args.out, f"h{h}_T{T0}_dynamic" +
+                                      (f"_f{f}" if f != "1" else ""))
+                runs.append((label, folder, common + dynamic +
+                             [f"Discrete mechanics/Mass scaling factor={f}"]))
     with ThreadPoolExecutor(args.jobs) as pool:
         list(pool.map(lambda r: run(args.binary, r[1], r[2]), runs))
     print("| run | broken joints | cracks | deep cracks | crack length [mm] | "

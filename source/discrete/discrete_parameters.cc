@@ -180,6 +180,19 @@ namespace tmfdem
                       "quasi-static loading (dynamic relaxation; about "
                       "2 pi c_p / L for the lowest mode of a body of size "
                       "L); 0: none. Counted with the viscous dissipation.");
+    prm.declare_entry(
+      "Mass scaling factor",
+      "1",
+      Patterns::Double(1.),
+      "Mass scaling f >= 1: every node's mass is f times rho A / 3 [-]. The "
+      "mechanics then runs sqrt(f) times slower in physical time with a "
+      "sqrt(f) times longer stable step (the Damping ratio is kept, Mass "
+      "damping acts on the scaled mass); gravity keeps the physical weight "
+      "and the heat its capacity rho c. For a dynamic run under a load that "
+      "is slow against the body's wave transit (a heating or a quench over "
+      "many milliseconds): valid while sqrt(f) x the lowest period stays "
+      "well below the load's time scale; check it with a second, smaller f "
+      "(doc/theory.md 5.6). 1: the physical inertia.");
     prm.declare_entry("Gravity",
                       "0, 0",
                       Patterns::List(Patterns::Double(), 2, 2, ","),
@@ -343,9 +356,10 @@ namespace tmfdem
         if (entry == name)
           softening_law = law;
     }
-    damping_ratio = prm.get_double("Damping ratio");
-    mass_damping  = prm.get_double("Mass damping");
-    gravity       = Utilities::string_to_double(
+    damping_ratio       = prm.get_double("Damping ratio");
+    mass_damping        = prm.get_double("Mass damping");
+    mass_scaling_factor = prm.get_double("Mass scaling factor");
+    gravity             = Utilities::string_to_double(
       Utilities::split_string_list(prm.get("Gravity"), ','));
     gravity_ramp_time      = prm.get_double("Gravity ramp time");
     contact_buffer         = prm.get_double("Contact buffer");

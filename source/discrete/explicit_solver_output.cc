@@ -376,6 +376,9 @@ namespace tmfdem
           .add("end_time", time)
           .add("time_step", time_step)
           .add("stable_time_step", stable_time_step)
+          .add(
+            "mass_scaling_factor",
+            parameters.get<DiscreteMechanicsParameters>().mass_scaling_factor)
           .add("joint_compliance_compensation",
                parameters.get<DiscreteMechanicsParameters>()
                  .joint_compliance_compensation)

@@ -223,6 +223,8 @@ namespace tmfdem
     void
     ExplicitSolver::setup_materials()
     {
+      const double mass_scaling =
+        parameters.get<DiscreteMechanicsParameters>().mass_scaling_factor;
       solid.assign(256, SolidMaterial());
       viscosity.assign(model.n_elements, 0.);
       std::vector<bool> used(256, false);
@@ -239,7 +241,10 @@ namespace tmfdem
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
           const MaterialProperties &m = parameters.materials[model.material[e]];
-          const double node_mass = m.density * model.reference_area[e] / 3.;
+          // the inertia of the run: f rho A / 3 (f = 1: rho A / 3, bit for
+          // bit)
+          const double node_mass =
+            mass_scaling * m.density * model.reference_area[e] / 3.;
           for (unsigned int k = 0; k < 3; ++k)
             model.mass[3 * e + k] = node_mass;
         }

@@ -60,7 +60,11 @@ namespace tmfdem
     discrete::SofteningLaw softening_law = discrete::SofteningLaw::munjiza;
     double damping_ratio = 1.; ///< modal ratio of the highest element mode [-]
     double mass_damping  = 0.; ///< c of -c m v [1/s]
-    std::vector<double> gravity = {0., 0.}; ///< [m/s^2]
+    /** Mass scaling: every node's mass is this factor times the
+     *  material's (the inertia only: gravity keeps the physical weight,
+     *  the heat capacity is unchanged) [-]; 1: none. */
+    double              mass_scaling_factor = 1.;
+    std::vector<double> gravity             = {0., 0.}; ///< [m/s^2]
     /** Gravity grows linearly from 0 over this time from t = 0 [s]; 0: at
      *  once. */
     double       gravity_ramp_time      = 0.;
