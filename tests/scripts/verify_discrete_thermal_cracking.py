@@ -34,6 +34,13 @@
       prm/thermal_shock_disc.prm at 400 C to 100 ms with at most 2 (the
       prm's) and 1 broken joints per thermal step: the same crack count
       (10 % or one crack) and crack length (10 %), no relaxation at the cap.
+  verify_discrete_thermal_cracking.py TMFDEM OUT dynamic
+      the dynamic reference: prm/thermal_shock_disc.prm at 400 C to 100 ms
+      with Coupling = dynamic (inertia throughout, cracks run and arrest
+      with it) and Mass scaling factor = 1e4, against the quasi-static run
+      pattern_2_per_step: first damage in the analytic window; crack count
+      within 10 % or one crack, crack length within 10 % (issue targets of
+      the quasi-static coupling against the dynamic one).
   verify_discrete_thermal_cracking.py TMFDEM OUT run_disc NAME
       the run NAME of DISC_RUNS into OUT/NAME, which shock, step and
       pattern (given the same OUT) check.
@@ -393,6 +400,65 @@ def step(out):
     return ok
 
 
+def crack_length(folder):
+    """Summed length of the broken joints at the last output [m]."""
+    pts, lines, _, _ = read_vtu(series(folder, "cracks")[-1][1], "break_time")
+    return sum(float(np.linalg.norm(pts[a] - pts[b])) for a, b in lines)
+
+
+def dynamic(out):
+    """The quasi-static coupling against a dynamic run (DISC_RUNS
+    dynamic_T400 against pattern_2_per_step, 400 C, 100 ms). The dynamic run
+    keeps inertia throughout, with every node's mass scaled by f = 1e4
+    (doc/theory.md 5.6): the disc's lowest period grows from 1.4 us to
+    0.14 ms, still 1/100 of the 14 ms to the first break and 1/700 of the
+    100 ms, and the run takes 1.3e6 mechanical steps instead of 1.3e8.
+    Asserted: the dynamic run's first damage in the analytic window (as
+    shock()); the crack counts within 10 % or one crack, the summed crack
+    lengths within 10 %; heat balance 1e-6, energy balance 1 %."""
+    ok = True
+    R, h_mesh, T0 = 6.5e-3, 0.4e-3, 400
+    E, alpha, f_t = 370e9, 7.5e-6, 180e6
+    kw = dict(radius=R, conductivity=35., diffusivity=35. / (3980 * 850.), h=3e4,
+              t_ambient=15., t_initial=T0)
+    folder = f"{out}/dynamic_T400"
+    s = summary(folder)
+    ok &= check(s["coupling"] == "dynamic" and s["mass_scaling_factor"] == 1e4,
+                f"coupling {s['coupling']}, mass scaling factor {s['mass_scaling_factor']:g}")
+    hist = history(folder)
+    onset = np.nonzero(hist["damaged_joints"] > 0)[0]
+    ok &= check(len(onset) > 0, "joints damaged")
+    if len(onset):
+        t_first = hist["time"][onset[0]]
+        t_prev = hist["time"][onset[0] - 1] if onset[0] > 0 else 0.
+        d1, d2 = h_mesh * np.sqrt(3) / 6, h_mesh * np.sqrt(3) / 3
+        t1 = analytic.quenched_disc_hoop_stress_time(f_t, E, alpha, R - d1, **kw)
+        t2 = analytic.quenched_disc_hoop_stress_time(f_t, E, alpha, R - d2, **kw)
+        ok &= check(t_first >= t1 and t_prev <= t2,
+                    f"dynamic: first damage in ({t_prev * 1e3:.3f}, {t_first * 1e3:.3f}] ms "
+                    f"(history rows); analytic f_t at {d1 * 1e3:.3f} mm inside the rim at "
+                    f"{t1 * 1e3:.2f} ms, at {d2 * 1e3:.3f} mm at {t2 * 1e3:.2f} ms")
+    found = {}
+    for name in ("dynamic_T400", "pattern_2_per_step"):
+        f = f"{out}/{name}"
+        sf = summary(f)
+        found[name] = (sf["cracks"], crack_length(f))
+        print(f"  {name}: {sf['broken_joints']} broken joints, {sf['cracks']} cracks, "
+              f"length {found[name][1] * 1e3:.2f} mm, {sf['steps']} mechanical steps, "
+              f"CPU {sf['cpu_time_s']:.0f} s", flush=True)
+    (n1, l1), (n2, l2) = found["dynamic_T400"], found["pattern_2_per_step"]
+    ok &= check(abs(n1 - n2) <= max(1, 0.1 * max(n1, n2)),
+                f"cracks {n1} (dynamic) and {n2} (quasi-static): within 10 % or one crack")
+    ok &= check(l1 > 0 and l2 > 0 and abs(l1 - l2) <= 0.1 * max(l1, l2),
+                f"crack length {l1 * 1e3:.2f} mm (dynamic) and {l2 * 1e3:.2f} mm "
+                f"(quasi-static): {100 * abs(l1 - l2) / max(l1, l2, 1e-30):.1f} % apart (<= 10 %)")
+    rel = s["heat_balance"]["relative_imbalance"]
+    ok &= check(rel < 1e-6, f"dynamic: heat balance {rel:.1e} (< 1e-6)")
+    err = s["energy"]["relative_balance_error"]
+    ok &= check(abs(err) < 1e-2, f"dynamic: energy balance {err:.1e} (< 1e-2)")
+    return ok
+
+
 def pattern(out):
     """The crack pattern after the onset does not depend on the thermal
     step: prm/thermal_shock_disc.prm at T0 = 400 C (the showcase) to 100 ms
@@ -441,6 +507,15 @@ DISC_RUNS = {
                            "Output/Times=0.1"],
     "pattern_1_per_step": ["Initial conditions/Temperature=400", "Time stepping/End time=0.1",
                            "Output/Times=0.1", "Discrete heat/Maximum broken joints per step=1"],
+    # dynamic: one clock, the heat every 1000 mechanical steps (75 us)
+    "dynamic_T400": ["Initial conditions/Temperature=400", "Time stepping/End time=0.1",
+                     "Output/Times=0.1", "Discrete heat/Coupling=dynamic",
+                     "Discrete heat/Mechanical steps per thermal step=1000",
+                     "Discrete heat/Thermal step growth factor=1",
+                     "Discrete heat/Maximum thermal step=0",
+                     "Discrete heat/Relaxation damping=mass",
+                     "Discrete heat/Fracture event duration=0",
+                     "Discrete mechanics/Mass scaling factor=1e4"],
 }
 
 
@@ -454,7 +529,8 @@ if __name__ == "__main__":
     binary, out, case = sys.argv[1:4]
     if case == "run_disc":
         sys.exit(0 if run_disc(binary, out, sys.argv[4]) else 1)
-    if case in ("shock", "step", "pattern"):
-        sys.exit(0 if {"shock": shock, "step": step, "pattern": pattern}[case](out) else 1)
+    if case in ("shock", "step", "pattern", "dynamic"):
+        sys.exit(0 if {"shock": shock, "step": step, "pattern": pattern,
+                       "dynamic": dynamic}[case](out) else 1)
     sys.exit(0 if {"hollow": hollow, "event": event, "event_capped": event_capped,
                    "fast_event": fast_event}[case](binary, out) else 1)
