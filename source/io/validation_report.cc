@@ -132,6 +132,9 @@ namespace tmfdem
           y_min = std::min(y_min, model.y_ref[n]);
           y_max = std::max(y_max, model.y_ref[n]);
         }
+      // the inertia of the run: Mass scaling factor x density
+      const double mass_scaling =
+        parameters.get<DiscreteMechanicsParameters>().mass_scaling_factor;
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
           const MaterialProperties &m = parameters.materials[model.material[e]];
@@ -140,7 +143,7 @@ namespace tmfdem
           wave_speed =
             std::max(wave_speed,
                      std::sqrt(E * (1. - nu) / ((1. + nu) * (1. - 2. * nu)) /
-                               m.density));
+                               (mass_scaling * m.density)));
         }
       const double extent = std::max(x_max - x_min, y_max - y_min);
       const double transit_steps =
@@ -203,6 +206,12 @@ namespace tmfdem
         const auto &model = solver->get_model();
         describe_model(out, model);
         const unsigned int cap = solver->get_relaxation_cap();
+        const double       mass_scaling =
+          parameters.get<DiscreteMechanicsParameters>().mass_scaling_factor;
+        if (mass_scaling != 1.)
+          out << "  mass scaling: every mass " << mass_scaling
+              << " x rho A / 3, the mechanics " << std::sqrt(mass_scaling)
+              << " x slower than with the physical inertia\n";
         if (cap == 0)
           describe_steps(out,
                          "mechanical time step",
