@@ -406,6 +406,19 @@ def crack_length(folder):
     return sum(float(np.linalg.norm(pts[a] - pts[b])) for a, b in lines)
 
 
+def same_pattern(a, b, found):
+    """Crack counts within 10 % or one crack and summed lengths within 10 %
+    of the runs a and b; found[name] = (cracks, length [m]), labels the
+    keys of found."""
+    (n1, l1), (n2, l2) = found[a], found[b]
+    ok = check(abs(n1 - n2) <= max(1, 0.1 * max(n1, n2)),
+               f"cracks {n1} ({a}) and {n2} ({b}): within 10 % or one crack")
+    ok &= check(l1 > 0 and l2 > 0 and abs(l1 - l2) <= 0.1 * max(l1, l2),
+                f"crack length {l1 * 1e3:.2f} mm ({a}) and {l2 * 1e3:.2f} mm "
+                f"({b}): {100 * abs(l1 - l2) / max(l1, l2, 1e-30):.1f} % apart (<= 10 %)")
+    return ok
+
+
 def dynamic(out):
     """The quasi-static coupling against a dynamic run (DISC_RUNS
     dynamic_T400 against pattern_2_per_step, 400 C, 100 ms). The dynamic run
@@ -446,12 +459,7 @@ def dynamic(out):
         print(f"  {name}: {sf['broken_joints']} broken joints, {sf['cracks']} cracks, "
               f"length {found[name][1] * 1e3:.2f} mm, {sf['steps']} mechanical steps, "
               f"CPU {sf['cpu_time_s']:.0f} s", flush=True)
-    (n1, l1), (n2, l2) = found["dynamic_T400"], found["pattern_2_per_step"]
-    ok &= check(abs(n1 - n2) <= max(1, 0.1 * max(n1, n2)),
-                f"cracks {n1} (dynamic) and {n2} (quasi-static): within 10 % or one crack")
-    ok &= check(l1 > 0 and l2 > 0 and abs(l1 - l2) <= 0.1 * max(l1, l2),
-                f"crack length {l1 * 1e3:.2f} mm (dynamic) and {l2 * 1e3:.2f} mm "
-                f"(quasi-static): {100 * abs(l1 - l2) / max(l1, l2, 1e-30):.1f} % apart (<= 10 %)")
+    ok &= same_pattern("dynamic_T400", "pattern_2_per_step", found)
     rel = s["heat_balance"]["relative_imbalance"]
     ok &= check(rel < 1e-6, f"dynamic: heat balance {rel:.1e} (< 1e-6)")
     err = s["energy"]["relative_balance_error"]
@@ -474,8 +482,7 @@ def pattern(out):
     for name in ("pattern_2_per_step", "pattern_1_per_step"):
         folder = f"{out}/{name}"
         s = summary(folder)
-        pts, lines, _, _ = read_vtu(series(folder, "cracks")[-1][1], "break_time")
-        length = sum(float(np.linalg.norm(pts[a] - pts[b])) for a, b in lines)
+        length = crack_length(folder)
         found[name] = (s["cracks"], length)
         print(f"  {name}: {s['broken_joints']} broken joints, {s['cracks']} cracks, "
               f"length {length * 1e3:.2f} mm, {s['thermal_steps']} thermal steps "
@@ -483,12 +490,7 @@ def pattern(out):
               f"unstable), {s['fracture_events']} fracture events", flush=True)
         ok &= check(s["relaxations_at_cap"] == 0,
                     f"{name}: relaxations at the cap {s['relaxations_at_cap']} (0)")
-    (n1, l1), (n2, l2) = found["pattern_2_per_step"], found["pattern_1_per_step"]
-    ok &= check(abs(n1 - n2) <= max(1, 0.1 * max(n1, n2)),
-                f"cracks {n1} (2 per step) and {n2} (1 per step): within 10 % or one crack")
-    ok &= check(l1 > 0 and l2 > 0 and abs(l1 - l2) <= 0.1 * max(l1, l2),
-                f"crack length {l1 * 1e3:.2f} mm (2 per step) and {l2 * 1e3:.2f} mm "
-                f"(1 per step): {100 * abs(l1 - l2) / max(l1, l2, 1e-30):.1f} % apart (<= 10 %)")
+    ok &= same_pattern("pattern_2_per_step", "pattern_1_per_step", found)
     return ok
 
 
