@@ -11,7 +11,9 @@ For every initial temperature T0, element size h and maximum thermal step it
 runs the prm (quasi-static coupling, the shipped step control) to --end and,
 with --dynamic, once per T0 and h fully dynamic instead (Coupling = dynamic:
 one physical clock, the mechanical step of the mesh, the heat every 1000
-mechanical steps), and with --mass-scaling F,... once per factor F
+mechanical steps; --set "Discrete heat/Mechanical steps per thermal step=0"
+takes Time stepping/Time step instead: every --set comes after the script's
+own settings), and with --mass-scaling F,... once per factor F
 dynamic with Discrete mechanics/Mass scaling factor = F (sqrt(F) times
 fewer mechanical steps; doc/theory.md 5.6). It prints one markdown row per run: broken joints,
 cracks (connected sets of broken joints), deep cracks (reaching more than
@@ -80,11 +82,12 @@ def main():
     for h in args.sizes.split(","):
         for T0 in args.temperatures.split(","):
             common = [f"Initial conditions/Temperature={T0}", f"Mesh/Element size={h}",
-                      f"Time stepping/End time={args.end}"] + args.settings
+                      f"Time stepping/End time={args.end}"]
             for step in args.steps.split(",") if args.steps else []:
                 label = f"h {float(h) * 1e3:g} mm, T0 {T0} C, max step {float(step) * 1e3:g} ms"
                 folder = os.path.join(args.out, f"h{h}_T{T0}_step{step}")
-                runs.append((label, folder, common + [f"Discrete heat/Maximum thermal step={step}"]))
+                runs.append((label, folder, common + [f"Discrete heat/Maximum thermal step={step}"]
+                             + args.settings))
             dynamic = ["Discrete heat/Coupling=dynamic",
                        "Discrete heat/Mechanical steps per thermal step=1000",
                        "Discrete heat/Thermal step growth factor=1",
@@ -99,7 +102,7 @@ def main():
                 folder = os.path.join(args.out, f"h{h}_T{T0}_dynamic" +
                                       (f"_f{f}" if f != "1" else ""))
                 runs.append((label, folder, common + dynamic +
-                             [f"Discrete mechanics/Mass scaling factor={f}"]))
+                             [f"Discrete mechanics/Mass scaling factor={f}"] + args.settings))
     with ThreadPoolExecutor(args.jobs) as pool:
         list(pool.map(lambda r: run(args.binary, r[1], r[2]), runs))
     print("| run | broken joints | cracks | deep cracks | crack length [mm] | "
