@@ -347,11 +347,15 @@ namespace tmfdem
         unsigned int by_mode[4] = {0, 0, 0, 0};
         for (const auto s : model.joint_status)
           ++by_mode[static_cast<unsigned int>(s)];
-        double px = 0., py = 0.;
+        // momentum and angular momentum about the origin (positions at the
+        // step, velocities at its half step) [kg m/s, kg m^2/s per m]
+        double px = 0., py = 0., angular = 0.;
         for (unsigned int n = 0; n < model.n_nodes; ++n)
           {
             px += model.mass[n] * model.vx[n];
             py += model.mass[n] * model.vy[n];
+            angular += model.mass[n] *
+                       (model.x[n] * model.vy[n] - model.y[n] * model.vx[n]);
           }
         std::vector<JsonObject> reactions;
         for (unsigned int b = 0; b < drivers.body_reaction.size(); ++b)
@@ -431,6 +435,7 @@ namespace tmfdem
           .add("vtu_write_time_s", vtu_write_max)
           .add("momentum_x", px)
           .add("momentum_y", py)
+          .add("angular_momentum", angular)
           .add("energy", energies)
           .add("body_reactions", reactions);
         if (!model.expansion_factor.empty())
