@@ -36,6 +36,14 @@ from count_radial_cracks import last_cracks, cracks  # noqa: E402
 PRM = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "prm",
                    "thermal_shock_disc.prm")
 R = 6.5e-3
+# the prm switched to the dynamic coupling: one clock, a thermal step every
+# 1000 mechanical steps (also tests/scripts/verify_discrete_thermal_cracking.py)
+DYNAMIC = ["Discrete heat/Coupling=dynamic",
+           "Discrete heat/Mechanical steps per thermal step=1000",
+           "Discrete heat/Thermal step growth factor=1",
+           "Discrete heat/Maximum thermal step=0",
+           "Discrete heat/Relaxation damping=mass",
+           "Discrete heat/Fracture event duration=0"]
 
 
 def run(binary, folder, settings):
@@ -88,12 +96,6 @@ def main():
                 folder = os.path.join(args.out, f"h{h}_T{T0}_step{step}")
                 runs.append((label, folder, common + [f"Discrete heat/Maximum thermal step={step}"]
                              + args.settings))
-            dynamic = ["Discrete heat/Coupling=dynamic",
-                       "Discrete heat/Mechanical steps per thermal step=1000",
-                       "Discrete heat/Thermal step growth factor=1",
-                       "Discrete heat/Maximum thermal step=0",
-                       "Discrete heat/Relaxation damping=mass",
-                       "Discrete heat/Fracture event duration=0"]
             scalings = (["1"] if args.dynamic else []) + \
                 [f for f in args.mass_scaling.split(",") if f]
             for f in scalings:
@@ -101,7 +103,7 @@ def main():
                     (f", mass scaling {f}" if f != "1" else "")
                 folder = os.path.join(args.out, f"h{h}_T{T0}_dynamic" +
                                       (f"_f{f}" if f != "1" else ""))
-                runs.append((label, folder, common + dynamic +
+                runs.append((label, folder, common + DYNAMIC +
                              [f"Discrete mechanics/Mass scaling factor={f}"] + args.settings))
     with ThreadPoolExecutor(args.jobs) as pool:
         list(pool.map(lambda r: run(args.binary, r[1], r[2]), runs))

@@ -312,12 +312,10 @@ namespace tmfdem
       // gravity at the step's start (Gravity ramp time); exactly Gravity
       // without a ramp
       // under mass scaling (f m) the acceleration g / f keeps the physical
-      // weight m g
+      // weight m g (x / 1 is x: without scaling, Gravity bit for bit)
       const double mass_scaling =
         parameters.get<DiscreteMechanicsParameters>().mass_scaling_factor;
-      const double g_share = mass_scaling == 1. ?
-                               d.gravity_share(time) :
-                               d.gravity_share(time) / mass_scaling;
+      const double g_share = d.gravity_share(time) / mass_scaling;
       const double gravity_x =
         g_share == 1. ? d.gravity[0] : g_share * d.gravity[0];
       const double gravity_y =

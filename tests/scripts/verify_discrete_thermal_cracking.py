@@ -55,6 +55,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
                                 "scripts"))
 from plot_vtu import read_vtu  # noqa: E402
 import crack_opening  # noqa: E402
+from thermal_shock_step_study import DYNAMIC  # noqa: E402
 from common import run, summary, check  # noqa: E402
 import analytic  # noqa: E402
 
@@ -511,13 +512,7 @@ DISC_RUNS = {
                            "Output/Times=0.1", "Discrete heat/Maximum broken joints per step=1"],
     # dynamic: one clock, the heat every 1000 mechanical steps (75 us)
     "dynamic_T400": ["Initial conditions/Temperature=400", "Time stepping/End time=0.1",
-                     "Output/Times=0.1", "Discrete heat/Coupling=dynamic",
-                     "Discrete heat/Mechanical steps per thermal step=1000",
-                     "Discrete heat/Thermal step growth factor=1",
-                     "Discrete heat/Maximum thermal step=0",
-                     "Discrete heat/Relaxation damping=mass",
-                     "Discrete heat/Fracture event duration=0",
-                     "Discrete mechanics/Mass scaling factor=1e4"],
+                     "Output/Times=0.1"] + DYNAMIC + ["Discrete mechanics/Mass scaling factor=1e4"],
 }
 
 
