@@ -40,9 +40,10 @@ namespace tmfdem
       }
 
       /**
-       * Writes the forces @p f of joint @p j to
-       * DiscreteModel::node_joint_force: a0 and b1 start the joint's edge
-       * (slot 0), a1 and b0 end it (slot 2).
+       * Writes the forces of joint @p j to DiscreteModel::node_joint_force
+       * (JointResponse: the tractions' forces on a0, a1 and the frame
+       * force): a0 and b1 start the joint's edge (slot 0), a1 and b0 end it
+       * (slot 2).
        */
       inline void
       write_joint_forces(DiscreteModel    &m,
@@ -50,21 +51,23 @@ namespace tmfdem
                          const double      a0x,
                          const double      a0y,
                          const double      a1x,
-                         const double      a1y)
+                         const double      a1y,
+                         const double      frame_x,
+                         const double      frame_y)
       {
         const unsigned int *n  = &m.joint_nodes[4 * j];
         double             *a0 = &m.node_joint_force[4 * n[0]];
         double             *a1 = &m.node_joint_force[4 * n[1]];
         double             *b0 = &m.node_joint_force[4 * n[2]];
         double             *b1 = &m.node_joint_force[4 * n[3]];
-        a0[0]                  = a0x;
-        a0[1]                  = a0y;
-        a1[2]                  = a1x;
-        a1[3]                  = a1y;
-        b0[2]                  = -a0x;
-        b0[3]                  = -a0y;
-        b1[0]                  = -a1x;
-        b1[1]                  = -a1y;
+        a0[0]                  = a0x + frame_x;
+        a0[1]                  = a0y + frame_y;
+        a1[2]                  = a1x - frame_x;
+        a1[3]                  = a1y - frame_y;
+        b0[2]                  = frame_x - a0x;
+        b0[3]                  = frame_y - a0y;
+        b1[0]                  = -a1x - frame_x;
+        b1[1]                  = -a1y - frame_y;
       }
 
       /**
@@ -108,7 +111,14 @@ namespace tmfdem
         if (any_lane(f.beyond_peak))
           return false;
         for (unsigned int l = 0; l < joint_lanes; ++l)
-          write_joint_forces(m, j0 + l, f.a0x[l], f.a0y[l], f.a1x[l], f.a1y[l]);
+          write_joint_forces(m,
+                             j0 + l,
+                             f.a0x[l],
+                             f.a0y[l],
+                             f.a1x[l],
+                             f.a1y[l],
+                             f.frame_x[l],
+                             f.frame_y[l]);
         return true;
       }
 
@@ -234,9 +244,17 @@ namespace tmfdem
                                                           JointStatus::mixed;
                         m.joint_break_time[j] = t;
                         f.a0x = f.a0y = f.a1x = f.a1y = 0.;
-                        tally[c].broke                = true;
+                        f.frame_x = f.frame_y = 0.;
+                        tally[c].broke        = true;
                       }
-                    write_joint_forces(m, j, f.a0x, f.a0y, f.a1x, f.a1y);
+                    write_joint_forces(m,
+                                       j,
+                                       f.a0x,
+                                       f.a0y,
+                                       f.a1x,
+                                       f.a1y,
+                                       f.frame_x,
+                                       f.frame_y);
                   }
               }
           });

@@ -4,8 +4,10 @@
              within 1 % (mu = 0.3); at 22, 30, 35 and 40 degrees with mu
              above tan(theta) it sticks and stays stuck (Damping ratio 1,
              the default, and 0.2; gravity ramped in).
-  collision: two blocks collide and fracture: momentum conserved to
-             round-off, energy balance error below 1 %.
+  collision: two blocks collide and fracture: momentum and angular
+             momentum conserved to round-off (joint, contact and friction
+             forces are internal and torque-free), energy balance error
+             below 1 %.
   threads:   the collision with 1 and 2 threads gives identical outputs,
              and the 2-thread run really ran 2 threads in parallel.
   traction:  a jointed plate on rollers pulled by a traction carries the
@@ -128,6 +130,14 @@ elif which == "collision":
     ok &= check(dp < 1e-9 * math.hypot(p0x, p0y),
                 f"momentum ({s['momentum_x']:.15g}, {s['momentum_y']:.15g}) vs "
                 f"({p0x}, {p0y}): change {dp:.2e} (round-off)")
+    # initial angular momentum about the origin, sum of M (x_c v_y - y_c v_x):
+    # body 1 centred at (0.05, 0.05) with (8, 0) m/s, body 2 at (0.155, 0.07)
+    # with (-2, 0.5) m/s
+    L0 = 25.0 * (0.05 * 0.0 - 0.05 * 8.0) + 25.0 * (0.155 * 0.5 - 0.07 * -2.0)
+    dL = abs(s["angular_momentum"] - L0)
+    ok &= check(dL < 1e-9 * abs(L0),
+                f"angular momentum {s['angular_momentum']:.15g} vs {L0} kg m^2/s per m: "
+                f"change {dL:.2e} (round-off)")
     ok &= check(s["broken_joints"] > 10 and s["cracks"] >= 1,
                 f"the impact fractures: {s['broken_joints']} broken joints, "
                 f"{s['cracks']} cracks")

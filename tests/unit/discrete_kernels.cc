@@ -339,11 +339,15 @@ namespace
                 EXPECT_EQ(f.a0y, rising.a0y[l]);
                 EXPECT_EQ(f.a1x, rising.a1x[l]);
                 EXPECT_EQ(f.a1y, rising.a1y[l]);
+                EXPECT_EQ(f.frame_x, rising.frame_x[l]);
+                EXPECT_EQ(f.frame_y, rising.frame_y[l]);
               }
             EXPECT_EQ(f.a0x, fl.a0x[l]);
             EXPECT_EQ(f.a0y, fl.a0y[l]);
             EXPECT_EQ(f.a1x, fl.a1x[l]);
             EXPECT_EQ(f.a1y, fl.a1y[l]);
+            EXPECT_EQ(f.frame_x, fl.frame_x[l]);
+            EXPECT_EQ(f.frame_y, fl.frame_y[l]);
             EXPECT_EQ(f.d_opening, fl.d_opening[l]);
             EXPECT_EQ(f.d_slip, fl.d_slip[l]);
             EXPECT_EQ(damage[l][0], D[0][l]);
@@ -369,6 +373,220 @@ TEST(JointKernel, LanesMatchOneJointAtATimeBitwisePastThePeakToo)
 {
   check_joint_lanes_match_one_joint_at_a_time<SofteningLaw::linear>();
   check_joint_lanes_match_one_joint_at_a_time<SofteningLaw::munjiza>();
+}
+
+namespace
+{
+  /**
+   * A joint of length @p h at angle @p angle whose a0 sits at (x0, y0),
+   * the B nodes displaced from the A nodes by the gaps @p gap (b0: 0, 1;
+   * b1: 2, 3) [m]; positions in the order a0, a1, b0, b1.
+   */
+  void
+  place_joint(const double  x0,
+              const double  y0,
+              const double  h,
+              const double  angle,
+              const double *gap,
+              double       *x,
+              double       *y)
+  {
+    x[0] = x0;
+    y[0] = y0;
+    x[1] = x0 + h * std::cos(angle);
+    y[1] = y0 + h * std::sin(angle);
+    x[2] = x[0] + gap[0];
+    y[2] = y[0] + gap[1];
+    x[3] = x[1] + gap[2];
+    y[3] = y[1] + gap[3];
+  }
+
+  /** The four node forces of a joint response (JointResponse), in the
+   *  order a0, a1, b0, b1 [N/m]. */
+  void
+  node_forces(const JointResponse<double> &f, double *fx, double *fy)
+  {
+    fx[0] = f.a0x + f.frame_x;
+    fy[0] = f.a0y + f.frame_y;
+    fx[1] = f.a1x - f.frame_x;
+    fy[1] = f.a1y - f.frame_y;
+    fx[2] = f.frame_x - f.a0x;
+    fy[2] = f.frame_y - f.a0y;
+    fx[3] = -f.a1x - f.frame_x;
+    fy[3] = -f.a1y - f.frame_y;
+  }
+} // namespace
+
+// A joint's forces are internal forces: they sum to zero and exert no net
+// torque, whatever the joint's state, as the forces of a rigid-motion
+// invariant law must. Random joints at random angles, sheared, open,
+// closed, hinged, damaged and far past the peak (gaps up to 40 um on a
+// 4 mm joint, the gaps of a crack opening): the torque about the origin
+// relative to sum |x_i| |F_i| is round-off (the bound 1e-13 allows a few
+// hundred ulps); a joint whose gap is not along its traction exerts the
+// torque -(d0 x F0 + d1 x F1) without the frame force, 1e-9 to 1e-2 of
+// that scale here.
+TEST(JointKernel, ForcesKeepMomentumAndAngularMomentum)
+{
+  std::mt19937                           random(11);
+  std::uniform_real_distribution<double> unit(0., 1.), sym(-1., 1.);
+  const double                           h            = 0.004;
+  unsigned int                           sheared_open = 0, damaged = 0;
+  for (const auto law : {SofteningLaw::linear, SofteningLaw::munjiza})
+    for (unsigned int round = 0; round < 2000; ++round)
+      {
+        JointConstants k;
+        ASSERT_TRUE(make_joint_constants(3e6 * (0.5 + unit(random)),
+                                         8e6 * (0.5 + unit(random)),
+                                         30.,
+                                         120.,
+                                         600.,
+                                         10 * E,
+                                         10 * E,
+                                         h,
+                                         law,
+                                         k));
+        // gaps from 4 nm to 40 um
+        const double scale = 4e-9 * std::pow(10., 4. * unit(random));
+        double       gap[4];
+        for (double &g : gap)
+          g = scale * sym(random);
+        double x[4], y[4];
+        place_joint(0.01 * sym(random),
+                    0.01 * sym(random),
+                    h,
+                    6.283185307179586 * unit(random),
+                    gap,
+                    x,
+                    y);
+        double damage[2] = {unit(random) < 0.5 ? 0. : 0.95 * unit(random),
+                            unit(random) < 0.5 ? 0. : 0.95 * unit(random)};
+        JointResponse<double> f;
+        if (law == SofteningLaw::linear)
+          joint_response<SofteningLaw::linear>(joint_frame(x, y), k, damage, f);
+        else
+          joint_response<SofteningLaw::munjiza>(joint_frame(x, y),
+                                                k,
+                                                damage,
+                                                f);
+        double fx[4], fy[4];
+        node_forces(f, fx, fy);
+        double sum_x = 0., sum_y = 0., torque = 0., force_scale = 0.,
+               torque_scale = 0.;
+        for (unsigned int a = 0; a < 4; ++a)
+          {
+            sum_x += fx[a];
+            sum_y += fy[a];
+            torque += x[a] * fy[a] - y[a] * fx[a];
+            const double force = std::hypot(fx[a], fy[a]);
+            force_scale += force;
+            torque_scale += std::hypot(x[a], y[a]) * force;
+          }
+        if (force_scale == 0.) // broken: no force
+          continue;
+        EXPECT_LE(std::abs(sum_x), 1e-14 * force_scale);
+        EXPECT_LE(std::abs(sum_y), 1e-14 * force_scale);
+        EXPECT_LE(std::abs(torque), 1e-13 * torque_scale)
+          << "joint at gap scale " << scale << " m, damage " << damage[0]
+          << ", " << damage[1];
+        // without the frame force: the gaps' moment
+        const JointFrameT<double> g = joint_frame(x, y);
+        const double unbalanced     = std::abs(g.d0x * f.a0y - g.d0y * f.a0x +
+                                           g.d1x * f.a1y - g.d1y * f.a1x);
+        sheared_open += unbalanced > 1e-9 * torque_scale;
+        damaged += damage[0] > 0. || damage[1] > 0.;
+      }
+  EXPECT_GT(sheared_open, 1000u);
+  EXPECT_GT(damaged, 1000u);
+}
+
+// Below the peak, in tension, the joint's forces are minus the gradient of
+// its stored energy (L / 2) sum_q phi(o_q, s_q) with the weight L frozen
+// (stored_joint_energy(), an evaluation independent of the kernel): the
+// opening and slip at the Gauss points differentiated through the gaps and
+// through the turning normal and tangent. Central differences with a
+// 1e-11 m step on joints at random angles, the bound 1e-7 of the largest
+// force; the frame force is above ten times that bound in most of them (up
+// to 1.2e-5 of the largest force), so that without it the test fails.
+TEST(JointKernel, ForcesAreMinusTheGradientOfTheStoredEnergyBelowThePeak)
+{
+  std::mt19937                           random(5);
+  std::uniform_real_distribution<double> unit(0., 1.), sym(-1., 1.);
+  const double                           h        = 0.004;
+  unsigned int                           compared = 0, turning = 0;
+  for (unsigned int round = 0; round < 200; ++round)
+    {
+      JointConstants k;
+      ASSERT_TRUE(make_joint_constants(3e6,
+                                       8e6,
+                                       30.,
+                                       120.,
+                                       600.,
+                                       10 * E,
+                                       10 * E,
+                                       h,
+                                       SofteningLaw::munjiza,
+                                       k));
+      const double o_peak = 2. * k.tensile_strength / k.normal_stiffness;
+      const double s_peak = 2. * k.cohesion / k.tangential_stiffness;
+      // gaps in the frame (opening 0.1 to 0.8 of its peak, slip within
+      // +-0.8 of its peak) at both node pairs
+      const double angle = 6.283185307179586 * unit(random);
+      const double tx = std::cos(angle), ty = std::sin(angle);
+      const double nx = ty, ny = -tx;
+      double       gap[4];
+      for (unsigned int p = 0; p < 2; ++p)
+        {
+          const double o = o_peak * (0.1 + 0.7 * unit(random));
+          const double s = s_peak * 0.8 * sym(random);
+          gap[2 * p]     = o * nx + s * tx;
+          gap[2 * p + 1] = o * ny + s * ty;
+        }
+      double x[4], y[4];
+      place_joint(0.01 * sym(random), 0.01 * sym(random), h, angle, gap, x, y);
+      const double L      = joint_frame(x, y).L;
+      auto         energy = [&]() {
+        const JointFrameT<double> g = joint_frame(x, y);
+        double                    e = 0.;
+        for (const double u : joint_gauss_points)
+          {
+            const double dx = (1. - u) * g.d0x + u * g.d1x;
+            const double dy = (1. - u) * g.d0y + u * g.d1y;
+            e += 0.5 * L *
+                 stored_joint_energy(dx * g.nx + dy * g.ny,
+                                     dx * g.tx + dy * g.ty,
+                                     k);
+          }
+        return e;
+      };
+      double                damage[2] = {0., 0.};
+      JointResponse<double> f;
+      joint_response<SofteningLaw::munjiza>(joint_frame(x, y), k, damage, f);
+      ASSERT_FALSE(f.beyond_peak);
+      double fx[4], fy[4];
+      node_forces(f, fx, fy);
+      double largest = 0.;
+      for (unsigned int a = 0; a < 4; ++a)
+        largest = std::max({largest, std::abs(fx[a]), std::abs(fy[a])});
+      turning += std::hypot(f.frame_x, f.frame_y) > 1e-6 * largest;
+      const double step = 1e-11;
+      for (unsigned int a = 0; a < 4; ++a)
+        for (unsigned int d = 0; d < 2; ++d)
+          {
+            double &c = d == 0 ? x[a] : y[a];
+            c += step;
+            const double plus = energy();
+            c -= 2 * step;
+            const double minus = energy();
+            c += step;
+            EXPECT_NEAR(d == 0 ? fx[a] : fy[a],
+                        -(plus - minus) / (2 * step),
+                        1e-7 * largest);
+            ++compared;
+          }
+    }
+  EXPECT_EQ(compared, 1600u);
+  EXPECT_GT(turning, 100u);
 }
 
 TEST(CohesiveLaw, PenaltyTooSoftForTheFractureEnergyIsRefused)

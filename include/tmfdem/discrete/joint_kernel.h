@@ -26,14 +26,15 @@ namespace tmfdem
 
     /**
      * The frame of a joint at the current state: the gaps d0, d1 of its two
-     * node pairs (B - A) [m], the length L of the mean edge [m] and its unit
-     * tangent t and normal n (outward of element A).
+     * node pairs (B - A) [m], the length L of the mean edge [m], its
+     * reciprocal [1/m] and the edge's unit tangent t and normal n (outward
+     * of element A).
      */
     template <typename Number>
     struct JointFrameT
     {
       Number d0x, d0y, d1x, d1y;
-      Number L, tx, ty, nx, ny;
+      Number L, inverse_L, tx, ty, nx, ny;
     };
 
     /**
@@ -46,18 +47,18 @@ namespace tmfdem
     joint_frame(const Number *x, const Number *y)
     {
       JointFrameT<Number> g;
-      g.d0x                  = x[2] - x[0];
-      g.d0y                  = y[2] - y[0];
-      g.d1x                  = x[3] - x[1];
-      g.d1y                  = y[3] - y[1];
-      const Number ex        = 0.5 * (x[1] + x[3] - x[0] - x[2]);
-      const Number ey        = 0.5 * (y[1] + y[3] - y[0] - y[2]);
-      g.L                    = lane_sqrt(ex * ex + ey * ey);
-      const Number inverse_L = 1. / g.L;
-      g.tx                   = ex * inverse_L;
-      g.ty                   = ey * inverse_L;
-      g.nx                   = g.ty;
-      g.ny                   = -g.tx;
+      g.d0x           = x[2] - x[0];
+      g.d0y           = y[2] - y[0];
+      g.d1x           = x[3] - x[1];
+      g.d1y           = y[3] - y[1];
+      const Number ex = 0.5 * (x[1] + x[3] - x[0] - x[2]);
+      const Number ey = 0.5 * (y[1] + y[3] - y[0] - y[2]);
+      g.L             = lane_sqrt(ex * ex + ey * ey);
+      g.inverse_L     = 1. / g.L;
+      g.tx            = ex * g.inverse_L;
+      g.ty            = ey * g.inverse_L;
+      g.nx            = g.ty;
+      g.ny            = -g.tx;
       return g;
     }
 
@@ -92,13 +93,24 @@ namespace tmfdem
       }
     };
 
-    /** What joint_response() computes for one joint (or one per lane). */
+    /**
+     * What joint_response() computes for one joint (or one per lane). The
+     * node forces [N/m] are
+     *
+     *   a0: a0 + frame,  b0: -a0 + frame,  a1: a1 - frame,  b1: -a1 - frame.
+     */
     template <typename Number>
     struct JointResponse
     {
-      /** Force on a0 (start of the edge) and a1 (its end) [N/m]; b0 gets
-       *  minus the first, b1 minus the second. */
+      /** The tractions' forces on a0 (start of the edge) and a1 (its end)
+       *  [N/m], pulling A toward B; B's nodes take them with the opposite
+       *  sign. */
       Number a0x, a0y, a1x, a1y;
+      /** The force of the turning frame [N/m]: the tractions' work on the
+       *  change of the normal and tangent with the nodes, along n; it
+       *  balances the moment of the gaps (d x F), so that the joint exerts
+       *  no net torque (joint_response()). */
+      Number frame_x, frame_y;
       /** The larger of the Gauss points' normalised softening opening and
        *  slip (cohesive_traction()) [-]. */
       Number d_opening, d_slip;
@@ -115,6 +127,16 @@ namespace tmfdem
      * other takes its compression exactly over the closed part
      * (joint_closed_part()) instead of at the Gauss points. With
      * @p with_softening = false the rising branch only (cohesive_traction()).
+     *
+     * The forces are the tractions' generalised forces on the Gauss points'
+     * opening o = d.n and slip s = d.t, whose normal and tangent turn with
+     * the mean edge e (de/dx = +-1/2): do/de = -s n / L, ds/de = o n / L.
+     * Those derivatives give the frame force (1/2) M n on a0 and b0 and
+     * minus it on a1 and b1, M = sum_q w_q (T_s o - T_n s) / L =
+     * (d0 x F0 + d1 x F1) / L. Without it a joint whose gap is not along
+     * its traction (sheared, or open and damaged) exerts the torque
+     * -(d0 x F0 + d1 x F1) on the body; with it, o and s being invariant
+     * under rigid motions, the forces keep momentum and angular momentum.
      */
     template <SofteningLaw law,
               bool         with_softening = true,
@@ -128,6 +150,7 @@ namespace tmfdem
     {
       const Number zero{};
       f.a0x = f.a0y = f.a1x = f.a1y = zero;
+      f.frame_x = f.frame_y = zero;
       f.d_opening = f.d_slip     = zero;
       f.beyond_peak              = decltype(f.beyond_peak){};
       const Number o_start       = g.d0x * g.nx + g.d0y * g.ny;
@@ -165,6 +188,12 @@ namespace tmfdem
           f.a1x = partly_closed ? f.a1x + c.force_end * g.nx : f.a1x;
           f.a1y = partly_closed ? f.a1y + c.force_end * g.ny : f.a1y;
         }
+      // the turning frame: (1/2) (d0 x F0 + d1 x F1) / L along n
+      const Number moment =
+        g.d0x * f.a0y - g.d0y * f.a0x + g.d1x * f.a1y - g.d1y * f.a1x;
+      const Number half_M = 0.5 * moment * g.inverse_L;
+      f.frame_x           = half_M * g.nx;
+      f.frame_y           = half_M * g.ny;
     }
   } // namespace discrete
 } // namespace tmfdem
