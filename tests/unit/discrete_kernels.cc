@@ -19,6 +19,45 @@ namespace
 {
   const double E = 10e9, nu = 0.25;
 
+  /** The constants of a joint of length @p h [m] with random strengths
+   *  (f_t 1.5-4.5 MPa, c 4-12 MPa), phi 30 deg, G_I 120, G_II 600 J/m^2,
+   *  penalties 10 E. */
+  JointConstants
+  random_joint_constants(std::mt19937      &random,
+                         const SofteningLaw law,
+                         const double       h)
+  {
+    std::uniform_real_distribution<double> unit(0., 1.);
+    const double   tensile_strength = 3e6 * (0.5 + unit(random));
+    const double   cohesion         = 8e6 * (0.5 + unit(random));
+    JointConstants k;
+    EXPECT_TRUE(make_joint_constants(tensile_strength,
+                                     cohesion,
+                                     30.,
+                                     120.,
+                                     600.,
+                                     10 * E,
+                                     10 * E,
+                                     h,
+                                     law,
+                                     k));
+    return k;
+  }
+
+  /** Minus the central difference of @p energy () in @p coordinate with
+   *  the step @p step: the force it implies on that coordinate. */
+  template <typename Energy>
+  double
+  minus_central_difference(double &coordinate, const double step, Energy energy)
+  {
+    coordinate += step;
+    const double plus = energy();
+    coordinate -= 2 * step;
+    const double minus = energy();
+    coordinate += step;
+    return -(plus - minus) / (2 * step);
+  }
+
   Stress2
   stress_of(const double        *x,
             const double        *y,
@@ -147,15 +186,9 @@ TEST(Solid, NodalForcesAreMinusTheGradientOfTheStrainEnergy)
   const double h = 1e-7;
   for (unsigned int k = 0; k < 3; ++k)
     for (unsigned int d = 0; d < 2; ++d)
-      {
-        double &c = d == 0 ? x[k] : y[k];
-        c += h;
-        const double plus = energy();
-        c -= 2 * h;
-        const double minus = energy();
-        c += h;
-        EXPECT_NEAR(f[2 * k + d], -(plus - minus) / (2 * h), 1e-5 * E);
-      }
+      EXPECT_NEAR(f[2 * k + d],
+                  minus_central_difference(d == 0 ? x[k] : y[k], h, energy),
+                  1e-5 * E);
 }
 
 namespace
@@ -283,16 +316,7 @@ namespace
         double x[4][4], y[4][4], damage[4][2];
         for (unsigned int l = 0; l < 4; ++l)
           {
-            ASSERT_TRUE(make_joint_constants(3e6 * (0.5 + unit(random)),
-                                             8e6 * (0.5 + unit(random)),
-                                             30.,
-                                             120.,
-                                             600.,
-                                             10 * E,
-                                             10 * E,
-                                             h,
-                                             law,
-                                             k[l]));
+            k[l] = random_joint_constants(random, law, h);
             // a0 = (0, 0), a1 = (h, 0); b0, b1 near them by the gaps
             x[0][l] = 0.;
             y[0][l] = 0.;
@@ -435,17 +459,7 @@ TEST(JointKernel, ForcesKeepMomentumAndAngularMomentum)
   for (const auto law : {SofteningLaw::linear, SofteningLaw::munjiza})
     for (unsigned int round = 0; round < 2000; ++round)
       {
-        JointConstants k;
-        ASSERT_TRUE(make_joint_constants(3e6 * (0.5 + unit(random)),
-                                         8e6 * (0.5 + unit(random)),
-                                         30.,
-                                         120.,
-                                         600.,
-                                         10 * E,
-                                         10 * E,
-                                         h,
-                                         law,
-                                         k));
+        const JointConstants k = random_joint_constants(random, law, h);
         // gaps from 4 nm to 40 um
         const double scale = 4e-9 * std::pow(10., 4. * unit(random));
         double       gap[4];
@@ -573,14 +587,10 @@ TEST(JointKernel, ForcesAreMinusTheGradientOfTheStoredEnergyBelowThePeak)
       for (unsigned int a = 0; a < 4; ++a)
         for (unsigned int d = 0; d < 2; ++d)
           {
-            double &c = d == 0 ? x[a] : y[a];
-            c += step;
-            const double plus = energy();
-            c -= 2 * step;
-            const double minus = energy();
-            c += step;
             EXPECT_NEAR(d == 0 ? fx[a] : fy[a],
-                        -(plus - minus) / (2 * step),
+                        minus_central_difference(d == 0 ? x[a] : y[a],
+                                                 step,
+                                                 energy),
                         1e-7 * largest);
             ++compared;
           }
