@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iostream>
+#include <limits>
 #include <regex>
 #include <sstream>
 #include <tmfdem/base/exceptions.h>
@@ -468,6 +469,29 @@ namespace tmfdem
                 << "  dofs: " << dof_handler->n_dofs() << " (after "
                 << parameters.mesh.global_refinements << " global refinements: "
                 << triangulation->n_global_active_cells() << " cells)\n";
+  }
+
+  void
+  HeatSolver::report_validation(std::ostream     &out,
+                                const Parameters &run_parameters,
+                                MPI_Comm          run_communicator) const
+  {
+    double smallest = std::numeric_limits<double>::max();
+    for (const auto &cell : triangulation->active_cell_iterators())
+      if (cell->is_locally_owned())
+        smallest = std::min(smallest, cell->minimum_vertex_distance());
+    smallest = Utilities::MPI::min(smallest, run_communicator);
+    out << "continuum heat: smallest cell " << smallest << " m\n";
+    if (run_parameters.time.mode == TimeSteppingParameters::Mode::transient)
+      validation::describe_steps(out,
+                                 "time step",
+                                 0.,
+                                 run_parameters.time.time_step,
+                                 run_parameters);
+    out << "  matrices, element matrices and vectors: about "
+        << Utilities::MPI::sum(memory_estimate(), run_communicator) /
+             validation::mebibyte
+        << " MiB (before adaptive refinement)\n";
   }
 
   void

@@ -21,7 +21,6 @@
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/function_expression.h>
 #include <tmfdem/continuum/thermoelastic_solver.h>
-#include <tmfdem/coupling/discrete_heat_field.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/monitors.h>
 #include <tmfdem/io/output_files.h>
@@ -318,9 +317,10 @@ namespace tmfdem
           throw InputError(
             "Adaptive refinement/Enable = true: Mechanics/Temperature "
             "source = discrete heat keeps the mesh; allowed is false.");
-        coupling::DiscreteHeatField check(parameters,
-                                          *triangulation,
-                                          communicator);
+        create_temperature_field_source("discrete heat",
+                                        parameters,
+                                        *triangulation,
+                                        communicator);
       }
   }
 
@@ -349,19 +349,19 @@ namespace tmfdem
     setup();
     // Temperature source = discrete heat: the discrete layer's heat on this
     // mesh, advanced to the time of every solve
-    std::unique_ptr<coupling::DiscreteHeatField> discrete_heat;
+    std::unique_ptr<TemperatureFieldSource> field_source;
     if (parameters.mechanics.temperature_source ==
         MechanicsParameters::TemperatureSource::discrete_heat)
       {
-        discrete_heat =
-          std::make_unique<coupling::DiscreteHeatField>(parameters,
-                                                        *triangulation,
-                                                        communicator);
-        set_temperature(discrete_heat->field());
+        field_source = create_temperature_field_source("discrete heat",
+                                                       parameters,
+                                                       *triangulation,
+                                                       communicator);
+        set_temperature(field_source->field());
       }
     const auto solve_at = [&](const double time) {
-      if (discrete_heat)
-        discrete_heat->advance_to(time);
+      if (field_source)
+        field_source->advance_to(time);
       solve(time);
     };
     const auto &time_parameters = parameters.time;

@@ -9,6 +9,19 @@ namespace tmfdem
 {
   namespace coupling
   {
+    namespace
+    {
+      const bool registered = register_temperature_field_source(
+        "discrete heat",
+        [](const Parameters       &parameters,
+           const Triangulation<2> &triangulation,
+           MPI_Comm                communicator) {
+          return std::make_unique<DiscreteHeatField>(parameters,
+                                                     triangulation,
+                                                     communicator);
+        });
+    } // namespace
+
     DiscreteHeatField::DiscreteHeatField(const Parameters       &parameters,
                                          const Triangulation<2> &triangulation,
                                          MPI_Comm                communicator)
@@ -60,7 +73,7 @@ namespace tmfdem
         }
     }
 
-    DiscreteHeatField::Field
+    TemperatureField
     DiscreteHeatField::field() const
     {
       return [this](const Triangulation<2>::active_cell_iterator &cell,

@@ -66,28 +66,7 @@ namespace tmfdem
     void
     ContactSystem::update_active_elements(const DiscreteModel &model)
     {
-      // active: elements with a free edge, and their intact neighbours
-      std::vector<unsigned char> active(model.n_elements, 0);
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        for (unsigned int k = 0; k < 3; ++k)
-          if (model.intact_neighbour(e, k) < 0)
-            {
-              active[e] = 1;
-              break;
-            }
-      std::vector<unsigned char> with_neighbours = active;
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        if (active[e])
-          for (unsigned int k = 0; k < 3; ++k)
-            {
-              const int n = model.intact_neighbour(e, k);
-              if (n >= 0)
-                with_neighbours[n] = 1;
-            }
-      active_elements.clear();
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        if (with_neighbours[e])
-          active_elements.push_back(e);
+      model.contact_candidate_elements(active_elements);
     }
 
     void

@@ -108,21 +108,8 @@ namespace tmfdem
     {
       // triangles with a free edge and their intact neighbours; boxes
       // that overlap (no buffer); pairs joined by an intact joint excluded
-      std::vector<unsigned char> active(model.n_elements, 0);
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        for (unsigned int k = 0; k < 3; ++k)
-          if (model.intact_neighbour(e, k) < 0)
-            active[e] = 1;
-      std::vector<unsigned char> with_neighbours = active;
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        if (active[e])
-          for (unsigned int k = 0; k < 3; ++k)
-            if (model.intact_neighbour(e, k) >= 0)
-              with_neighbours[model.intact_neighbour(e, k)] = 1;
       std::vector<unsigned int> elements;
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        if (with_neighbours[e])
-          elements.push_back(e);
+      model.contact_candidate_elements(elements);
       LinkedCellSearch search;
       search.rebuild(
         model.x,

@@ -185,6 +185,33 @@ namespace tmfdem
           }
     }
 
+    void
+    DiscreteModel::contact_candidate_elements(
+      std::vector<unsigned int> &elements) const
+    {
+      std::vector<unsigned char> free_edge(n_elements, 0);
+      for (unsigned int e = 0; e < n_elements; ++e)
+        for (unsigned int k = 0; k < 3; ++k)
+          if (intact_neighbour(e, k) < 0)
+            {
+              free_edge[e] = 1;
+              break;
+            }
+      std::vector<unsigned char> candidate = free_edge;
+      for (unsigned int e = 0; e < n_elements; ++e)
+        if (free_edge[e])
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              const int neighbour = intact_neighbour(e, k);
+              if (neighbour >= 0)
+                candidate[neighbour] = 1;
+            }
+      elements.clear();
+      for (unsigned int e = 0; e < n_elements; ++e)
+        if (candidate[e])
+          elements.push_back(e);
+    }
+
     unsigned int
     DiscreteModel::n_broken_joints() const
     {

@@ -30,6 +30,7 @@
 #include <memory>
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/continuum/continuum_model.h>
+#include <tmfdem/io/validation_report.h>
 #include <vector>
 
 namespace tmfdem
@@ -55,7 +56,7 @@ namespace tmfdem
    * that the continuum thermo-mechanical loop uses
    * (source/coupling/continuum_thermomechanics.cc).
    */
-  class HeatSolver : public ContinuumModel
+  class HeatSolver : public ContinuumModel, public ValidationReporter
   {
   public:
     HeatSolver(const Parameters &parameters, MPI_Comm communicator);
@@ -65,6 +66,12 @@ namespace tmfdem
     check_input() override;
     void
     run() override;
+
+    /** What check_input() set up, for `--validate`. */
+    void
+    report_validation(std::ostream     &out,
+                      const Parameters &parameters,
+                      MPI_Comm          communicator) const override;
 
     /** Current temperature, with ghost entries [C]. */
     const TrilinosWrappers::MPI::Vector &

@@ -28,6 +28,7 @@
 #include <set>
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/continuum/continuum_model.h>
+#include <tmfdem/continuum/temperature_field_source.h>
 #include <tmfdem/continuum/thermoelastic_material.h>
 #include <vector>
 
@@ -43,21 +44,15 @@ namespace tmfdem
    * The temperature comes from `Mechanics/Temperature` (a function of x, y,
    * t), from a HeatSolver on the same triangulation (the continuum
    * thermo-mechanical loop, coupling::ContinuumThermomechanics, sets it
-   * before each solve), or from another layer through set_temperature().
+   * before each solve), or from another layer: a TemperatureFieldSource
+   * registered under the `Mechanics/Temperature source` name (the discrete
+   * layer's heat, coupling::DiscreteHeatField) or set_temperature().
    */
   class ThermoelasticSolver : public ContinuumModel
   {
   public:
-    /**
-     * Temperature [C] at @p points (real coordinates [m]) of @p cell, which
-     * are @p unit_points in its reference cell, at the time of the current
-     * solve; written into @p temperatures (same size as the points).
-     */
-    using TemperatureField =
-      std::function<void(const Triangulation<2>::active_cell_iterator &cell,
-                         const std::vector<Point<2>> &unit_points,
-                         const std::vector<Point<2>> &points,
-                         std::vector<double>         &temperatures)>;
+    /** Temperature [C] at points of a cell (temperature_field_source.h). */
+    using TemperatureField = tmfdem::TemperatureField;
 
     ThermoelasticSolver(const Parameters &parameters, MPI_Comm communicator);
     ~ThermoelasticSolver() override;

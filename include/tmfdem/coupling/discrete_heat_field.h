@@ -8,7 +8,8 @@
  * points take the discrete layer's own linear field of their triangle (no
  * averaging across joints: the same field the discrete mechanics would
  * use), so continuum and discrete thermal stresses can be set side by side
- * on one temperature field.
+ * on one temperature field. Registered as the continuum layer's
+ * TemperatureFieldSource "discrete heat".
  */
 #ifndef tmfdem_coupling_discrete_heat_field_h
 #define tmfdem_coupling_discrete_heat_field_h
@@ -21,6 +22,7 @@
 #include <memory>
 #include <mpi.h>
 #include <tmfdem/base/parameters.h>
+#include <tmfdem/continuum/temperature_field_source.h>
 #include <tmfdem/discrete/discrete_model.h>
 #include <vector>
 
@@ -34,33 +36,26 @@ namespace tmfdem
   namespace coupling
   {
     /** Discrete heat evaluated as a temperature field on its triangulation. */
-    class DiscreteHeatField
+    class DiscreteHeatField : public TemperatureFieldSource
     {
     public:
-      /** Temperature [C] at @p unit_points of @p cell (the signature of
-       *  ThermoelasticSolver::TemperatureField). */
-      using Field =
-        std::function<void(const Triangulation<2>::active_cell_iterator &cell,
-                           const std::vector<Point<2>> &unit_points,
-                           const std::vector<Point<2>> &points,
-                           std::vector<double>         &temperatures)>;
-
       /** Sets up the discrete heat on @p triangulation (triangles, one MPI
        *  process; InputError otherwise) and its initial temperature at
        *  Time stepping/Start time. */
       DiscreteHeatField(const Parameters       &parameters,
                         const Triangulation<2> &triangulation,
                         MPI_Comm                communicator);
-      ~DiscreteHeatField();
+      ~DiscreteHeatField() override;
 
       /** Advances the heat to @p time [s] in steps of Time stepping/Time
        *  step (the last one shortened to land on @p time). */
       void
-      advance_to(const double time);
+      advance_to(const double time) override;
 
-      /** The field, valid while this object lives. */
-      Field
-      field() const;
+      /** The discrete layer's own linear field of each triangle at the
+       *  current time, valid while this object lives. */
+      TemperatureField
+      field() const override;
 
       /** Time of the current temperatures [s]. */
       double

@@ -27,13 +27,14 @@
 #include <tmfdem/discrete/discrete_mesh.h>
 #include <tmfdem/discrete/discrete_model.h>
 #include <tmfdem/discrete/partition.h>
+#include <tmfdem/io/validation_report.h>
 
 namespace tmfdem
 {
   namespace discrete
   {
     /** Heat conduction in the discrete layer without mechanics. */
-    class DiscreteHeatSolver : public Simulation
+    class DiscreteHeatSolver : public Simulation, public ValidationReporter
     {
     public:
       DiscreteHeatSolver(const Parameters &parameters, MPI_Comm communicator);
@@ -43,6 +44,12 @@ namespace tmfdem
       check_input() override;
       void
       run() override;
+
+      /** What check_input() set up, for `--validate`. */
+      void
+      report_validation(std::ostream     &out,
+                        const Parameters &parameters,
+                        MPI_Comm          communicator) const override;
 
       /** The exploded mesh (after check_input). */
       const DiscreteModel &

@@ -158,6 +158,15 @@ namespace tmfdem
       unsigned int
       n_broken_joints() const;
 
+      /**
+       * The elements that can touch another element: those with a free
+       * edge (boundary or broken joint) and their intact neighbours, in
+       * index order, written into @p elements. The contact search of the
+       * mechanics and that of the contact heat both start from this set.
+       */
+      void
+      contact_candidate_elements(std::vector<unsigned int> &elements) const;
+
       /** Number of joints whose traction has reached the strength at some
        * time (damage > 0 at a Gauss point), broken ones included. */
       unsigned int

@@ -32,6 +32,7 @@
 #include <tmfdem/discrete/solid.h>
 #include <tmfdem/discrete/stable_step.h>
 #include <tmfdem/discrete/temperature_source.h>
+#include <tmfdem/io/validation_report.h>
 #include <vector>
 
 namespace tmfdem
@@ -47,7 +48,7 @@ namespace tmfdem
     class VtuSeries;
 
     /** Explicit FDEM mechanics (paper Sec. 2). */
-    class ExplicitSolver : public Simulation
+    class ExplicitSolver : public Simulation, public ValidationReporter
     {
     public:
       /** With @p with_heat, the model `discrete thermo-mechanics`: heat in
@@ -62,6 +63,12 @@ namespace tmfdem
       check_input() override;
       void
       run() override;
+
+      /** What check_input() set up, for `--validate`. */
+      void
+      report_validation(std::ostream     &out,
+                        const Parameters &parameters,
+                        MPI_Comm          communicator) const override;
 
       /** The exploded mesh and its state. */
       DiscreteModel &
