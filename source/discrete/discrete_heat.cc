@@ -272,7 +272,7 @@ namespace tmfdem
       };
       first_edge = edge_of(first_element);
       end_edge   = edge_of(end_element);
-      row_start.clear(); // the rows of the matrix change
+      rows.clear_pattern(); // the rows of the matrix change
       return true;
     }
 
@@ -290,13 +290,7 @@ namespace tmfdem
                                 const unsigned int   width,
                                 std::vector<double> &totals) const
     {
-      // each chunk's sums come from one rank; adding zeros is exact
-      if (partition != nullptr)
-        partition->sum(partials);
-      totals.assign(width, 0.);
-      for (unsigned int c = 0; c < n_chunks; ++c)
-        for (unsigned int i = 0; i < width; ++i)
-          totals[i] += partials[c * width + i];
+      sum_chunks_in_order(partials, width, n_chunks, partition, totals);
     }
 
     DiscreteHeat::~DiscreteHeat() = default;

@@ -53,7 +53,7 @@ namespace tmfdem
     DiscreteHeat::update_contact_pairs()
     {
       contact_pairs.clear();
-      row_start.clear(); // couplings change: rebuild the pattern
+      rows.clear_pattern(); // couplings change: rebuild the pattern
       if (contact_conductance <= 0.)
         return;
       // candidates: the mechanics' (one search for both), or our own

@@ -38,6 +38,7 @@
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/discrete/contact_heat.h>
 #include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/node_row_system.h>
 #include <tmfdem/discrete/temperature_source.h>
 #include <vector>
 
@@ -150,7 +151,7 @@ namespace tmfdem
       unsigned int
       amg_setups() const
       {
-        return n_amg_setups;
+        return rows.amg_setups();
       }
 
       /**
@@ -226,28 +227,10 @@ namespace tmfdem
                      const double          time_step,
                      const Vector<double> &T_old,
                      const Vector<double> &lagged_contact_heat);
-      /** Solves with this rank's rows (make_row_pattern(), values after
-       *  the Dirichlet elimination) as a distributed Trilinos matrix, CG
-       *  preconditioned by algebraic multigrid (Trilinos ML), from @p x to
-       *  @p tolerance (absolute, on the residual); writes this rank's rows
-       *  of @p x; returns the iterations. RunError naming the step's end
-       *  @p time [s] if it does not converge. */
-      unsigned int
-      solve_with_amg(const std::vector<double> &rhs,
-                     std::vector<double>       &x,
-                     const double               tolerance,
-                     const unsigned int         max_iterations,
-                     const double               time) const;
-      /** The sparsity of this rank's rows (node 3 first_element on),
-       *  columns sorted: every coupling of elements, joints and contacts. */
+      /** The sparsity of this rank's rows (node 3 first_element on): every
+       *  coupling of elements, joints and contacts, set in `rows`. */
       void
       make_row_pattern();
-      /** Adds @p v to entry (i, j) if row i is this rank's. */
-      void
-      add_to_matrix(const unsigned int i, const unsigned int j, const double v);
-      /** y = A x on this rank's rows (x with current ghosts). */
-      void
-      multiply(const std::vector<double> &x, std::vector<double> &y) const;
 
       /** @name Sums taken per chunk of triangles, then the chunks in order
        *  (the same on any number of ranks and threads) */
@@ -272,12 +255,6 @@ namespace tmfdem
       reduce_chunks(std::vector<double> &partials,
                     const unsigned int   width,
                     std::vector<double> &totals) const;
-      /** Dot products a_i . b_i over this rank's nodes, summed per chunk and
-       *  reduced (reduce_chunks()): the same on any number of ranks. */
-      void
-      dot_products(
-        const std::vector<std::pair<const double *, const double *>> &vectors,
-        std::vector<double> &results) const;
       ///@}
       /** Calls @p f(edge, node, half_length) for the two nodes of every
        *  boundary edge of this rank whose condition type passes @p use;
@@ -374,26 +351,11 @@ namespace tmfdem
       std::map<types::boundary_id, unsigned int> balance_slot;
       ///@}
 
-      /** @name Implicit: this rank's rows of the matrix (CSR, global
-       *  columns sorted), with its diagonal for the preconditioner */
-      ///@{
-      std::vector<std::size_t>  row_start;
-      std::vector<unsigned int> row_column;
-      std::vector<double>       row_value;
-      std::vector<double>       diagonal;
-      unsigned int              iterations = 0;
-      /** Preconditioner = amg: the rows, Trilinos matrix and AMG hierarchy
-       *  of the last solve, reused while the rows stay the same. */
-      struct AmgCache;
-      /** Deletes an AmgCache where its type is complete. */
-      struct AmgCacheDeleter
-      {
-        void
-        operator()(AmgCache *cache) const;
-      };
-      mutable std::unique_ptr<AmgCache, AmgCacheDeleter> amg_cache;
-      mutable unsigned int                               n_amg_setups = 0;
-      ///@}
+      /** Implicit: this rank's rows of M/dt + K and their conjugate
+       *  gradients. */
+      NodeRowSystem rows;
+      /** CG iterations of the last implicit step. */
+      unsigned int iterations = 0;
 
       /** Conducting pairs: (contactor, target) triangles. */
       std::vector<std::pair<unsigned int, unsigned int>> contact_pairs;
