@@ -3,13 +3,16 @@
 
     plot_case.py CASE OUTPUT_FOLDER PNG
 
-Reads OUTPUT_FOLDER/lines.csv (header time,name,x,y,<fields>; one row per
-sample point per output time), evaluates the reference from
+Reads OUTPUT_FOLDER/lines.csv (header time,name,x,y,<fields>, or
+time,name,x,y,z,<fields> for 3D runs; one row per sample point per output
+time), evaluates the reference from
 tests/scripts/analytic.py on the same points, and draws two panels: the
 field (computed as markers, reference as lines, one colour per time or per
 field) and the error. The max abs error is printed as a table. To add a
 case, add an entry to CASES; `fields` lists (column, reference, label,
-scale) for cases other than temperature.
+scale) for cases other than temperature. 3D cases (dim=3) get the n x 3
+array of points as the first argument of reference and abscissa and None
+as the second.
 """
 import os
 import sys
@@ -64,7 +67,41 @@ CASES = {
         abscissa=lambda x, y: np.hypot(x, y), xlabel="distance along the diagonal [m]",
         steady=True,
         title="Restrained sheet, dT = 100 C (plane stress): -E alpha dT / (1 - nu)"),
+    # 3D cases: p is the n x 3 array of sample points
+    "sphere_quench": dict(
+        dim=3,
+        line="radius",
+        reference=lambda p, _, t: analytic.sphere_quench(
+            np.linalg.norm(p, axis=1), t, 0.05, 3.0 / (2700 * 900), 100.0, 0.0),
+        abscissa=lambda p, _: np.linalg.norm(p, axis=1), xlabel="r [m]",
+        steady=False,
+        title="Sphere quenched at its surface (3D): radius along x"),
+    "spherical_shell_steady": dict(
+        dim=3,
+        line="radial",
+        reference=lambda p, _, t: analytic.spherical_shell_temperature(
+            np.linalg.norm(p, axis=1), 0.03, 0.15, 100.0, 0.0),
+        abscissa=lambda p, _: np.linalg.norm(p, axis=1), xlabel="r [m]",
+        steady=True,
+        title="Thick-walled sphere, steady conduction (3D): radial line"),
+    "plate_transient-3d": dict(
+        dim=3,
+        line="corner line",
+        reference=lambda p, _, t: analytic.plate_transient(p[:, 0], t),
+        abscissa=lambda p, _: p[:, 0], xlabel="x [m]",
+        steady=False,
+        title="Slab (the 5.1 plate extruded, tetrahedra): edge y = 0, z = 0.25"),
 }
+
+
+def read_lines(folder, spec):
+    """lines.csv as dict name -> time -> (x, y, cols); in 3D x is the
+    n x 3 array of points and y None."""
+    path = os.path.join(folder, "lines.csv")
+    if spec.get("dim", 2) == 3:
+        return {name: {t: (p, None, cols) for t, (p, cols) in by_time.items()}
+                for name, by_time in analytic.read_csv_xyz(path).items()}
+    return analytic.read_csv(path)
 
 
 def plot_fields(case, spec, by_time, png):
@@ -108,7 +145,7 @@ def main():
                  f"  CASE: {', '.join(CASES)}")
     case, folder, png = sys.argv[1:]
     spec = CASES[case]
-    data = analytic.read_csv(os.path.join(folder, "lines.csv"))
+    data = read_lines(folder, spec)
     if spec["line"] not in data:
         sys.exit(f"{folder}/lines.csv: no line '{spec['line']}' (have: {', '.join(data)})")
     by_time = data[spec["line"]]

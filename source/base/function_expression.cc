@@ -89,19 +89,23 @@ namespace tmfdem
     }
   } // namespace
 
-  std::unique_ptr<dealii::FunctionParser<2>>
+  template <int dim>
+  std::unique_ptr<dealii::FunctionParser<dim>>
   make_expression_function(const std::string &expression,
                            const std::string &entry_name)
   {
-    auto function = std::make_unique<dealii::FunctionParser<2>>(1);
+    auto function = std::make_unique<dealii::FunctionParser<dim>>(1);
     const std::map<std::string, double> constants = {
       {"pi", dealii::numbers::PI}};
     CaptureStandardError muparser_report;
     try
       {
-        function->initialize("x,y,t", expression, constants, true);
+        function->initialize(dim == 2 ? "x,y,t" : "x,y,z,t",
+                             expression,
+                             constants,
+                             true);
         // muparser reports some errors only on the first evaluation
-        function->value(dealii::Point<2>(0., 0.));
+        function->value(dealii::Point<dim>());
       }
     catch (const dealii::ExceptionBase &exception)
       {
@@ -109,10 +113,16 @@ namespace tmfdem
         exception.print_info(info);
         throw InputError(
           "Entry '" + entry_name + "': cannot parse '" + expression +
-          "' as a function of x [m], y [m], t [s] (muparser syntax, e.g. "
+          "' as a function of x [m], y [m], " + (dim == 3 ? "z [m], " : "") +
+          "t [s] (muparser syntax, e.g. "
           "100*exp(-t/20)*sin(pi*x); pi is predefined): " +
           describe_parse_error(expression, muparser_report.text(), info.str()));
       }
     return function;
   }
+
+  template std::unique_ptr<dealii::FunctionParser<2>>
+  make_expression_function<2>(const std::string &, const std::string &);
+  template std::unique_ptr<dealii::FunctionParser<3>>
+  make_expression_function<3>(const std::string &, const std::string &);
 } // namespace tmfdem

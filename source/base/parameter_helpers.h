@@ -44,6 +44,24 @@ namespace tmfdem
     {
       return Patterns::List(Patterns::Double(), 2, 2, ",");
     }
+
+    /** The pattern of a point entry "x, y" or "x, y, z" (entries that 3D
+     *  runs read too). */
+    inline Patterns::List
+    space_point_pattern()
+    {
+      return Patterns::List(Patterns::Double(), 2, 3, ",");
+    }
+
+    /** "a, b" or "a, b, c" -> Point<3> (z = 0 when absent); the pattern
+     *  has already checked the format. */
+    inline Point<3>
+    parse_space_point(const std::string &text)
+    {
+      const std::vector<double> values =
+        Utilities::string_to_double(Utilities::split_string_list(text, ','));
+      return Point<3>(values[0], values[1], values.size() > 2 ? values[2] : 0.);
+    }
   } // namespace parameter_helpers
 } // namespace tmfdem
 

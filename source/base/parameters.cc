@@ -19,9 +19,9 @@
 
 namespace tmfdem
 {
-  using parameter_helpers::parse_point;
-  using parameter_helpers::point_pattern;
+  using parameter_helpers::parse_space_point;
   using parameter_helpers::selection_of;
+  using parameter_helpers::space_point_pattern;
 
 
   const std::vector<std::pair<std::string, double>> &
@@ -32,51 +32,83 @@ namespace tmfdem
     return methods;
   }
 
+  namespace
+  {
+    std::string
+    prm_point_text(const Point<3> &p)
+    {
+      return "(" + Utilities::to_string(p[0]) + ", " +
+             Utilities::to_string(p[1]) + ", " + Utilities::to_string(p[2]) +
+             ")";
+    }
+  } // namespace
+
   // ------------------------------------------------------------------ Mesh
   void
   MeshParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Mesh");
     prm.declare_entry(
+      "Dimension",
+      "2",
+      Patterns::Integer(2, 3),
+      "Space dimension [-]: 2 (a plane section; quantities per unit "
+      "thickness) or 3 (a solid; model continuum heat). Points are then "
+      "given as x, y, z.");
+    prm.declare_entry(
       "Source",
       "rectangle",
-      Patterns::Selection("rectangle|annulus|disc|file|block heap"),
-      "Where the mesh comes from: a generated rectangle (boundary ids 0 left, "
-      "1 right, 2 bottom, 3 top), annulus (0 inner, 1 outer), disc (0 rim), "
-      "or a gmsh .msh/.geo file (physical curves -> boundary ids, physical "
-      "surfaces -> material ids), or a block heap (subsection Block heap: "
-      "a container and seeded random convex blocks, meshed by gmsh).");
+      Patterns::Selection(
+        "rectangle|annulus|disc|file|block heap|box|ball|spherical shell"),
+      "Where the mesh comes from. 2D: a generated rectangle (boundary ids 0 "
+      "left, 1 right, 2 bottom, 3 top), annulus (0 inner, 1 outer), disc (0 "
+      "rim), or a gmsh .msh/.geo file (physical curves -> boundary ids, "
+      "physical surfaces -> material ids), or a block heap (subsection Block "
+      "heap: a container and seeded random convex blocks, meshed by gmsh). "
+      "3D: a generated box between Lower left corner and Upper right corner "
+      "(boundary ids 0 x = x0, 1 x = x1, 2 y = y0, 3 y = y1, 4 z = z0, 5 z = "
+      "z1), ball (0 surface) or spherical shell (0 inner, 1 outer surface) "
+      "about Center, or a gmsh .msh file with tetrahedra or hexahedra "
+      "(physical surfaces -> boundary ids, physical volumes -> material "
+      "ids).");
     prm.declare_entry(
       "Element type",
       "triangles",
       Patterns::Selection("triangles|quadrilaterals"),
       "Cell shape of generated meshes: unstructured triangles (gmsh, the "
       "discrete layer's mesh) or structured quadrilaterals (continuum runs "
-      "with adaptive refinement).");
+      "with adaptive refinement). 3D: triangles means tetrahedra (each "
+      "hexahedron of the structured mesh split in 24, deal.II's "
+      "convert_hypercube_to_simplex_mesh), quadrilaterals means "
+      "hexahedra.");
     prm.declare_entry("Element size",
                       "0.05",
                       Patterns::Double(0.),
                       "Target edge length of generated cells [m].");
     prm.declare_entry("Lower left corner",
                       "0, 0",
-                      point_pattern(),
-                      "Rectangle: lower left corner x, y [m].");
+                      space_point_pattern(),
+                      "Rectangle: lower left corner x, y; box: the corner "
+                      "x0, y0, z0 [m].");
     prm.declare_entry("Upper right corner",
                       "1, 0.25",
-                      point_pattern(),
-                      "Rectangle: upper right corner x, y [m].");
+                      space_point_pattern(),
+                      "Rectangle: upper right corner x, y; box: the corner "
+                      "x1, y1, z1 [m].");
     prm.declare_entry("Center",
                       "0, 0",
-                      point_pattern(),
-                      "Annulus and disc: centre x, y [m].");
+                      space_point_pattern(),
+                      "Annulus and disc: centre x, y; ball and spherical "
+                      "shell: centre x, y, z (z = 0 when left out) [m].");
     prm.declare_entry("Inner radius",
                       "0.03",
                       Patterns::Double(0.),
-                      "Annulus: inner radius a [m].");
+                      "Annulus and spherical shell: inner radius a [m].");
     prm.declare_entry("Outer radius",
                       "0.15",
                       Patterns::Double(0.),
-                      "Annulus and disc: outer radius b [m].");
+                      "Annulus, disc, ball and spherical shell: outer radius "
+                      "b [m].");
     prm.declare_entry("File name",
                       "",
                       Patterns::Anything(),
@@ -96,9 +128,9 @@ namespace tmfdem
     prm.declare_entry("Expected area",
                       "0",
                       Patterns::Double(0.),
-                      "Source = file: the area of the domain [m^2]; a mesh "
-                      "covering less (an unmeshed region) or more is "
-                      "refused. 0: not checked.");
+                      "Source = file: the area of the domain [m^2] (in 3D "
+                      "its volume [m^3]); a mesh covering less (an unmeshed "
+                      "region) or more is refused. 0: not checked.");
     prm.declare_entry(
       "Circular boundaries",
       "",
@@ -180,19 +212,40 @@ namespace tmfdem
                                    const std::string &input_folder)
   {
     prm.enter_subsection("Mesh");
+    dimension                     = prm.get_integer("Dimension");
     const std::string source_name = prm.get("Source");
-    source             = source_name == "rectangle" ? Source::rectangle :
-                         source_name == "annulus"   ? Source::annulus :
-                         source_name == "disc"      ? Source::disc :
-                         source_name == "file"      ? Source::file :
-                                                      Source::block_heap;
-    element_type       = prm.get("Element type") == "triangles" ?
-                           ElementType::triangles :
-                           ElementType::quadrilaterals;
-    element_size       = prm.get_double("Element size");
-    lower_left         = parse_point(prm.get("Lower left corner"));
-    upper_right        = parse_point(prm.get("Upper right corner"));
-    center             = parse_point(prm.get("Center"));
+    source                 = source_name == "rectangle"  ? Source::rectangle :
+                             source_name == "annulus"    ? Source::annulus :
+                             source_name == "disc"       ? Source::disc :
+                             source_name == "file"       ? Source::file :
+                             source_name == "block heap" ? Source::block_heap :
+                             source_name == "box"        ? Source::box :
+                             source_name == "ball"       ? Source::ball :
+                                                     Source::spherical_shell;
+    element_type           = prm.get("Element type") == "triangles" ?
+                               ElementType::triangles :
+                               ElementType::quadrilaterals;
+    element_size           = prm.get_double("Element size");
+    const auto point_entry = [&](const std::string &entry, const bool box) {
+      const std::string text = prm.get(entry);
+      const std::size_t n_values =
+        Utilities::split_string_list(text, ',').size();
+      const Point<3> p = parse_space_point(text);
+      if (dimension == 2 && n_values == 3 && p[2] != 0.)
+        throw InputError("Mesh/" + entry + " = " + text +
+                         ": Mesh/Dimension = 2 takes a point x, y (a third "
+                         "coordinate, if given, must be 0).");
+      if (dimension == 3 && box && n_values != 3)
+        throw InputError("Mesh/" + entry + " = " + text +
+                         ": a box (Mesh/Dimension = 3) needs the corner "
+                         "as x, y, z [m].");
+      return p;
+    };
+    lower_left =
+      point_entry("Lower left corner", source_name == "box" && dimension == 3);
+    upper_right =
+      point_entry("Upper right corner", source_name == "box" && dimension == 3);
+    center             = point_entry("Center", false);
     inner_radius       = prm.get_double("Inner radius");
     outer_radius       = prm.get_double("Outer radius");
     global_refinements = prm.get_integer("Global refinements");
@@ -243,6 +296,9 @@ namespace tmfdem
                              " is named twice; allowed is one circle per id.");
         circular_boundaries.emplace_back(static_cast<types::boundary_id>(id),
                                          Point<2>(x, y));
+        if (dimension == 3)
+          throw InputError("Mesh/Circular boundaries: 2D meshes only "
+                           "(Mesh/Dimension = 2).");
       }
     if (!circular_boundaries.empty() && source != Source::file)
       throw InputError("Mesh/Circular boundaries: only for Source = file "
@@ -267,6 +323,31 @@ namespace tmfdem
     // the block heap's own checks run where it is generated
     // (mesh/block_generator.h), before any output is written
 
+    const bool solid_source = source == Source::box || source == Source::ball ||
+                              source == Source::spherical_shell;
+    if (dimension == 3 && !(solid_source || source == Source::file))
+      throw InputError("Mesh/Source = " + source_name +
+                       " is a 2D domain; Mesh/Dimension = 3 allows box, "
+                       "ball, spherical shell and file.");
+    if (dimension == 2 && solid_source)
+      throw InputError("Mesh/Source = " + source_name +
+                       " is a 3D domain: set Mesh/Dimension = 3 (2D allows "
+                       "rectangle, annulus, disc, file and block heap).");
+    if (source == Source::box &&
+        !(upper_right[0] > lower_left[0] && upper_right[1] > lower_left[1] &&
+          upper_right[2] > lower_left[2]))
+      throw InputError("Mesh: a box needs Upper right corner > Lower left "
+                       "corner in x, y and z; got " +
+                       prm_point_text(lower_left) + " and " +
+                       prm_point_text(upper_right) + ".");
+    if (source == Source::spherical_shell &&
+        !(outer_radius > inner_radius && inner_radius > 0.))
+      throw InputError("Mesh: a spherical shell needs 0 < Inner radius < "
+                       "Outer radius; got Inner radius = " +
+                       std::to_string(inner_radius) + ", Outer radius = " +
+                       std::to_string(outer_radius) + ".");
+    if (source == Source::ball && !(outer_radius > 0.))
+      throw InputError("Mesh/Outer radius must be > 0 for a ball.");
     if (source != Source::file && !(element_size > 0.))
       throw InputError("Mesh/Element size = " + std::to_string(element_size) +
                        ": must be > 0 [m].");
@@ -755,6 +836,20 @@ namespace tmfdem
       sections.find(type.type).parse(prm);
     checkpoint.parse_parameters(prm);
     guards.parse_parameters(prm);
+    if (mesh.dimension == 2)
+      {
+        for (const auto &probe : monitors.probes)
+          if (probe.location[2] != 0.)
+            throw InputError(
+              "Monitors/Probes: probe '" + probe.name +
+              "' has z = " + Utilities::to_string(probe.location[2]) +
+              "; Mesh/Dimension = 2 takes points x, y.");
+        for (const auto &line : monitors.lines)
+          if (line.with_z)
+            throw InputError("Monitors/Lines: line '" + line.name +
+                             "' is given with z coordinates; Mesh/Dimension "
+                             "= 2 takes 'x0, y0, x1, y1, n'.");
+      }
     // an output time before the start is never reached
     for (const double t : output.times)
       if (t < time.start_time)
@@ -774,9 +869,18 @@ namespace tmfdem
     // layer runs and whether or not the mesh has that material
     for (unsigned int id = 0; id < MaterialParameters::max_materials; ++id)
       if (!materials.materials[id].initial_temperature.empty())
-        make_expression_function(materials.materials[id].initial_temperature,
-                                 "Materials/Material " + std::to_string(id) +
-                                   "/Initial temperature");
+        {
+          const std::string entry =
+            "Materials/Material " + std::to_string(id) + "/Initial temperature";
+          if (mesh.dimension == 3)
+            make_expression_function<3>(
+              materials.materials[id].initial_temperature,
+              entry);
+          else
+            make_expression_function(
+              materials.materials[id].initial_temperature,
+              entry);
+        }
   }
 
   InitialTemperatureEntry

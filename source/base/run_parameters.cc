@@ -20,8 +20,10 @@
 namespace tmfdem
 {
   using parameter_helpers::parse_point;
+  using parameter_helpers::parse_space_point;
   using parameter_helpers::point_pattern;
   using parameter_helpers::selection_of;
+  using parameter_helpers::space_point_pattern;
 
   // --------------------------------------------------------- Time stepping
   void
@@ -464,20 +466,26 @@ namespace tmfdem
     prm.declare_entry(
       "Probes",
       "",
-      Patterns::Map(Patterns::Anything(), point_pattern(), 0, 10000, ";", ":"),
-      "Named probe points 'name: x, y; name2: x, y' [m]; sampled into "
-      "probes.csv at every output time.");
+      Patterns::Map(Patterns::Anything(),
+                    space_point_pattern(),
+                    0,
+                    10000,
+                    ";",
+                    ":"),
+      "Named probe points 'name: x, y; name2: x, y' [m] (in 3D 'name: x, "
+      "y, z'); sampled into probes.csv at every output time.");
     prm.declare_entry(
       "Lines",
       "",
       Patterns::Map(Patterns::Anything(),
-                    Patterns::List(Patterns::Double(), 5, 5, ","),
+                    Patterns::List(Patterns::Double(), 5, 7, ","),
                     0,
                     1000,
                     ";",
                     ":"),
       "Named sampled lines 'name: x0, y0, x1, y1, n' (n >= 2 equally spaced "
-      "points, x, y in m); sampled into lines.csv at every output time.");
+      "points, x, y in m; in 3D 'name: x0, y0, z0, x1, y1, z1, n'); sampled "
+      "into lines.csv at every output time.");
     prm.declare_entry(
       "Snap to nearest element",
       "false",
@@ -503,7 +511,7 @@ namespace tmfdem
         if (!names.insert(key_value[0]).second)
           throw InputError("Monitors/Probes: the name '" + key_value[0] +
                            "' is used twice.");
-        probes.push_back({key_value[0], parse_point(key_value[1])});
+        probes.push_back({key_value[0], parse_space_point(key_value[1])});
       }
     for (const auto &item : Utilities::split_string_list(prm.get("Lines"), ';'))
       {
@@ -513,15 +521,23 @@ namespace tmfdem
         if (!names.insert(key_value[0]).second)
           throw InputError("Monitors/Lines: the name '" + key_value[0] +
                            "' is used twice.");
-        if (!(values[4] >= 2. && values[4] <= 1e6) ||
-            values[4] != std::floor(values[4]))
+        if (values.size() == 6)
+          throw InputError("Monitors/Lines: line '" + key_value[0] +
+                           "' has 6 values; allowed are 'x0, y0, x1, y1, n' "
+                           "(2D) and 'x0, y0, z0, x1, y1, z1, n' (3D).");
+        const bool   with_z = values.size() == 7;
+        const double n      = values.back();
+        if (!(n >= 2. && n <= 1e6) || n != std::floor(n))
           throw InputError("Monitors/Lines: line '" + key_value[0] +
                            "' needs an integer number of points n >= 2 as its "
-                           "fifth value.");
+                           "last value.");
         lines.push_back({key_value[0],
-                         Point<2>(values[0], values[1]),
-                         Point<2>(values[2], values[3]),
-                         static_cast<unsigned int>(values[4])});
+                         with_z ? Point<3>(values[0], values[1], values[2]) :
+                                  Point<3>(values[0], values[1], 0.),
+                         with_z ? Point<3>(values[3], values[4], values[5]) :
+                                  Point<3>(values[2], values[3], 0.),
+                         static_cast<unsigned int>(n),
+                         with_z});
       }
     snap_to_nearest = prm.get_bool("Snap to nearest element");
     prm.leave_subsection();

@@ -9,9 +9,10 @@ namespace tmfdem
   {
     struct RegistryEntry
     {
-      std::string       description;
-      SectionsRead      sections;
-      SimulationFactory factory;
+      std::string               description;
+      SectionsRead              sections;
+      SimulationFactory         factory;
+      std::vector<unsigned int> dimensions;
     };
 
     std::map<std::string, RegistryEntry> &
@@ -56,12 +57,14 @@ namespace tmfdem
   }
 
   bool
-  register_simulation(const std::string       &name,
-                      const std::string       &description,
-                      const SectionsRead      &sections,
-                      const SimulationFactory &factory)
+  register_simulation(const std::string               &name,
+                      const std::string               &description,
+                      const SectionsRead              &sections,
+                      const SimulationFactory         &factory,
+                      const std::vector<unsigned int> &dimensions)
   {
-    registry()[name] = RegistryEntry{description, sections, factory};
+    registry()[name] =
+      RegistryEntry{description, sections, factory, dimensions};
     return true;
   }
 
@@ -128,7 +131,25 @@ namespace tmfdem
   create_simulation(Parameters &parameters, MPI_Comm communicator)
   {
     const RegistryEntry &model = registered_model(parameters);
-    parameters.unread_entries  = entries_not_read(parameters);
+    if (std::find(model.dimensions.begin(),
+                  model.dimensions.end(),
+                  parameters.mesh.dimension) == model.dimensions.end())
+      {
+        std::string allowed, models_3d;
+        for (const unsigned int d : model.dimensions)
+          allowed += (allowed.empty() ? "" : ", ") + std::to_string(d);
+        for (const auto &[name, entry] : registry())
+          if (std::find(entry.dimensions.begin(),
+                        entry.dimensions.end(),
+                        parameters.mesh.dimension) != entry.dimensions.end())
+            models_3d += (models_3d.empty() ? "" : ", ") + name;
+        throw InputError(
+          "Mesh/Dimension = " + std::to_string(parameters.mesh.dimension) +
+          ": Model = " + parameters.model + " runs in " + allowed +
+          "D; models for this dimension: " +
+          (models_3d.empty() ? "none" : models_3d) + ".");
+      }
+    parameters.unread_entries = entries_not_read(parameters);
     parameters.restrict_to_sections(model.sections.for_input(parameters));
     return model.factory(parameters, communicator);
   }

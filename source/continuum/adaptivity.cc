@@ -6,22 +6,23 @@
 
 namespace tmfdem
 {
+  template <int dim>
   void
-  mark_cells_by_kelly(parallel::distributed::Triangulation<2> &triangulation,
-                      const Mapping<2>                        &mapping,
-                      const DoFHandler<2>                     &dof_handler,
-                      const TrilinosWrappers::MPI::Vector     &solution,
-                      const unsigned int                       degree,
-                      const AdaptivityParameters              &adaptivity,
-                      const unsigned int                       coarse_level)
+  mark_cells_by_kelly(parallel::distributed::Triangulation<dim> &triangulation,
+                      const Mapping<dim>                        &mapping,
+                      const DoFHandler<dim>                     &dof_handler,
+                      const TrilinosWrappers::MPI::Vector       &solution,
+                      const unsigned int                         degree,
+                      const AdaptivityParameters                &adaptivity,
+                      const unsigned int                         coarse_level)
   {
     Vector<float> estimated_error(triangulation.n_active_cells());
-    KellyErrorEstimator<2>::estimate(mapping,
-                                     dof_handler,
-                                     QGauss<1>(degree + 1),
-                                     {},
-                                     solution,
-                                     estimated_error);
+    KellyErrorEstimator<dim>::estimate(mapping,
+                                       dof_handler,
+                                       QGauss<dim - 1>(degree + 1),
+                                       {},
+                                       solution,
+                                       estimated_error);
     if (adaptivity.strategy == "fixed fraction")
       parallel::distributed::GridRefinement::refine_and_coarsen_fixed_fraction(
         triangulation,
@@ -43,4 +44,21 @@ namespace tmfdem
           cell->clear_coarsen_flag();
       }
   }
+
+  template void
+  mark_cells_by_kelly<2>(parallel::distributed::Triangulation<2> &,
+                         const Mapping<2> &,
+                         const DoFHandler<2> &,
+                         const TrilinosWrappers::MPI::Vector &,
+                         const unsigned int,
+                         const AdaptivityParameters &,
+                         const unsigned int);
+  template void
+  mark_cells_by_kelly<3>(parallel::distributed::Triangulation<3> &,
+                         const Mapping<3> &,
+                         const DoFHandler<3> &,
+                         const TrilinosWrappers::MPI::Vector &,
+                         const unsigned int,
+                         const AdaptivityParameters &,
+                         const unsigned int);
 } // namespace tmfdem

@@ -21,38 +21,44 @@
 
 namespace tmfdem
 {
-  ContinuumModel::ContinuumModel(const Parameters &parameters,
-                                 MPI_Comm          communicator)
+  template <int dim>
+  ContinuumModel<dim>::ContinuumModel(const Parameters &parameters,
+                                      MPI_Comm          communicator)
     : parameters(parameters)
     , communicator(communicator)
   {}
 
-  ContinuumModel::~ContinuumModel()
+  template <int dim>
+  ContinuumModel<dim>::~ContinuumModel()
   {
     if (dof_handler)
       dof_handler->clear();
   }
 
-  const DoFHandler<2> &
-  ContinuumModel::get_dof_handler() const
+  template <int dim>
+  const DoFHandler<dim> &
+  ContinuumModel<dim>::get_dof_handler() const
   {
     return *dof_handler;
   }
 
-  const Mapping<2> &
-  ContinuumModel::get_mapping() const
+  template <int dim>
+  const Mapping<dim> &
+  ContinuumModel<dim>::get_mapping() const
   {
     return *mapping;
   }
 
-  parallel::TriangulationBase<2> &
-  ContinuumModel::get_triangulation()
+  template <int dim>
+  parallel::TriangulationBase<dim> &
+  ContinuumModel<dim>::get_triangulation()
   {
     return *triangulation;
   }
 
+  template <int dim>
   void
-  ContinuumModel::refuse_resume() const
+  ContinuumModel<dim>::refuse_resume() const
   {
     if (parameters.resume)
       throw InputError(
@@ -62,29 +68,32 @@ namespace tmfdem
   }
 
   // ------------------------------------------------------------ mesh
+  template <int dim>
   void
-  ContinuumModel::create_mesh()
+  ContinuumModel<dim>::create_mesh()
   {
     create_output_folder(parameters.output.directory, communicator);
     mesh_report = std::make_unique<MeshReport>();
     own_triangulation =
-      create_continuum_triangulation(parameters.mesh,
-                                     parameters.output.directory,
-                                     communicator,
-                                     *mesh_report);
+      create_continuum_triangulation<dim>(parameters.mesh,
+                                          parameters.output.directory,
+                                          communicator,
+                                          *mesh_report);
     triangulation = own_triangulation.get();
     describe_mesh();
   }
 
+  template <int dim>
   void
-  ContinuumModel::use_mesh(parallel::TriangulationBase<2> &external)
+  ContinuumModel<dim>::use_mesh(parallel::TriangulationBase<dim> &external)
   {
     triangulation = &external;
     describe_mesh();
   }
 
+  template <int dim>
   void
-  ContinuumModel::describe_mesh()
+  ContinuumModel<dim>::describe_mesh()
   {
     coarse_level = parameters.mesh.global_refinements;
     mesh_boundary_ids.clear();
@@ -97,19 +106,20 @@ namespace tmfdem
             mesh_boundary_ids.insert(face->boundary_id());
       }
     // Mesh/... never mixes cell shapes (create_continuum_triangulation)
-    quadrilaterals =
-      triangulation->begin()->reference_cell() == ReferenceCells::Quadrilateral;
+    quadrilaterals = triangulation->begin()->reference_cell() ==
+                     ReferenceCells::get_hypercube<dim>();
   }
 
+  template <int dim>
   void
-  ContinuumModel::create_fe(const unsigned int degree,
-                            const unsigned int n_components)
+  ContinuumModel<dim>::create_fe(const unsigned int degree,
+                                 const unsigned int n_components)
   {
-    std::unique_ptr<FiniteElement<2>> scalar;
+    std::unique_ptr<FiniteElement<dim>> scalar;
     if (uses_quadrilaterals())
       {
-        scalar  = std::make_unique<FE_Q<2>>(degree);
-        mapping = std::make_unique<MappingQ<2>>(degree);
+        scalar  = std::make_unique<FE_Q<dim>>(degree);
+        mapping = std::make_unique<MappingQ<dim>>(degree);
       }
     else
       {
@@ -123,19 +133,20 @@ namespace tmfdem
             "have degree 1 or 2; allowed are 1 and 2 on triangles, 1 to 3 "
             "on quadrilaterals (Mesh/Element type, or a quadrilateral mesh "
             "file).");
-        scalar  = std::make_unique<FE_SimplexP<2>>(degree);
-        mapping = std::make_unique<MappingFE<2>>(FE_SimplexP<2>(1));
+        scalar  = std::make_unique<FE_SimplexP<dim>>(degree);
+        mapping = std::make_unique<MappingFE<dim>>(FE_SimplexP<dim>(1));
       }
     if (n_components == 1)
       fe = std::move(scalar);
     else
-      fe = std::make_unique<FESystem<2>>(*scalar, n_components);
-    dof_handler = std::make_unique<DoFHandler<2>>(*triangulation);
+      fe = std::make_unique<FESystem<dim>>(*scalar, n_components);
+    dof_handler = std::make_unique<DoFHandler<dim>>(*triangulation);
   }
 
   // ------------------------------------------------------------ checks
+  template <int dim>
   void
-  ContinuumModel::check_boundary_ids(
+  ContinuumModel<dim>::check_boundary_ids(
     const std::string                     &name,
     const std::vector<types::boundary_id> &ids) const
   {
@@ -151,8 +162,9 @@ namespace tmfdem
         }
   }
 
+  template <int dim>
   void
-  ContinuumModel::check_material_ids() const
+  ContinuumModel<dim>::check_material_ids() const
   {
     // ids without a subsection (or beyond them) are refused
     for (const auto id : mesh_material_ids)
@@ -164,8 +176,9 @@ namespace tmfdem
                         "generated mesh (Mesh/Material id)"));
   }
 
+  template <int dim>
   void
-  ContinuumModel::check_adaptivity() const
+  ContinuumModel<dim>::check_adaptivity() const
   {
     if (parameters.adaptivity.enable && !uses_quadrilaterals())
       throw InputError(
@@ -176,8 +189,9 @@ namespace tmfdem
   }
 
   // ------------------------------------------------------------ DoFs
+  template <int dim>
   void
-  ContinuumModel::distribute_dofs()
+  ContinuumModel<dim>::distribute_dofs()
   {
     dof_handler->distribute_dofs(*fe);
     locally_owned_dofs = dof_handler->locally_owned_dofs();
@@ -185,8 +199,9 @@ namespace tmfdem
                                             locally_relevant_dofs);
   }
 
+  template <int dim>
   DynamicSparsityPattern
-  ContinuumModel::distributed_sparsity(
+  ContinuumModel<dim>::distributed_sparsity(
     const AffineConstraints<double> *constraints) const
   {
     DynamicSparsityPattern sparsity(locally_relevant_dofs);
@@ -204,25 +219,37 @@ namespace tmfdem
     return sparsity;
   }
 
-  Quadrature<2>
-  ContinuumModel::cell_quadrature() const
+  template <int dim>
+  Quadrature<dim>
+  ContinuumModel<dim>::cell_quadrature() const
   {
     return uses_quadrilaterals() ?
-             Quadrature<2>(QGauss<2>(fe->degree + 1)) :
-             Quadrature<2>(QGaussSimplex<2>(fe->degree + 1));
+             Quadrature<dim>(QGauss<dim>(fe->degree + 1)) :
+             Quadrature<dim>(QGaussSimplex<dim>(fe->degree + 1));
+  }
+
+  template <int dim>
+  Quadrature<dim - 1>
+  ContinuumModel<dim>::face_quadrature_rule() const
+  {
+    if (dim == 2 || uses_quadrilaterals())
+      return QGauss<dim - 1>(fe->degree + 1);
+    return QGaussSimplex<dim - 1>(fe->degree + 1);
   }
 
   // ------------------------------------------------------------ output
+  template <int dim>
   OutputSchedule
-  ContinuumModel::output_schedule() const
+  ContinuumModel<dim>::output_schedule() const
   {
     return OutputSchedule(parameters.output,
                           parameters.time.start_time,
                           parameters.time.end_time);
   }
 
+  template <int dim>
   JsonObject
-  ContinuumModel::summary_head() const
+  ContinuumModel<dim>::summary_head() const
   {
     JsonObject summary;
     summary.add("model", parameters.model)
@@ -231,11 +258,12 @@ namespace tmfdem
     return summary;
   }
 
+  template <int dim>
   void
-  ContinuumModel::add_run_entries(JsonObject         &summary,
-                                  const unsigned long steps,
-                                  const double        end_time,
-                                  const double        wall_time) const
+  ContinuumModel<dim>::add_run_entries(JsonObject         &summary,
+                                       const unsigned long steps,
+                                       const double        end_time,
+                                       const double        wall_time) const
   {
     summary
       .add("cells",
@@ -251,8 +279,9 @@ namespace tmfdem
              0.);
   }
 
+  template <int dim>
   void
-  ContinuumModel::open_solution_series()
+  ContinuumModel<dim>::open_solution_series()
   {
     solution_series =
       std::make_unique<SolutionSeries>(parameters.output.directory,
@@ -261,8 +290,9 @@ namespace tmfdem
                                        parameters.output.binary_vtu);
   }
 
+  template <int dim>
   void
-  ContinuumModel::write_solution(DataOut<2> &data_out, const double time)
+  ContinuumModel<dim>::write_solution(DataOut<dim> &data_out, const double time)
   {
     Vector<float> material(triangulation->n_active_cells()),
       subdomain(triangulation->n_active_cells());
@@ -279,14 +309,15 @@ namespace tmfdem
   }
 
   // ------------------------------------------------------------ AMR
+  template <int dim>
   void
-  ContinuumModel::refine_mesh_by_kelly(
+  ContinuumModel<dim>::refine_mesh_by_kelly(
     const TrilinosWrappers::MPI::Vector &solution,
     const std::function<void()>         &after_refinement,
     TrilinosWrappers::MPI::Vector       *transferred)
   {
     auto &distributed_triangulation =
-      dynamic_cast<parallel::distributed::Triangulation<2> &>(*triangulation);
+      dynamic_cast<parallel::distributed::Triangulation<dim> &>(*triangulation);
     mark_cells_by_kelly(distributed_triangulation,
                         *mapping,
                         *dof_handler,
@@ -294,7 +325,7 @@ namespace tmfdem
                         fe->degree,
                         parameters.adaptivity,
                         coarse_level);
-    parallel::distributed::SolutionTransfer<2, TrilinosWrappers::MPI::Vector>
+    parallel::distributed::SolutionTransfer<dim, TrilinosWrappers::MPI::Vector>
       transfer(*dof_handler);
     triangulation->prepare_coarsening_and_refinement();
     if (transferred)
@@ -309,8 +340,9 @@ namespace tmfdem
   }
 
   // ------------------------------------------------------------ stop
+  template <int dim>
   void
-  ContinuumModel::stop_if_requested(
+  ContinuumModel<dim>::stop_if_requested(
     const double                 time,
     const unsigned long          step,
     const std::function<void()> &write_state) const
@@ -324,4 +356,6 @@ namespace tmfdem
                         "; outputs so far in " + parameters.output.directory +
                         " (continuum runs cannot be resumed).");
   }
+  template class ContinuumModel<2>;
+  template class ContinuumModel<3>;
 } // namespace tmfdem

@@ -15,16 +15,18 @@
 
 namespace tmfdem
 {
+  template <int dim>
   void
-  HeatSolver::compute_cell_matrices()
+  HeatSolver<dim>::compute_cell_matrices()
   {
-    const unsigned int  n          = fe->n_dofs_per_cell();
-    const Quadrature<2> quadrature = cell_quadrature();
-    FEValues<2>         fe_values(*mapping,
-                          *fe,
-                          quadrature,
-                          update_values | update_gradients | update_JxW_values);
-    const unsigned int  n_cells = triangulation->n_active_cells();
+    const unsigned int    n          = fe->n_dofs_per_cell();
+    const Quadrature<dim> quadrature = cell_quadrature();
+    FEValues<dim>         fe_values(*mapping,
+                            *fe,
+                            quadrature,
+                            update_values | update_gradients |
+                              update_JxW_values);
+    const unsigned int    n_cells = triangulation->n_active_cells();
     cell_capacity.assign(n_cells, FullMatrix<double>());
     cell_conductivity.assign(n_cells, FullMatrix<double>());
     capacity_matrix   = 0;
@@ -38,8 +40,8 @@ namespace tmfdem
           const double k        = material.thermal_conductivity;
           // anisotropic (paper Eqs. 8-9): grad phi_i . K grad phi_j; the
           // isotropic product below is kept as it was (bitwise results)
-          const bool         anisotropic = material.anisotropic_conductivity;
-          const Tensor<2, 2> K           = material.conductivity_tensor();
+          const bool           anisotropic = material.anisotropic_conductivity;
+          const Tensor<2, dim> K = material.template conductivity_tensor<dim>();
           fe_values.reinit(cell);
           FullMatrix<double> capacity(n, n), conductivity(n, n);
           for (const unsigned int q : fe_values.quadrature_point_indices())
@@ -84,9 +86,11 @@ namespace tmfdem
       level.valid = false;
   }
 
-  const HeatSolver::BoundaryFunctions *
-  HeatSolver::robin_functions(const DoFHandler<2>::active_cell_iterator &cell,
-                              const unsigned int face) const
+  template <int dim>
+  const typename HeatSolver<dim>::BoundaryFunctions *
+  HeatSolver<dim>::robin_functions(
+    const typename DoFHandler<dim>::active_cell_iterator &cell,
+    const unsigned int                                    face) const
   {
     if (!cell->at_boundary(face))
       return nullptr;
@@ -98,14 +102,16 @@ namespace tmfdem
     return &boundary_functions[condition->second];
   }
 
+  template <int dim>
   void
-  HeatSolver::robin_face_matrix(const DoFHandler<2>::active_cell_iterator &cell,
-                                const unsigned int                         face,
-                                const BoundaryFunctions &functions,
-                                const double             time,
-                                const double             weight,
-                                FEFaceValues<2>         &fe_face_values,
-                                FullMatrix<double>      &matrix) const
+  HeatSolver<dim>::robin_face_matrix(
+    const typename DoFHandler<dim>::active_cell_iterator &cell,
+    const unsigned int                                    face,
+    const BoundaryFunctions                              &functions,
+    const double                                          time,
+    const double                                          weight,
+    FEFaceValues<dim>                                    &fe_face_values,
+    FullMatrix<double>                                   &matrix) const
   {
     const unsigned int n = fe->n_dofs_per_cell();
     fe_face_values.reinit(cell, face);
@@ -123,24 +129,25 @@ namespace tmfdem
       }
   }
 
+  template <int dim>
   void
-  HeatSolver::assemble_loads(const double time,
-                             const bool   time_dependent,
-                             Loads       &level)
+  HeatSolver<dim>::assemble_loads(const double time,
+                                  const bool   time_dependent,
+                                  Loads       &level)
   {
-    const unsigned int  n          = fe->n_dofs_per_cell();
-    const Quadrature<2> quadrature = cell_quadrature();
-    const QGauss<1>     face_quadrature(fe->degree + 1);
-    FEValues<2>         fe_values(*mapping,
-                          *fe,
-                          quadrature,
-                          update_values | update_quadrature_points |
-                            update_JxW_values);
-    FEFaceValues<2>     fe_face_values(*mapping,
-                                   *fe,
-                                   face_quadrature,
-                                   update_values | update_quadrature_points |
-                                     update_JxW_values);
+    const unsigned int        n               = fe->n_dofs_per_cell();
+    const Quadrature<dim>     quadrature      = cell_quadrature();
+    const Quadrature<dim - 1> face_quadrature = face_quadrature_rule();
+    FEValues<dim>             fe_values(*mapping,
+                            *fe,
+                            quadrature,
+                            update_values | update_quadrature_points |
+                              update_JxW_values);
+    FEFaceValues<dim>         fe_face_values(*mapping,
+                                     *fe,
+                                     face_quadrature,
+                                     update_values | update_quadrature_points |
+                                       update_JxW_values);
     level.vector = 0;
     level.time   = time;
     level.valid  = true;
@@ -204,7 +211,7 @@ namespace tmfdem
             for (const unsigned int q :
                  fe_face_values.quadrature_point_indices())
               {
-                const Point<2> &x = fe_face_values.quadrature_point(q);
+                const Point<dim> &x = fe_face_values.quadrature_point(q);
                 // Neumann: inward flux; Robin: the known part h T_inf
                 const double flux =
                   (type == ThermalBoundaryCondition::Type::neumann ?
@@ -238,8 +245,9 @@ namespace tmfdem
       }
   }
 
-  const HeatSolver::Loads &
-  HeatSolver::time_dependent_loads(const double time)
+  template <int dim>
+  const typename HeatSolver<dim>::Loads &
+  HeatSolver<dim>::time_dependent_loads(const double time)
   {
     for (const auto &level : variable_loads)
       if (level.valid && level.time == time)
@@ -256,8 +264,9 @@ namespace tmfdem
     return level;
   }
 
+  template <int dim>
   void
-  HeatSolver::assemble_robin(
+  HeatSolver<dim>::assemble_robin(
     const double                                time,
     std::map<types::boundary_id, RobinWeights> &weights)
   {
@@ -266,20 +275,21 @@ namespace tmfdem
     robin_matrix.compress(VectorOperation::add);
   }
 
+  template <int dim>
   void
-  HeatSolver::add_robin_terms(
+  HeatSolver<dim>::add_robin_terms(
     const double                                time,
     TrilinosWrappers::SparseMatrix             &matrix,
     std::map<types::boundary_id, RobinWeights> &weights)
   {
-    const unsigned int                   n = fe->n_dofs_per_cell();
-    const QGauss<1>                      face_quadrature(fe->degree + 1);
-    FEFaceValues<2>                      fe_face_values(*mapping,
-                                   *fe,
-                                   face_quadrature,
-                                   update_values | update_JxW_values |
-                                     update_quadrature_points);
-    FullMatrix<double>                   robin(n, n);
+    const unsigned int        n               = fe->n_dofs_per_cell();
+    const Quadrature<dim - 1> face_quadrature = face_quadrature_rule();
+    FEFaceValues<dim>         fe_face_values(*mapping,
+                                     *fe,
+                                     face_quadrature,
+                                     update_values | update_JxW_values |
+                                       update_quadrature_points);
+    FullMatrix<double>        robin(n, n);
     std::vector<types::global_dof_index> dof_indices(n);
     // every Robin id on every process, for the collective compress
     for (const auto &[id, c] : condition_of)
@@ -318,19 +328,20 @@ namespace tmfdem
   }
 
   // ------------------------------------------------------------ assemble
+  template <int dim>
   void
-  HeatSolver::assemble_matrix_and_lifting(const double new_time,
-                                          const double mass_weight,
-                                          const double stiffness_weight,
-                                          const bool   assemble_matrix)
+  HeatSolver<dim>::assemble_matrix_and_lifting(const double new_time,
+                                               const double mass_weight,
+                                               const double stiffness_weight,
+                                               const bool   assemble_matrix)
   {
-    const unsigned int n = fe->n_dofs_per_cell();
-    const QGauss<1>    face_quadrature(fe->degree + 1);
-    FEFaceValues<2>    fe_face_values(*mapping,
-                                   *fe,
-                                   face_quadrature,
-                                   update_values | update_quadrature_points |
-                                     update_JxW_values);
+    const unsigned int        n               = fe->n_dofs_per_cell();
+    const Quadrature<dim - 1> face_quadrature = face_quadrature_rule();
+    FEFaceValues<dim>         fe_face_values(*mapping,
+                                     *fe,
+                                     face_quadrature,
+                                     update_values | update_quadrature_points |
+                                       update_JxW_values);
     if (assemble_matrix)
       {
         system_matrix = 0;
@@ -408,10 +419,11 @@ namespace tmfdem
     lifting.compress(VectorOperation::add);
   }
 
+  template <int dim>
   void
-  HeatSolver::assemble_rhs(const double old_time,
-                           const double new_time,
-                           const bool   steady)
+  HeatSolver<dim>::assemble_rhs(const double old_time,
+                                const double new_time,
+                                const bool   steady)
   {
     const double dt = new_time - old_time;
     // weights of the new and old time levels in the theta scheme [s]
@@ -480,8 +492,9 @@ namespace tmfdem
     system_rhs += lifting;
   }
 
+  template <int dim>
   unsigned int
-  HeatSolver::solve(const bool rebuild_preconditioner)
+  HeatSolver<dim>::solve(const bool rebuild_preconditioner)
   {
     if (rebuild_preconditioner || !preconditioner)
       {
@@ -532,8 +545,9 @@ namespace tmfdem
     return control.last_step();
   }
 
+  template <int dim>
   void
-  HeatSolver::accumulate_heat_balance(HeatBalance &balance)
+  HeatSolver<dim>::accumulate_heat_balance(HeatBalance &balance)
   {
     const unsigned int n    = fe->n_dofs_per_cell();
     const double new_weight = last_new_weight, old_weight = last_old_weight;
@@ -594,4 +608,7 @@ namespace tmfdem
       }
   }
 
+  // the members defined in this file (heat_solver.cc instantiates the rest)
+  template class HeatSolver<2>;
+  template class HeatSolver<3>;
 } // namespace tmfdem

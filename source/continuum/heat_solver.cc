@@ -26,8 +26,8 @@ namespace tmfdem
   {
     const bool registered = register_simulation(
       "continuum heat",
-      "transient or steady heat conduction with deal.II (theta scheme, AMR "
-      "on quadrilaterals, MPI)",
+      "transient or steady heat conduction with deal.II in 2D or 3D (theta "
+      "scheme, AMR on quadrilaterals and hexahedra, MPI)",
       {{"Mesh",
         "Materials",
         "Thermal boundary conditions",
@@ -39,9 +39,13 @@ namespace tmfdem
         "Monitors",
         "Checkpoint"},
        {}},
-      [](const Parameters &parameters, MPI_Comm communicator) {
-        return std::make_unique<HeatSolver>(parameters, communicator);
-      });
+      [](const Parameters &parameters,
+         MPI_Comm          communicator) -> std::unique_ptr<Simulation> {
+        if (parameters.mesh.dimension == 3)
+          return std::make_unique<HeatSolver<3>>(parameters, communicator);
+        return std::make_unique<HeatSolver<2>>(parameters, communicator);
+      },
+      {2, 3});
 
     /** Does @p expression use the variable t? */
     bool
@@ -53,8 +57,10 @@ namespace tmfdem
     }
   } // namespace
 
-  HeatSolver::HeatSolver(const Parameters &parameters, MPI_Comm communicator)
-    : ContinuumModel(parameters, communicator)
+  template <int dim>
+  HeatSolver<dim>::HeatSolver(const Parameters &parameters,
+                              MPI_Comm          communicator)
+    : ContinuumModel<dim>(parameters, communicator)
     , theta(parameters.time.theta)
   {
     for (unsigned int id = 0; id < MaterialParameters::max_materials; ++id)
@@ -62,9 +68,10 @@ namespace tmfdem
         const std::string expression =
           parameters.materials.materials[id].heat_source;
         heat_sources.push_back(
-          make_expression_function(expression,
-                                   "Materials/Material " + std::to_string(id) +
-                                     "/Volumetric heat source"));
+          make_expression_function<dim>(expression,
+                                        "Materials/Material " +
+                                          std::to_string(id) +
+                                          "/Volumetric heat source"));
         if (Utilities::trim(expression) != "0")
           any_heat_source = true;
         time_dependent_source.push_back(depends_on_time(expression));
@@ -74,18 +81,19 @@ namespace tmfdem
       {
         BoundaryFunctions functions;
         functions.temperature =
-          make_expression_function(condition.temperature,
-                                   condition.name + "/Temperature");
+          make_expression_function<dim>(condition.temperature,
+                                        condition.name + "/Temperature");
         functions.heat_flux =
-          make_expression_function(condition.heat_flux,
-                                   condition.name + "/Heat flux");
+          make_expression_function<dim>(condition.heat_flux,
+                                        condition.name + "/Heat flux");
         functions.heat_transfer_coefficient =
-          make_expression_function(condition.heat_transfer_coefficient,
-                                   condition.name +
-                                     "/Heat transfer coefficient");
+          make_expression_function<dim>(condition.heat_transfer_coefficient,
+                                        condition.name +
+                                          "/Heat transfer coefficient");
         functions.ambient_temperature =
-          make_expression_function(condition.ambient_temperature,
-                                   condition.name + "/Ambient temperature");
+          make_expression_function<dim>(condition.ambient_temperature,
+                                        condition.name +
+                                          "/Ambient temperature");
         functions.time_dependent_coefficient =
           condition.type == ThermalBoundaryCondition::Type::robin &&
           depends_on_time(condition.heat_transfer_coefficient);
@@ -105,20 +113,23 @@ namespace tmfdem
         boundary_functions.push_back(std::move(functions));
       }
     initial_temperature =
-      make_expression_function(parameters.initial.temperature,
-                               "Initial conditions/Temperature");
+      make_expression_function<dim>(parameters.initial.temperature,
+                                    "Initial conditions/Temperature");
   }
 
-  HeatSolver::~HeatSolver() = default;
+  template <int dim>
+  HeatSolver<dim>::~HeatSolver() = default;
 
+  template <int dim>
   const TrilinosWrappers::MPI::Vector &
-  HeatSolver::get_temperature() const
+  HeatSolver<dim>::get_temperature() const
   {
     return solution;
   }
 
+  template <int dim>
   double
-  HeatSolver::memory_estimate() const
+  HeatSolver<dim>::memory_estimate() const
   {
     const double n = fe->n_dofs_per_cell();
     return 2. * system_matrix.memory_consumption() +
@@ -132,8 +143,9 @@ namespace tmfdem
   }
 
   // ------------------------------------------------------------------ mesh
+  template <int dim>
   void
-  HeatSolver::make_mesh()
+  HeatSolver<dim>::make_mesh()
   {
     create_mesh();
     create_fe(parameters.heat_solver.degree, 1);
@@ -144,8 +156,9 @@ namespace tmfdem
   }
 
   // ------------------------------------------------------------ set up
+  template <int dim>
   void
-  HeatSolver::setup_dofs()
+  HeatSolver<dim>::setup_dofs()
   {
     distribute_dofs();
 
@@ -227,8 +240,9 @@ namespace tmfdem
     reaction_values.clear();
   }
 
+  template <int dim>
   void
-  HeatSolver::make_constraints(const double time)
+  HeatSolver<dim>::make_constraints(const double time)
   {
     constraints.clear();
     constraints.reinit(locally_relevant_dofs);
@@ -252,8 +266,9 @@ namespace tmfdem
   }
 
   // ------------------------------------------------------------ initial
+  template <int dim>
   void
-  HeatSolver::set_initial_condition(const bool hold_dirichlet)
+  HeatSolver<dim>::set_initial_condition(const bool hold_dirichlet)
   {
     initial_temperature->set_time(parameters.time.start_time);
     TrilinosWrappers::MPI::Vector distributed(locally_owned_dofs, communicator);
@@ -270,9 +285,9 @@ namespace tmfdem
         // of their values there, each distinct entry counted once, so that
         // the CG field at the interface is the midpoint of the jump whatever
         // the number of cells on either side
-        std::vector<std::unique_ptr<FunctionParser<2>>> functions;
-        std::map<std::string, unsigned int>             index_of_entry;
-        std::map<types::material_id, unsigned int>      entry_of_material;
+        std::vector<std::unique_ptr<FunctionParser<dim>>> functions;
+        std::map<std::string, unsigned int>               index_of_entry;
+        std::map<types::material_id, unsigned int>        entry_of_material;
         auto entry_index = [&](const types::material_id id) {
           const auto known = entry_of_material.find(id);
           if (known != entry_of_material.end())
@@ -284,7 +299,7 @@ namespace tmfdem
           if (inserted)
             {
               functions.push_back(
-                make_expression_function(entry.expression, entry.entry));
+                make_expression_function<dim>(entry.expression, entry.entry));
               functions.back()->set_time(parameters.time.start_time);
             }
           entry_of_material[id] = it->second;
@@ -292,11 +307,11 @@ namespace tmfdem
         };
         const unsigned int         n_owned = locally_owned_dofs.n_elements();
         std::vector<std::uint32_t> entries_at(n_owned, 0); // bit per entry
-        std::vector<Point<2>>      point_of(n_owned);
-        FEValues<2>                fe_values(*mapping,
-                              *fe,
-                              Quadrature<2>(fe->get_unit_support_points()),
-                              update_quadrature_points);
+        std::vector<Point<dim>>    point_of(n_owned);
+        FEValues<dim>              fe_values(*mapping,
+                                *fe,
+                                Quadrature<dim>(fe->get_unit_support_points()),
+                                update_quadrature_points);
         std::vector<types::global_dof_index> dofs(fe->n_dofs_per_cell());
         // ghost cells too: a node owned here may touch cells of other ranks
         for (const auto &cell : dof_handler->active_cell_iterators())
@@ -346,16 +361,18 @@ namespace tmfdem
     set_state(distributed);
   }
 
+  template <int dim>
   void
-  HeatSolver::set_state(const TrilinosWrappers::MPI::Vector &temperature)
+  HeatSolver<dim>::set_state(const TrilinosWrappers::MPI::Vector &temperature)
   {
     solution           = temperature;
     owned_solution     = temperature;
     owned_old_solution = temperature;
   }
 
+  template <int dim>
   void
-  HeatSolver::adapt_mesh(const bool transfer_solution)
+  HeatSolver<dim>::adapt_mesh(const bool transfer_solution)
   {
     TrilinosWrappers::MPI::Vector distributed;
     refine_mesh_by_kelly(
@@ -373,22 +390,24 @@ namespace tmfdem
   }
 
   // ------------------------------------------------------------ output
+  template <int dim>
   void
-  HeatSolver::write_output(const double time)
+  HeatSolver<dim>::write_output(const double time)
   {
     monitors->write(time, *mapping, *dof_handler, solution);
     if (!parameters.output.write_vtu)
       return;
-    DataOut<2> data_out;
+    DataOut<dim> data_out;
     data_out.attach_dof_handler(*dof_handler);
     data_out.add_data_vector(solution, "T");
     write_solution(data_out, time);
   }
 
+  template <int dim>
   void
-  HeatSolver::write_summary(const double end_time,
-                            const double wall_time,
-                            const bool   report_done) const
+  HeatSolver<dim>::write_summary(const double end_time,
+                                 const double wall_time,
+                                 const bool   report_done) const
   {
     const unsigned long steps   = stepping.step;
     const HeatBalance  &balance = stepping.balance;
@@ -409,8 +428,9 @@ namespace tmfdem
     const double imbalance = balance.stored_heat - total_in;
     heat
       .add("units",
-           std::string(steady ? "W/m (rates, per unit thickness)" :
-                                "J/m (per unit thickness)"))
+           std::string(dim == 3 ? (steady ? "W (rates)" : "J") :
+                       steady   ? "W/m (rates, per unit thickness)" :
+                                  "J/m (per unit thickness)"))
       .add("boundary_heat_in", per_boundary)
       .add("source_heat", balance.source_heat)
       .add("stored_heat", balance.stored_heat)
@@ -454,15 +474,16 @@ namespace tmfdem
   }
 
   // ------------------------------------------------------------ drivers
+  template <int dim>
   void
-  HeatSolver::check_input()
+  HeatSolver<dim>::check_input()
   {
     make_mesh();
     setup_dofs();
-    monitors = std::make_unique<Monitors>(parameters.monitors,
-                                          parameters.output.directory,
-                                          std::vector<std::string>{"T"},
-                                          communicator);
+    monitors = std::make_unique<Monitors<dim>>(parameters.monitors,
+                                               parameters.output.directory,
+                                               std::vector<std::string>{"T"},
+                                               communicator);
     monitors->check_points(*mapping, *dof_handler);
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       std::cout << mesh_report->to_string()
@@ -471,10 +492,11 @@ namespace tmfdem
                 << triangulation->n_global_active_cells() << " cells)\n";
   }
 
+  template <int dim>
   void
-  HeatSolver::report_validation(std::ostream     &out,
-                                const Parameters &run_parameters,
-                                MPI_Comm          run_communicator) const
+  HeatSolver<dim>::report_validation(std::ostream     &out,
+                                     const Parameters &run_parameters,
+                                     MPI_Comm          run_communicator) const
   {
     double smallest = std::numeric_limits<double>::max();
     for (const auto &cell : triangulation->active_cell_iterators())
@@ -494,8 +516,9 @@ namespace tmfdem
         << " MiB (before adaptive refinement)\n";
   }
 
+  template <int dim>
   void
-  HeatSolver::run()
+  HeatSolver<dim>::run()
   {
     refuse_resume();
     check_input();
@@ -505,8 +528,9 @@ namespace tmfdem
       run_transient();
   }
 
+  template <int dim>
   void
-  HeatSolver::run_steady()
+  HeatSolver<dim>::run_steady()
   {
     ProgressReporter progress(parameters.output.progress_interval,
                               0.,
@@ -517,8 +541,9 @@ namespace tmfdem
     write_summary(stepping.time, progress.elapsed(), false);
   }
 
+  template <int dim>
   void
-  HeatSolver::solve_steady()
+  HeatSolver<dim>::solve_steady()
   {
     open_solution_series();
     stepping      = SteppingState();
@@ -553,8 +578,9 @@ namespace tmfdem
   }
 
   // ------------------------------------------------------------ stepping
+  template <int dim>
   void
-  HeatSolver::start_stepping()
+  HeatSolver<dim>::start_stepping()
   {
     stepping                           = SteppingState();
     stepping.time                      = parameters.time.start_time;
@@ -564,15 +590,17 @@ namespace tmfdem
         functions.time_dependent_temperature;
   }
 
+  template <int dim>
   bool
-  HeatSolver::in_rannacher_start() const
+  HeatSolver<dim>::in_rannacher_start() const
   {
     return parameters.time.theta < 1. &&
            stepping.step < parameters.time.rannacher_steps;
   }
 
+  template <int dim>
   void
-  HeatSolver::advance(const double dt)
+  HeatSolver<dim>::advance(const double dt)
   {
     theta                 = in_rannacher_start() ? 1. : parameters.time.theta;
     const double time     = stepping.time;
@@ -595,8 +623,9 @@ namespace tmfdem
     ++stepping.step;
   }
 
+  template <int dim>
   void
-  HeatSolver::prepare_coupled_stepping()
+  HeatSolver<dim>::prepare_coupled_stepping()
   {
     if (parameters.time.mode != TimeSteppingParameters::Mode::transient)
       throw InputError("Time stepping/Mode = steady: the continuum heat as a "
@@ -613,11 +642,12 @@ namespace tmfdem
     start_stepping();
   }
 
+  template <int dim>
   void
-  HeatSolver::restore_state(const double               time,
-                            const unsigned long        steps,
-                            const HeatBalance         &balance,
-                            const std::vector<double> &values)
+  HeatSolver<dim>::restore_state(const double               time,
+                                 const unsigned long        steps,
+                                 const HeatBalance         &balance,
+                                 const std::vector<double> &values)
   {
     if (values.size() != dof_handler->n_dofs())
       throw InputError("checkpoint: " + std::to_string(values.size()) +
@@ -638,8 +668,9 @@ namespace tmfdem
     stepping.last_theta        = -1.;
   }
 
+  template <int dim>
   void
-  HeatSolver::prepare_transient()
+  HeatSolver<dim>::prepare_transient()
   {
     open_solution_series();
     if (parameters.adaptivity.enable)
@@ -654,8 +685,9 @@ namespace tmfdem
     start_stepping();
   }
 
+  template <int dim>
   void
-  HeatSolver::step_towards(const double target, const double tolerance)
+  HeatSolver<dim>::step_towards(const double target, const double tolerance)
   {
     // Rannacher start of Crank-Nicolson: backward Euler half steps
     double dt = parameters.time.time_step;
@@ -673,8 +705,9 @@ namespace tmfdem
       }
   }
 
+  template <int dim>
   void
-  HeatSolver::run_transient()
+  HeatSolver<dim>::run_transient()
   {
     prepare_transient();
     const OutputSchedule schedule = output_schedule();
@@ -703,4 +736,6 @@ namespace tmfdem
         }
     write_summary(time, progress.elapsed(), true);
   }
+  template class HeatSolver<2>;
+  template class HeatSolver<3>;
 } // namespace tmfdem

@@ -36,7 +36,7 @@ namespace tmfdem
   // ------------------------------------------------------------ set up
   ThermoelasticSolver::ThermoelasticSolver(const Parameters &parameters,
                                            MPI_Comm          communicator)
-    : ContinuumModel(parameters, communicator)
+    : ContinuumModel<2>(parameters, communicator)
     , wall_start(std::chrono::steady_clock::now())
   {
     for (const auto &properties : parameters.materials.materials)
@@ -195,10 +195,10 @@ namespace tmfdem
         fields.push_back("srr");
         fields.push_back("stt");
       }
-    monitors = std::make_unique<Monitors>(parameters.monitors,
-                                          parameters.output.directory,
-                                          fields,
-                                          communicator);
+    monitors = std::make_unique<Monitors<2>>(parameters.monitors,
+                                             parameters.output.directory,
+                                             fields,
+                                             communicator);
     monitors->check_points(*mapping, *dof_handler);
     open_solution_series();
     if (Utilities::MPI::this_mpi_process(communicator) == 0)

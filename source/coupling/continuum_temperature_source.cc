@@ -77,7 +77,8 @@ namespace tmfdem
       : heat_parameters(continuum_heat_parameters(parameters))
       , model(model)
       , communicator(communicator)
-      , heat_solver(std::make_unique<HeatSolver>(heat_parameters, communicator))
+      , heat_solver(
+          std::make_unique<HeatSolver<2>>(heat_parameters, communicator))
     {}
 
     ContinuumTemperatureSource::~ContinuumTemperatureSource() = default;
@@ -272,7 +273,7 @@ namespace tmfdem
       in.get(steps);
       std::vector<double> values;
       in.get(values, heat_solver->get_dof_handler().n_dofs());
-      HeatSolver::HeatBalance balance;
+      HeatSolver<2>::HeatBalance balance;
       in.get(balance.boundary_heat_in);
       in.get(balance.source_heat);
       in.get(balance.stored_heat);

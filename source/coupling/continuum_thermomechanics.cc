@@ -69,8 +69,8 @@ namespace tmfdem
       MPI_Comm          communicator)
       : parameters(parameters)
       , communicator(communicator)
-      , heat(std::make_unique<HeatSolver>(heat_parameters(parameters),
-                                          communicator))
+      , heat(std::make_unique<HeatSolver<2>>(heat_parameters(parameters),
+                                             communicator))
       , mechanics(
           std::make_unique<ThermoelasticSolver>(parameters, communicator))
     {}

@@ -123,7 +123,7 @@ namespace tmfdem
                     std::vector<ReferenceSample> &probes,
                     std::vector<ReferenceSample> &line_points)
     {
-      auto locate = [&](const std::string &name, const Point<2> &p) {
+      auto locate = [&](const std::string &name, const Point<3> &p) {
         ReferenceSample sample;
         sample.name = name;
         sample.x    = p[0];

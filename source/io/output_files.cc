@@ -148,8 +148,9 @@ namespace tmfdem
     , binary(binary)
   {}
 
+  template <int dim>
   void
-  SolutionSeries::write(DataOut<2> &data_out, const double time)
+  SolutionSeries::write(DataOut<dim> &data_out, const double time)
   {
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
     const unsigned int rank    = Utilities::MPI::this_mpi_process(communicator);
@@ -195,6 +196,11 @@ namespace tmfdem
         write_file_atomically(folder + "/" + base_name + ".pvd", pvd.str());
       }
   }
+
+  template void
+  SolutionSeries::write<2>(DataOut<2> &, const double);
+  template void
+  SolutionSeries::write<3>(DataOut<3> &, const double);
 
   // ------------------------------------------------------------ CsvSeries
   CsvSeries::CsvSeries(const std::string &file_name,

@@ -51,7 +51,7 @@ namespace tmfdem
         centroids[c]         = centroid / 3.;
         cells[c].material_id = cell->material_id();
         cells[c].manifold_id = cell->manifold_id();
-        for (const auto face : cell->face_iterators())
+        for (const auto &face : cell->face_iterators())
           if ((face->at_boundary() ||
                face->manifold_id() != numbers::flat_manifold_id) &&
               edges_seen.insert(face->index()).second)

@@ -29,17 +29,71 @@ namespace tmfdem
       text << ")";
       return text.str();
     }
+
+    /** Number of connected pieces of @p triangulation (cells joined
+     *  through faces). */
+    template <int dim>
+    unsigned int
+    count_connected_pieces(const Triangulation<dim> &triangulation)
+    {
+      unsigned int              n_pieces = 0;
+      std::vector<unsigned int> piece(triangulation.n_active_cells(),
+                                      numbers::invalid_unsigned_int);
+      for (const auto &seed : triangulation.active_cell_iterators())
+        if (piece[seed->active_cell_index()] == numbers::invalid_unsigned_int)
+          {
+            std::vector<typename Triangulation<dim>::active_cell_iterator>
+              stack                          = {seed};
+            piece[seed->active_cell_index()] = n_pieces;
+            while (!stack.empty())
+              {
+                const auto cell = stack.back();
+                stack.pop_back();
+                for (const unsigned int f : cell->face_indices())
+                  if (!cell->at_boundary(f) && cell->neighbor(f)->is_active())
+                    {
+                      const auto neighbor = cell->neighbor(f);
+                      if (piece[neighbor->active_cell_index()] ==
+                          numbers::invalid_unsigned_int)
+                        {
+                          piece[neighbor->active_cell_index()] = n_pieces;
+                          stack.push_back(neighbor);
+                        }
+                    }
+              }
+            ++n_pieces;
+          }
+      return n_pieces;
+    }
+
+    template <int dim>
+    std::string
+    describe_solid_cell(const typename Triangulation<dim>::cell_iterator &cell)
+    {
+      std::ostringstream text;
+      text << "cell " << cell->index() << " (vertices";
+      for (const unsigned int v : cell->vertex_indices())
+        text << " " << cell->vertex_index(v) << " (" << cell->vertex(v) << ")";
+      text << ")";
+      return text.str();
+    }
   } // namespace
 
   std::string
   MeshReport::to_string() const
   {
     std::ostringstream text;
-    text << "mesh: " << n_cells << " cells (" << n_triangles << " triangles, "
-         << n_quadrilaterals << " quadrilaterals), " << n_vertices
-         << " vertices, " << n_connected_pieces << " connected piece(s)\n"
-         << "  area " << area << " m^2, edge length min " << min_edge
-         << " mean " << mean_edge << " max " << max_edge << " m\n"
+    if (dimension == 3)
+      text << "mesh: " << n_cells << " cells (" << n_tetrahedra
+           << " tetrahedra, " << n_hexahedra << " hexahedra), " << n_vertices
+           << " vertices, " << n_connected_pieces << " connected piece(s)\n"
+           << "  volume " << area << " m^3, edge length min " << min_edge;
+    else
+      text << "mesh: " << n_cells << " cells (" << n_triangles << " triangles, "
+           << n_quadrilaterals << " quadrilaterals), " << n_vertices
+           << " vertices, " << n_connected_pieces << " connected piece(s)\n"
+           << "  area " << area << " m^2, edge length min " << min_edge;
+    text << " mean " << mean_edge << " max " << max_edge << " m\n"
          << "  boundary ids:";
     for (const auto id : boundary_ids)
       text << " " << id;
@@ -68,7 +122,7 @@ namespace tmfdem
       {
         report.material_ids.insert(cell->material_id());
         double longest = 0;
-        for (const auto face : cell->face_iterators())
+        for (const auto &face : cell->face_iterators())
           {
             const double length = (face->vertex(1) - face->vertex(0)).norm();
             longest             = std::max(longest, length);
@@ -140,7 +194,7 @@ namespace tmfdem
     // (inverted) cell shows up here.
     double enclosed_area = 0.;
     for (const auto &cell : triangulation.active_cell_iterators())
-      for (const auto face : cell->face_iterators())
+      for (const auto &face : cell->face_iterators())
         if (face->at_boundary())
           {
             Point<2> start = face->vertex(0), end = face->vertex(1);
@@ -158,32 +212,7 @@ namespace tmfdem
                        "cells overlap nowhere.");
 
     // connected pieces through shared faces
-    std::vector<unsigned int> piece(triangulation.n_active_cells(),
-                                    numbers::invalid_unsigned_int);
-    for (const auto &seed : triangulation.active_cell_iterators())
-      if (piece[seed->active_cell_index()] == numbers::invalid_unsigned_int)
-        {
-          std::vector<Triangulation<2>::active_cell_iterator> stack = {seed};
-          piece[seed->active_cell_index()] = report.n_connected_pieces;
-          while (!stack.empty())
-            {
-              const auto cell = stack.back();
-              stack.pop_back();
-              for (const unsigned int f : cell->face_indices())
-                if (!cell->at_boundary(f) && cell->neighbor(f)->is_active())
-                  {
-                    const auto neighbor = cell->neighbor(f);
-                    if (piece[neighbor->active_cell_index()] ==
-                        numbers::invalid_unsigned_int)
-                      {
-                        piece[neighbor->active_cell_index()] =
-                          report.n_connected_pieces;
-                        stack.push_back(neighbor);
-                      }
-                  }
-            }
-          ++report.n_connected_pieces;
-        }
+    report.n_connected_pieces = count_connected_pieces(triangulation);
 
     if (expected_area > 0)
       {
@@ -201,6 +230,123 @@ namespace tmfdem
             " m^2 of a domain of " + Utilities::to_string(expected_area) +
             " m^2: part of the domain is not meshed (or cells "
             "overlap).");
+      }
+    return report;
+  }
+  MeshReport
+  check_mesh(const Triangulation<3> &triangulation,
+             const std::string      &source,
+             const double            expected_volume,
+             const bool              curved_boundary)
+  {
+    MeshReport report;
+    report.dimension      = 3;
+    report.n_cells        = triangulation.n_active_cells();
+    report.n_vertices     = triangulation.n_used_vertices();
+    report.min_edge       = std::numeric_limits<double>::max();
+    double       edge_sum = 0, boundary_area = 0;
+    unsigned int n_edges  = 0;
+    const auto   describe = [](const Triangulation<3>::cell_iterator &cell) {
+      return describe_solid_cell<3>(cell);
+    };
+
+    std::map<std::vector<unsigned int>, unsigned int> cells_by_vertices;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        report.material_ids.insert(cell->material_id());
+        double longest = 0;
+        for (unsigned int l = 0; l < cell->n_lines(); ++l)
+          {
+            const auto   line   = cell->line(l);
+            const double length = (line->vertex(1) - line->vertex(0)).norm();
+            longest             = std::max(longest, length);
+            report.min_edge     = std::min(report.min_edge, length);
+            report.max_edge     = std::max(report.max_edge, length);
+            edge_sum += length;
+            ++n_edges;
+          }
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            {
+              report.boundary_ids.insert(face->boundary_id());
+              boundary_area += face->measure();
+            }
+
+        // the smallest Jacobian determinant at a vertex, and the volume
+        double min_jacobian = std::numeric_limits<double>::max();
+        double volume       = 0;
+        if (cell->reference_cell() == ReferenceCells::Tetrahedron)
+          {
+            ++report.n_tetrahedra;
+            Tensor<2, 3> edges;
+            for (unsigned int d = 0; d < 3; ++d)
+              edges[d] = cell->vertex(d + 1) - cell->vertex(0);
+            min_jacobian = determinant(edges);
+            volume       = min_jacobian / 6.;
+          }
+        else if (cell->reference_cell() == ReferenceCells::Hexahedron)
+          {
+            ++report.n_hexahedra;
+            // vertex v = i + 2 j + 4 k: its neighbours along the three
+            // reference directions are v ^ 1, v ^ 2, v ^ 4
+            for (unsigned int v = 0; v < 8; ++v)
+              {
+                Tensor<2, 3> edges;
+                double       sign = 1.;
+                for (unsigned int d = 0; d < 3; ++d)
+                  {
+                    edges[d] = cell->vertex(v ^ (1u << d)) - cell->vertex(v);
+                    if (v & (1u << d))
+                      sign = -sign;
+                  }
+                min_jacobian =
+                  std::min(min_jacobian, sign * determinant(edges));
+              }
+            volume = cell->measure();
+          }
+        else
+          throw InputError(source + ": " + describe(cell) +
+                           " is neither a tetrahedron nor a hexahedron; "
+                           "allowed in 3D are these two.");
+        if (std::abs(min_jacobian) <= 1e-10 * longest * longest * longest)
+          throw InputError(source + ": degenerate " + describe(cell) +
+                           ": its volume is zero or nearly so. Allowed are "
+                           "cells with a positive volume.");
+        if (min_jacobian < 0)
+          throw InputError(source + ": inverted " + describe(cell) +
+                           ": negative Jacobian (vertices in the wrong "
+                           "order, or a non-convex hexahedron).");
+        report.area += volume;
+
+        std::vector<unsigned int> key;
+        for (const unsigned int v : cell->vertex_indices())
+          key.push_back(cell->vertex_index(v));
+        std::sort(key.begin(), key.end());
+        const auto inserted = cells_by_vertices.emplace(key, cell->index());
+        if (!inserted.second)
+          throw InputError(source + ": " + describe(cell) +
+                           " duplicates cell " +
+                           std::to_string(inserted.first->second) +
+                           " (same vertices). Allowed are meshes whose cells "
+                           "overlap nowhere.");
+      }
+    report.mean_edge          = n_edges > 0 ? edge_sum / n_edges : 0.;
+    report.n_connected_pieces = count_connected_pieces(triangulation);
+
+    if (expected_volume > 0)
+      {
+        const double miss = std::abs(report.area - expected_volume);
+        // a curved surface cut by flat faces: at most a layer of the
+        // longest edge's thickness over the surface
+        const double tolerance =
+          curved_boundary ?
+            0.02 * expected_volume + boundary_area * report.max_edge :
+            1e-3 * expected_volume;
+        if (miss > tolerance)
+          throw InputError(
+            source + ": the cells cover " + Utilities::to_string(report.area) +
+            " m^3 of a domain of " + Utilities::to_string(expected_volume) +
+            " m^3: part of the domain is not meshed (or cells overlap).");
       }
     return report;
   }

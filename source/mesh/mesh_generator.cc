@@ -88,8 +88,16 @@ namespace tmfdem
         {
           // inner boundary id 0 (no physical group), outer 1
           geo << gmsh_point(1, p.center[0], p.center[1])
-              << gmsh_circle(p.center, p.inner_radius, 1, 2, 1)
-              << gmsh_circle(p.center, p.outer_radius, 1, 6, 5)
+              << gmsh_circle(MeshParameters::in_dimension<2>(p.center),
+                             p.inner_radius,
+                             1,
+                             2,
+                             1)
+              << gmsh_circle(MeshParameters::in_dimension<2>(p.center),
+                             p.outer_radius,
+                             1,
+                             6,
+                             5)
               << "Curve Loop(1) = {5, 6, 7, 8};\n"
               << "Curve Loop(2) = {1, 2, 3, 4};\n"
               << "Plane Surface(1) = {1, 2};\n"
@@ -98,7 +106,11 @@ namespace tmfdem
       else
         {
           geo << gmsh_point(1, p.center[0], p.center[1])
-              << gmsh_circle(p.center, p.outer_radius, 1, 2, 1)
+              << gmsh_circle(MeshParameters::in_dimension<2>(p.center),
+                             p.outer_radius,
+                             1,
+                             2,
+                             1)
               << "Curve Loop(1) = {1, 2, 3, 4};\n"
               << "Plane Surface(1) = {1};\n";
         }
@@ -359,7 +371,7 @@ namespace tmfdem
                            const Point<2>   &center)
     {
       for (const auto &cell : triangulation.active_cell_iterators())
-        for (const auto face : cell->face_iterators())
+        for (const auto &face : cell->face_iterators())
           if (face->at_boundary())
             face->set_manifold_id(circle_manifold_id);
       triangulation.set_manifold(circle_manifold_id,
@@ -379,7 +391,7 @@ namespace tmfdem
           double smallest = std::numeric_limits<double>::max(), largest = 0.;
           unsigned int edges = 0;
           for (const auto &cell : triangulation.active_cell_iterators())
-            for (const auto face : cell->face_iterators())
+            for (const auto &face : cell->face_iterators())
               if (face->at_boundary() && face->boundary_id() == id)
                 {
                   face->set_manifold_id(manifold);
@@ -413,8 +425,10 @@ namespace tmfdem
     }
   } // namespace
 
+  template <int dim>
   void
-  read_gmsh_file(const std::string &file_name, Triangulation<2> &triangulation)
+  read_gmsh_file(const std::string  &file_name,
+                 Triangulation<dim> &triangulation)
   {
     std::ifstream in(file_name);
     if (!in)
@@ -471,7 +485,7 @@ namespace tmfdem
                        "'; allowed are 2.x and 4.x (ASCII).");
     check_msh2_sections(file_name);
     in.seekg(0);
-    GridIn<2> grid_in;
+    GridIn<dim> grid_in;
     grid_in.attach_triangulation(triangulation);
     try
       {
@@ -490,9 +504,10 @@ namespace tmfdem
                          "' cannot be read: " + exception.what());
       }
     if (triangulation.n_active_cells() == 0)
-      throw InputError("Mesh file '" + file_name +
-                       "' holds no 2D cells (are the surfaces in a physical "
-                       "group?).");
+      throw InputError("Mesh file '" + file_name + "' holds no " +
+                       std::to_string(dim) + "D cells (are the " +
+                       (dim == 2 ? "surfaces" : "volumes") +
+                       " in a physical group?).");
   }
 
   void
@@ -572,29 +587,34 @@ namespace tmfdem
         for (const auto &cell : triangulation.active_cell_iterators())
           cell->set_material_id(parameters.material_id);
         if (parameters.source != Source::rectangle)
-          attach_circle_manifold(triangulation, parameters.center);
+          attach_circle_manifold(triangulation,
+                                 MeshParameters::in_dimension<2>(
+                                   parameters.center));
         return;
       }
 
     // structured quadrilaterals, flat (level 0) so that p4est can copy them
     if (parameters.source == Source::rectangle)
       {
-        const Tensor<1, 2> extent =
+        const Tensor<1, 3> extent =
           parameters.upper_right - parameters.lower_left;
         const std::vector<unsigned int> repetitions = {
           std::max(1u,
                    static_cast<unsigned int>(std::ceil(extent[0] / h - 1e-9))),
           std::max(1u,
                    static_cast<unsigned int>(std::ceil(extent[1] / h - 1e-9)))};
-        GridGenerator::subdivided_hyper_rectangle(triangulation,
-                                                  repetitions,
-                                                  parameters.lower_left,
-                                                  parameters.upper_right,
-                                                  true);
+        GridGenerator::subdivided_hyper_rectangle(
+          triangulation,
+          repetitions,
+          MeshParameters::in_dimension<2>(parameters.lower_left),
+          MeshParameters::in_dimension<2>(parameters.upper_right),
+          true);
       }
     else
       {
-        const double a = parameters.inner_radius, b = parameters.outer_radius;
+        const double   a = parameters.inner_radius, b = parameters.outer_radius;
+        const Point<2> center =
+          MeshParameters::in_dimension<2>(parameters.center);
         if (parameters.source == Source::annulus)
           {
             // one layer of cells of radial width h ... (b-a) each: the
@@ -618,10 +638,8 @@ namespace tmfdem
                 for (unsigned int k = 0; k < n_around; ++k)
                   {
                     const double phi = 2. * numbers::PI * k / n_around;
-                    vertices.emplace_back(parameters.center[0] +
-                                            r * std::cos(phi),
-                                          parameters.center[1] +
-                                            r * std::sin(phi));
+                    vertices.emplace_back(center[0] + r * std::cos(phi),
+                                          center[1] + r * std::sin(phi));
                   }
               }
             for (unsigned int ring = 0; ring < n_rings; ++ring)
@@ -653,13 +671,11 @@ namespace tmfdem
             // every cell follows the circles: new vertices land on them
             triangulation.set_all_manifold_ids(circle_manifold_id);
             triangulation.set_manifold(circle_manifold_id,
-                                       SphericalManifold<2>(parameters.center));
+                                       SphericalManifold<2>(center));
           }
         else
           {
-            GridGenerator::hyper_ball_balanced(triangulation,
-                                               parameters.center,
-                                               b);
+            GridGenerator::hyper_ball_balanced(triangulation, center, b);
             // refine, then flatten, so the coarse mesh has size ~h
             unsigned int n = 0;
             while (b / std::pow(2., n + 1) > h * 1.01 && n < 10)
@@ -670,11 +686,11 @@ namespace tmfdem
             triangulation.clear();
             triangulation.copy_triangulation(flat);
             for (const auto &cell : triangulation.active_cell_iterators())
-              for (const auto face : cell->face_iterators())
+              for (const auto &face : cell->face_iterators())
                 if (face->at_boundary())
                   face->set_manifold_id(circle_manifold_id);
             triangulation.set_manifold(circle_manifold_id,
-                                       SphericalManifold<2>(parameters.center));
+                                       SphericalManifold<2>(center));
           }
       }
     // (GridGenerator's colorize also numbers the cells' material ids)
@@ -702,38 +718,70 @@ namespace tmfdem
       }
   }
 
-  std::unique_ptr<parallel::TriangulationBase<2>>
+  template <int dim>
+  std::unique_ptr<parallel::TriangulationBase<dim>>
   create_continuum_triangulation(const MeshParameters &parameters,
                                  const std::string    &work_folder,
                                  MPI_Comm              communicator,
                                  MeshReport           &report)
   {
-    Triangulation<2> coarse;
+    if (parameters.dimension != dim)
+      throw std::logic_error(
+        "create_continuum_triangulation<" + std::to_string(dim) +
+        "> for Mesh/Dimension = " + std::to_string(parameters.dimension));
+    Triangulation<dim> coarse;
     create_coarse_mesh(parameters, work_folder, coarse, communicator);
     const std::string source =
       parameters.source == MeshParameters::Source::file ?
         "mesh file '" + parameters.file_name + "'" :
         "generated mesh";
-    report = check_mesh(coarse,
-                        source,
-                        domain_area(parameters),
-                        parameters.source == MeshParameters::Source::annulus ||
-                          parameters.source == MeshParameters::Source::disc);
-    if (report.n_triangles > 0 && report.n_quadrilaterals > 0)
-      throw InputError(source + " mixes triangles and quadrilaterals; "
-                                "allowed are meshes of one cell shape.");
-    std::unique_ptr<parallel::TriangulationBase<2>> triangulation;
-    if (report.n_quadrilaterals > 0)
-      triangulation = std::make_unique<parallel::distributed::Triangulation<2>>(
-        communicator,
-        Triangulation<2>::MeshSmoothing(
-          Triangulation<2>::smoothing_on_refinement |
-          Triangulation<2>::smoothing_on_coarsening));
+    const bool curved =
+      parameters.source == MeshParameters::Source::annulus ||
+      parameters.source == MeshParameters::Source::disc ||
+      parameters.source == MeshParameters::Source::ball ||
+      parameters.source == MeshParameters::Source::spherical_shell;
+    report =
+      check_mesh(coarse,
+                 source,
+                 dim == 2 ? domain_area(parameters) : domain_volume(parameters),
+                 curved);
+    const unsigned int n_simplices =
+      dim == 2 ? report.n_triangles : report.n_tetrahedra;
+    const unsigned int n_hypercubes =
+      dim == 2 ? report.n_quadrilaterals : report.n_hexahedra;
+    if (n_simplices > 0 && n_hypercubes > 0)
+      throw InputError(source + " mixes " +
+                       (dim == 2 ? "triangles and quadrilaterals" :
+                                   "tetrahedra and hexahedra") +
+                       "; allowed are meshes of one cell shape.");
+    std::unique_ptr<parallel::TriangulationBase<dim>> triangulation;
+    if (n_hypercubes > 0)
+      triangulation =
+        std::make_unique<parallel::distributed::Triangulation<dim>>(
+          communicator,
+          typename Triangulation<dim>::MeshSmoothing(
+            Triangulation<dim>::smoothing_on_refinement |
+            Triangulation<dim>::smoothing_on_coarsening));
     else
       triangulation =
-        std::make_unique<parallel::shared::Triangulation<2>>(communicator);
+        std::make_unique<parallel::shared::Triangulation<dim>>(communicator);
     triangulation->copy_triangulation(coarse);
     triangulation->refine_global(parameters.global_refinements);
     return triangulation;
   }
+
+  template void
+  read_gmsh_file<2>(const std::string &, Triangulation<2> &);
+  template void
+  read_gmsh_file<3>(const std::string &, Triangulation<3> &);
+  template std::unique_ptr<parallel::TriangulationBase<2>>
+  create_continuum_triangulation<2>(const MeshParameters &,
+                                    const std::string &,
+                                    MPI_Comm,
+                                    MeshReport &);
+  template std::unique_ptr<parallel::TriangulationBase<3>>
+  create_continuum_triangulation<3>(const MeshParameters &,
+                                    const std::string &,
+                                    MPI_Comm,
+                                    MeshReport &);
 } // namespace tmfdem

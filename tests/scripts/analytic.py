@@ -168,3 +168,61 @@ def quenched_disc_hoop_stress_time(f_t, E, alpha, r, t_max=10.0, **kw):
         return times[0]
     g = lambda t: quenched_disc_hoop_stress(r, t, E, alpha, **kw) - f_t
     return brentq(g, times[i - 1], times[i])
+
+
+def read_csv_xyz(path):
+    """lines.csv / probes.csv of a 3D run (columns time,name,x,y,z,...) ->
+    dict name -> dict time -> (points (n x 3), {col: values})."""
+    import csv
+    data = {}
+    with open(path) as f:
+        reader = csv.reader(f)
+        header = next(reader)
+        if header[:5] != ["time", "name", "x", "y", "z"]:
+            raise ValueError(f"{path}: not a 3D monitor file (header {header[:5]})")
+        fields = header[5:]
+        for row in reader:
+            entry = data.setdefault(row[1], {}).setdefault(float(row[0]), ([], {c: [] for c in fields}))
+            entry[0].append([float(v) for v in row[2:5]])
+            for c, v in zip(fields, row[5:]):
+                entry[1][c].append(float(v))
+    return {name: {t: (np.array(p), {c: np.array(v) for c, v in cols.items()})
+                   for t, (p, cols) in by_time.items()}
+            for name, by_time in data.items()}
+
+
+def sphere_quench(r, t, radius, diffusivity, t_initial, t_surface, n_terms=2000):
+    """Sphere 0 <= r < radius at t_initial, its surface held at t_surface
+    from t = 0 (Carslaw & Jaeger 9.3): T = Ts + (T0 - Ts) (2 R / (pi r))
+    sum (-1)^(n+1) / n sin(n pi r / R) exp(-kappa n^2 pi^2 t / R^2); at
+    r = 0 the limit 2 sum (-1)^(n+1) exp(...)."""
+    r = np.atleast_1d(np.asarray(r, dtype=float))
+    n = np.arange(1, n_terms + 1)[:, None]
+    decay = np.exp(-diffusivity * n**2 * np.pi**2 * t / radius**2)
+    sign = np.where(n % 2 == 1, 1.0, -1.0)
+    rho = np.maximum(r, 1e-300)[None, :]
+    series = np.where(r[None, :] > 0,
+                      sign / n * np.sin(n * np.pi * rho / radius) * 2 * radius / (np.pi * rho),
+                      2 * sign) * decay
+    return t_surface + (t_initial - t_surface) * np.sum(series, axis=0)
+
+
+def sphere_quench_heat_lost(t, radius, diffusivity, rho_c, t_initial, t_surface, n_terms=2000):
+    """Heat that left the sphere of sphere_quench by time t [J]:
+    rho c V (T0 - Ts) (1 - 6 / pi^2 sum exp(-kappa n^2 pi^2 t / R^2) / n^2)."""
+    n = np.arange(1, n_terms + 1)
+    volume = 4.0 / 3.0 * np.pi * radius**3
+    remaining = 6 / np.pi**2 * np.sum(np.exp(-diffusivity * n**2 * np.pi**2 * t / radius**2) / n**2)
+    return rho_c * volume * (t_initial - t_surface) * (1 - remaining)
+
+
+def spherical_shell_temperature(r, a, b, t_a, t_b):
+    """Steady conduction between spheres r = a (T_a) and r = b (T_b):
+    T = T_b + (T_a - T_b) (1/r - 1/b) / (1/a - 1/b)."""
+    r = np.asarray(r, dtype=float)
+    return t_b + (t_a - t_b) * (1 / r - 1 / b) / (1 / a - 1 / b)
+
+
+def spherical_shell_heat_flow(k, a, b, t_a, t_b):
+    """Steady heat flow from r = a to r = b: 4 pi k (T_a - T_b) / (1/a - 1/b) [W]."""
+    return 4 * np.pi * k * (t_a - t_b) / (1 / a - 1 / b)

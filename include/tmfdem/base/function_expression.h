@@ -17,7 +17,8 @@ namespace tmfdem
    * Parses @p expression as a scalar function of x, y, t. On a syntax error
    * throws InputError naming @p entry_name (the prm path of the entry).
    */
-  std::unique_ptr<dealii::FunctionParser<2>>
+  template <int dim = 2>
+  std::unique_ptr<dealii::FunctionParser<dim>>
   make_expression_function(const std::string &expression,
                            const std::string &entry_name);
 } // namespace tmfdem

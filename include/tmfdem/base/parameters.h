@@ -52,26 +52,34 @@ namespace tmfdem
       annulus,
       disc,
       file,
-      block_heap
+      block_heap,
+      box,
+      ball,
+      spherical_shell
     };
-    /** Cell shape of generated meshes (files bring their own). */
+    /** Cell shape of generated meshes (files bring their own): in 3D
+     *  triangles stand for tetrahedra, quadrilaterals for hexahedra. */
     enum class ElementType
     {
       triangles,
       quadrilaterals
     };
 
-    Source      source       = Source::rectangle;
-    ElementType element_type = ElementType::triangles;
+    /** Space dimension of the domain: 2 (plane, per unit thickness) or 3
+     *  [-]. */
+    unsigned int dimension    = 2;
+    Source       source       = Source::rectangle;
+    ElementType  element_type = ElementType::triangles;
     /** Target edge length of generated cells [m]. */
     double element_size = 0.05;
-    /** Rectangle corners [m]. */
-    Point<2> lower_left, upper_right;
-    /** Centre of annulus and disc [m]. */
-    Point<2> center;
-    /** Annulus inner radius [m]. */
+    /** Rectangle and box corners [m] (z = 0 in 2D). */
+    Point<3> lower_left, upper_right;
+    /** Centre of annulus, disc, ball and spherical shell [m] (z = 0 in
+     *  2D). */
+    Point<3> center;
+    /** Annulus and spherical shell inner radius [m]. */
     double inner_radius = 0.03;
-    /** Annulus and disc outer radius [m]. */
+    /** Annulus, disc, ball and spherical shell outer radius [m]. */
     double outer_radius = 0.15;
     /** gmsh `.msh` file, resolved against the prm file's folder. */
     std::string file_name;
@@ -112,6 +120,17 @@ namespace tmfdem
     declare_parameters(ParameterHandler &prm);
     void
     parse_parameters(ParameterHandler &prm, const std::string &input_folder);
+
+    /** The first @p dim coordinates of @p p [m]. */
+    template <int dim>
+    static Point<dim>
+    in_dimension(const Point<3> &p)
+    {
+      Point<dim> q;
+      for (unsigned int d = 0; d < dim; ++d)
+        q[d] = p[d];
+      return q;
+    }
   };
 
   /** Properties of one material, subsection `Materials/Material <id>`. */
@@ -148,14 +167,18 @@ namespace tmfdem
     /** Angle theta of d from the x axis, counterclockwise [deg]. */
     double conductivity_direction = 0.;
 
-    /** Conductivity tensor K [W/(m K)]: k I when isotropic. */
-    Tensor<2, 2>
+    /** Conductivity tensor K [W/(m K)]: k I when isotropic. In 3D the
+     *  direction d lies in the x-y plane and K = k1 d d^T + k2 (I - d d^T):
+     *  k2 across d in every direction, z included. */
+    template <int dim = 2>
+    Tensor<2, dim>
     conductivity_tensor() const
     {
-      Tensor<2, 2> K;
+      Tensor<2, dim> K;
       if (!anisotropic_conductivity)
         {
-          K[0][0] = K[1][1] = thermal_conductivity;
+          for (unsigned int d = 0; d < dim; ++d)
+            K[d][d] = thermal_conductivity;
           return K;
         }
       const double theta = conductivity_direction * numbers::PI / 180.;
@@ -163,6 +186,8 @@ namespace tmfdem
       K[0][0] = conductivity_along * c * c + conductivity_across * s * s;
       K[1][1] = conductivity_along * s * s + conductivity_across * c * c;
       K[0][1] = K[1][0] = (conductivity_along - conductivity_across) * c * s;
+      if constexpr (dim == 3)
+        K[2][2] = conductivity_across;
       return K;
     }
 
@@ -177,12 +202,13 @@ namespace tmfdem
 
     /** Normal conductivity n.K.n for a unit vector @p n [W/(m K)] (k when
      *  isotropic, exactly). */
+    template <int dim>
     double
-    normal_conductivity(const Tensor<1, 2> &n) const
+    normal_conductivity(const Tensor<1, dim> &n) const
     {
       if (!anisotropic_conductivity)
         return thermal_conductivity;
-      return n * (conductivity_tensor() * n);
+      return n * (conductivity_tensor<dim>() * n);
     }
 
     /** Thermal diffusivity k / (rho c) [m^2/s]; with anisotropy the
@@ -454,16 +480,20 @@ namespace tmfdem
   /** Subsection `Monitors`: named probe points and sampled lines. */
   struct MonitorParameters
   {
+    /** A named point x, y (, z) [m]; z = 0 in 2D. */
     struct Probe
     {
       std::string name;
-      Point<2>    location;
+      Point<3>    location;
     };
+    /** A named line of n equally spaced points from start to end [m]. */
     struct Line
     {
       std::string  name;
-      Point<2>     start, end;
+      Point<3>     start, end;
       unsigned int n_points = 2;
+      /** Given with z coordinates ("x0, y0, z0, x1, y1, z1, n"). */
+      bool with_z = false;
     };
     std::vector<Probe> probes;
     std::vector<Line>  lines;

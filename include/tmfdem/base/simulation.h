@@ -73,12 +73,15 @@ namespace tmfdem
    * Adds a model to the registry (done once per model, at load time).
    * @p sections names the prm subsections it reads; an unknown name is a
    * programming error (std::logic_error when the model is created).
+   * @p dimensions lists the values of Mesh/Dimension the model runs; any
+   * other is refused when the model is created.
    */
   bool
-  register_simulation(const std::string       &name,
-                      const std::string       &description,
-                      const SectionsRead      &sections,
-                      const SimulationFactory &factory);
+  register_simulation(const std::string               &name,
+                      const std::string               &description,
+                      const SectionsRead              &sections,
+                      const SimulationFactory         &factory,
+                      const std::vector<unsigned int> &dimensions = {2});
 
   /** Names of the registered models, for Patterns::Selection. */
   std::vector<std::string>

@@ -17,19 +17,20 @@
 namespace tmfdem
 {
   /**
-   * Sets refine and coarsen flags on @p triangulation (p4est, quadrilaterals)
-   * from the Kelly estimate of the ghosted @p solution, integrated with
-   * QGauss(@p degree + 1) on faces; cells at @p coarse_level +
-   * Maximum level are not refined, cells at @p coarse_level not coarsened.
+   * Sets refine and coarsen flags on @p triangulation (p4est, quadrilaterals or
+   * hexahedra) from the Kelly estimate of the ghosted @p solution, integrated
+   * with QGauss(@p degree + 1) on faces; cells at @p coarse_level + Maximum
+   * level are not refined, cells at @p coarse_level not coarsened.
    */
+  template <int dim>
   void
-  mark_cells_by_kelly(parallel::distributed::Triangulation<2> &triangulation,
-                      const Mapping<2>                        &mapping,
-                      const DoFHandler<2>                     &dof_handler,
-                      const TrilinosWrappers::MPI::Vector     &solution,
-                      const unsigned int                       degree,
-                      const AdaptivityParameters              &adaptivity,
-                      const unsigned int                       coarse_level);
+  mark_cells_by_kelly(parallel::distributed::Triangulation<dim> &triangulation,
+                      const Mapping<dim>                        &mapping,
+                      const DoFHandler<dim>                     &dof_handler,
+                      const TrilinosWrappers::MPI::Vector       &solution,
+                      const unsigned int                         degree,
+                      const AdaptivityParameters                &adaptivity,
+                      const unsigned int                         coarse_level);
 } // namespace tmfdem
 
 #endif

@@ -32,18 +32,21 @@
 
 namespace tmfdem
 {
+  template <int dim>
   class Monitors;
   class SolutionSeries;
   struct MeshReport;
 
   /**
-   * The base of the continuum models (HeatSolver, ThermoelasticSolver):
-   * owns or borrows the triangulation and owns the finite element, the
-   * mapping and the DoFHandler on it. Lagrange elements of `degree` on
-   * either quadrilaterals (FE_Q, MappingQ of the same degree, p4est) or
-   * triangles (FE_SimplexP, the affine MappingFE, a shared triangulation);
-   * a vector-valued model takes `n_components` copies in an FESystem.
+   * The base of the continuum models (HeatSolver, ThermoelasticSolver) in
+   * @p dim = 2 or 3 space dimensions: owns or borrows the triangulation
+   * and owns the finite element, the mapping and the DoFHandler on it.
+   * Lagrange elements of `degree` on either quadrilaterals or hexahedra
+   * (FE_Q, MappingQ of the same degree, p4est) or triangles or tetrahedra
+   * (FE_SimplexP, the affine MappingFE, a shared triangulation); a
+   * vector-valued model takes `n_components` copies in an FESystem.
    */
+  template <int dim>
   class ContinuumModel : public Simulation
   {
   public:
@@ -51,14 +54,14 @@ namespace tmfdem
     ~ContinuumModel() override;
 
     /** The DoFHandler of this model (after check_input or set-up). */
-    const DoFHandler<2> &
+    const DoFHandler<dim> &
     get_dof_handler() const;
     /** The mapping used for geometry. */
-    const Mapping<2> &
+    const Mapping<dim> &
     get_mapping() const;
     /** The triangulation (after check_input or set-up); other models may
      *  attach DoFHandlers to it. */
-    parallel::TriangulationBase<2> &
+    parallel::TriangulationBase<dim> &
     get_triangulation();
     /** InputError for --resume: continuum runs write no checkpoints. */
     void
@@ -81,7 +84,7 @@ namespace tmfdem
     /** Computes on @p external, another model's triangulation, which its
      *  owner keeps alive. */
     void
-    use_mesh(parallel::TriangulationBase<2> &external);
+    use_mesh(parallel::TriangulationBase<dim> &external);
     /** Finite element of @p degree with @p n_components components (one:
      *  the scalar element itself), its mapping and an empty DoFHandler. */
     void
@@ -111,8 +114,12 @@ namespace tmfdem
     distributed_sparsity(const AffineConstraints<double> *constraints) const;
     /** Gauss quadrature of degree + 1 points per direction for the cells
      *  (QGauss on quadrilaterals, QGaussSimplex on triangles). */
-    Quadrature<2>
+    Quadrature<dim>
     cell_quadrature() const;
+    /** Gauss rule of degree + 1 points per direction on the faces: lines
+     *  in 2D, quadrilaterals or triangles in 3D. */
+    Quadrature<dim - 1>
+    face_quadrature_rule() const;
     bool
     uses_quadrilaterals() const
     {
@@ -141,7 +148,7 @@ namespace tmfdem
      * vtu output at @p time [s].
      */
     void
-    write_solution(DataOut<2> &data_out, const double time);
+    write_solution(DataOut<dim> &data_out, const double time);
     /**
      * Kelly-marks the cells from the ghosted @p solution, refines and
      * coarsens, and calls @p after_refinement (new DoFs, matrices). With
@@ -156,8 +163,8 @@ namespace tmfdem
     MPI_Comm         communicator;
 
     /** This model's own mesh (null when it computes on another's). */
-    std::unique_ptr<parallel::TriangulationBase<2>> own_triangulation;
-    parallel::TriangulationBase<2>                 *triangulation = nullptr;
+    std::unique_ptr<parallel::TriangulationBase<dim>> own_triangulation;
+    parallel::TriangulationBase<dim>                 *triangulation = nullptr;
     /** The check of the own mesh (null for another model's mesh). */
     std::unique_ptr<MeshReport> mesh_report;
     /** Boundary and material ids of the coarse mesh (known to every rank). */
@@ -167,12 +174,12 @@ namespace tmfdem
     unsigned int coarse_level   = 0;
     bool         quadrilaterals = false;
 
-    std::unique_ptr<FiniteElement<2>> fe;
-    std::unique_ptr<Mapping<2>>       mapping;
-    std::unique_ptr<DoFHandler<2>>    dof_handler;
-    IndexSet                          locally_owned_dofs, locally_relevant_dofs;
+    std::unique_ptr<FiniteElement<dim>> fe;
+    std::unique_ptr<Mapping<dim>>       mapping;
+    std::unique_ptr<DoFHandler<dim>>    dof_handler;
+    IndexSet locally_owned_dofs, locally_relevant_dofs;
 
-    std::unique_ptr<Monitors>       monitors;
+    std::unique_ptr<Monitors<dim>>  monitors;
     std::unique_ptr<SolutionSeries> solution_series;
 
   private:

@@ -36,8 +36,9 @@
 namespace tmfdem
 {
   /**
-   * Heat conduction in the continuum (units: T in C, k in W/(m K), rho c in
-   * J/(m^3 K), fluxes in W/m^2, heats per unit thickness in J/m).
+   * Heat conduction in the continuum in @p dim = 2 or 3 space dimensions
+   * (units: T in C, k in W/(m K), rho c in J/(m^3 K), fluxes in W/m^2;
+   * heats in J per unit thickness (J/m) in 2D, in J in 3D).
    *
    * Time stepping with theta in [1/2, 1]:
    * (M + theta dt (K + R)) T^{n+1} = (M - (1-theta) dt (K + R)) T^n
@@ -56,8 +57,45 @@ namespace tmfdem
    * that the continuum thermo-mechanical loop uses
    * (source/coupling/continuum_thermomechanics.cc).
    */
-  class HeatSolver : public ContinuumModel, public ValidationReporter
+  template <int dim>
+  class HeatSolver : public ContinuumModel<dim>, public ValidationReporter
   {
+    using Base = ContinuumModel<dim>;
+
+  public:
+    using Base::refuse_resume;
+    using Base::stop_if_requested;
+
+  protected:
+    using Base::add_run_entries;
+    using Base::cell_quadrature;
+    using Base::check_adaptivity;
+    using Base::check_boundary_ids;
+    using Base::check_material_ids;
+    using Base::coarse_level;
+    using Base::communicator;
+    using Base::create_fe;
+    using Base::create_mesh;
+    using Base::distribute_dofs;
+    using Base::distributed_sparsity;
+    using Base::dof_handler;
+    using Base::face_quadrature_rule;
+    using Base::fe;
+    using Base::locally_owned_dofs;
+    using Base::locally_relevant_dofs;
+    using Base::mapping;
+    using Base::mesh_boundary_ids;
+    using Base::mesh_report;
+    using Base::monitors;
+    using Base::open_solution_series;
+    using Base::output_schedule;
+    using Base::parameters;
+    using Base::refine_mesh_by_kelly;
+    using Base::summary_head;
+    using Base::triangulation;
+    using Base::uses_quadrilaterals;
+    using Base::write_solution;
+
   public:
     HeatSolver(const Parameters &parameters, MPI_Comm communicator);
     ~HeatSolver() override;
@@ -183,7 +221,7 @@ namespace tmfdem
     /** Per boundary condition: functions for its value entries. */
     struct BoundaryFunctions
     {
-      std::unique_ptr<FunctionParser<2>> temperature, heat_flux,
+      std::unique_ptr<FunctionParser<dim>> temperature, heat_flux,
         heat_transfer_coefficient, ambient_temperature;
       bool time_dependent_coefficient = false;
       bool time_dependent_temperature = false;
@@ -226,13 +264,14 @@ namespace tmfdem
      * (weight \f$\int h \phi_i \phi_j\f$, in the units of weight W/(m K)).
      */
     void
-    robin_face_matrix(const DoFHandler<2>::active_cell_iterator &cell,
-                      const unsigned int                         face,
-                      const BoundaryFunctions                   &functions,
-                      const double                               time,
-                      const double                               weight,
-                      FEFaceValues<2>                           &fe_face_values,
-                      FullMatrix<double>                        &matrix) const;
+    robin_face_matrix(
+      const typename DoFHandler<dim>::active_cell_iterator &cell,
+      const unsigned int                                    face,
+      const BoundaryFunctions                              &functions,
+      const double                                          time,
+      const double                                          weight,
+      FEFaceValues<dim>                                    &fe_face_values,
+      FullMatrix<double>                                   &matrix) const;
     /**
      * Assembles the loads (sources, Neumann fluxes, Robin h T_inf) at
      * @p time into @p level: those that depend on t if @p time_dependent,
@@ -291,8 +330,8 @@ namespace tmfdem
     /** The functions of the Robin condition on face @p face of @p cell, or
      *  nullptr where that face is not on a Robin boundary. */
     const BoundaryFunctions *
-    robin_functions(const DoFHandler<2>::active_cell_iterator &cell,
-                    const unsigned int                         face) const;
+    robin_functions(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                    const unsigned int face) const;
     /** Kelly estimate, mark, refine and coarsen, transfer the solution. */
     void
     adapt_mesh(const bool transfer_solution);
@@ -370,10 +409,10 @@ namespace tmfdem
     /** Dirichlet DoF -> boundary id. */
     std::map<types::global_dof_index, types::boundary_id> dirichlet_dof_ids;
 
-    std::vector<std::unique_ptr<FunctionParser<2>>> heat_sources;
-    std::vector<BoundaryFunctions>                  boundary_functions;
-    std::unique_ptr<FunctionParser<2>>              initial_temperature;
-    bool                                            any_heat_source = false;
+    std::vector<std::unique_ptr<FunctionParser<dim>>> heat_sources;
+    std::vector<BoundaryFunctions>                    boundary_functions;
+    std::unique_ptr<FunctionParser<dim>>              initial_temperature;
+    bool                                              any_heat_source = false;
     /** Per material id: its heat source depends on t. */
     std::vector<bool> time_dependent_source;
 

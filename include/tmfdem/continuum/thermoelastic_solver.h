@@ -48,7 +48,7 @@ namespace tmfdem
    * registered under the `Mechanics/Temperature source` name (the discrete
    * layer's heat, coupling::DiscreteHeatField) or set_temperature().
    */
-  class ThermoelasticSolver : public ContinuumModel
+  class ThermoelasticSolver : public ContinuumModel<2>
   {
   public:
     /** Temperature [C] at points of a cell (temperature_field_source.h). */

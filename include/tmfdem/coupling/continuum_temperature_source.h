@@ -29,6 +29,7 @@
 
 namespace tmfdem
 {
+  template <int dim>
   class HeatSolver;
 
   namespace coupling
@@ -106,7 +107,7 @@ namespace tmfdem
       load(CheckpointReader &in) override;
 
       /** The continuum solver (after initialise()). */
-      const HeatSolver &
+      const HeatSolver<2> &
       solver() const
       {
         return *heat_solver;
@@ -130,11 +131,11 @@ namespace tmfdem
       void
       copy_balance();
 
-      const Parameters            heat_parameters;
-      discrete::DiscreteModel    &model;
-      MPI_Comm                    communicator;
-      std::unique_ptr<HeatSolver> heat_solver;
-      Vector<double>              nodal_temperature;
+      const Parameters               heat_parameters;
+      discrete::DiscreteModel       &model;
+      MPI_Comm                       communicator;
+      std::unique_ptr<HeatSolver<2>> heat_solver;
+      Vector<double>                 nodal_temperature;
       /** The continuum field, every DoF, on every rank [C] (transfer()). */
       Vector<double>                       all_temperatures;
       discrete::HeatBalance                heat_balance;

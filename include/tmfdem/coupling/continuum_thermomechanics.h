@@ -17,6 +17,7 @@
 
 namespace tmfdem
 {
+  template <int dim>
   class HeatSolver;
   class ThermoelasticSolver;
 
@@ -56,7 +57,7 @@ namespace tmfdem
 
       const Parameters                     parameters;
       MPI_Comm                             communicator;
-      std::unique_ptr<HeatSolver>          heat;
+      std::unique_ptr<HeatSolver<2>>       heat;
       std::unique_ptr<ThermoelasticSolver> mechanics; ///< on heat's mesh
       bool                                 mechanics_set_up = false;
     };

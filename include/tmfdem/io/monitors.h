@@ -22,6 +22,7 @@ namespace tmfdem
    * Samples a finite element field at the monitor points. Works under MPI:
    * the rank owning the cell around a point evaluates it, rank 0 writes.
    */
+  template <int dim>
   class Monitors
   {
   public:
@@ -39,23 +40,23 @@ namespace tmfdem
      * outside the mesh of @p dof_handler.
      */
     void
-    check_points(const Mapping<2>    &mapping,
-                 const DoFHandler<2> &dof_handler) const;
+    check_points(const Mapping<dim>    &mapping,
+                 const DoFHandler<dim> &dof_handler) const;
 
     /** Appends the rows of output time @p time [s]; @p solution is ghosted. */
     void
     write(const double                         time,
-          const Mapping<2>                    &mapping,
-          const DoFHandler<2>                 &dof_handler,
+          const Mapping<dim>                  &mapping,
+          const DoFHandler<dim>               &dof_handler,
           const TrilinosWrappers::MPI::Vector &solution);
 
     /**
      * Computes the field values (one per column of field_names) at a point
      * given by its cell and its coordinates in the reference cell.
      */
-    using PointEvaluator = std::function<
-      std::vector<double>(const DoFHandler<2>::active_cell_iterator &cell,
-                          const Point<2> &unit_point)>;
+    using PointEvaluator = std::function<std::vector<double>(
+      const typename DoFHandler<dim>::active_cell_iterator &cell,
+      const Point<dim>                                     &unit_point)>;
 
     /**
      * Appends the rows of output time @p time [s], each value computed by
@@ -63,24 +64,24 @@ namespace tmfdem
      * at the point itself, not averaged over its cell).
      */
     void
-    write(const double          time,
-          const Mapping<2>     &mapping,
-          const DoFHandler<2>  &dof_handler,
-          const PointEvaluator &evaluator);
+    write(const double           time,
+          const Mapping<dim>    &mapping,
+          const DoFHandler<dim> &dof_handler,
+          const PointEvaluator  &evaluator);
 
   private:
     struct SamplePoint
     {
       std::string name;
-      Point<2>    location;
+      Point<dim>  location;
       bool        from_line;
     };
 
     /** Values at every sample point, summed over ranks; NaN if not found. */
     std::vector<std::vector<double>>
-    evaluate(const Mapping<2>     &mapping,
-             const DoFHandler<2>  &dof_handler,
-             const PointEvaluator *evaluator) const;
+    evaluate(const Mapping<dim>    &mapping,
+             const DoFHandler<dim> &dof_handler,
+             const PointEvaluator  *evaluator) const;
 
     std::vector<SamplePoint> points;
     unsigned int             n_components;

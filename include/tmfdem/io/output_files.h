@@ -59,8 +59,9 @@ namespace tmfdem
                    const bool         binary = true);
 
     /** Writes the patches built in @p data_out as the output at @p time [s]. */
+    template <int dim>
     void
-    write(DataOut<2> &data_out, const double time);
+    write(DataOut<dim> &data_out, const double time);
 
   private:
     std::string                                 folder;

@@ -23,8 +23,11 @@ namespace tmfdem
     unsigned int                 n_vertices         = 0;
     unsigned int                 n_triangles        = 0;
     unsigned int                 n_quadrilaterals   = 0;
+    unsigned int                 n_tetrahedra       = 0; ///< 3D
+    unsigned int                 n_hexahedra        = 0; ///< 3D
+    unsigned int                 dimension          = 2; ///< [-]
     unsigned int                 n_connected_pieces = 0;
-    double                       area               = 0.;      ///< [m^2]
+    double                       area = 0.; ///< [m^2]; in 3D the volume [m^3]
     double                       min_edge = 0., max_edge = 0.; ///< [m]
     double                       mean_edge = 0.;               ///< [m]
     std::set<types::boundary_id> boundary_ids;
@@ -49,6 +52,19 @@ namespace tmfdem
   check_mesh(const Triangulation<2> &triangulation,
              const std::string      &source,
              const double            expected_area,
+             const bool              curved_boundary);
+
+  /**
+   * The 3D checks of check_mesh() for tetrahedra and hexahedra: each cell
+   * with a positive volume (the Jacobian at every vertex of a hexahedron),
+   * no two cells on the same vertices, the volume against
+   * @p expected_volume [m^3] (0: not checked; 2 % plus the curvature of
+   * two longest edges where @p curved_boundary, 1e-3 otherwise).
+   */
+  MeshReport
+  check_mesh(const Triangulation<3> &triangulation,
+             const std::string      &source,
+             const double            expected_volume,
              const bool              curved_boundary);
 } // namespace tmfdem
 

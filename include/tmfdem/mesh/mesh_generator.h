@@ -2,7 +2,9 @@
  * @file
  * Meshes: generated rectangles, annuli and discs (unstructured triangles
  * through gmsh, or structured quadrilaterals through deal.II's GridGenerator),
- * and gmsh .msh import with physical groups mapped to ids.
+ * generated boxes, balls and spherical shells in 3D (hexahedra, or
+ * tetrahedra split from them; source/mesh/solid_generator.cc), and gmsh .msh
+ * import with physical groups mapped to ids.
  */
 #ifndef tmfdem_mesh_mesh_generator_h
 #define tmfdem_mesh_mesh_generator_h
@@ -33,26 +35,53 @@ namespace tmfdem
                      MPI_Comm              communicator);
 
   /**
-   * Reads a gmsh .msh file (ASCII format 2 or 4): physical curves become
-   * boundary ids, physical surfaces material ids. Throws InputError naming
-   * @p file_name if it is missing, unreadable or malformed.
+   * The 3D coarse mesh of @p parameters (Mesh/Dimension = 3): a box, ball
+   * or spherical shell of hexahedra of edge about Mesh/Element size (the
+   * coarse cells of deal.II's GridGenerator refined and flattened), split
+   * into tetrahedra for Element type = triangles
+   * (GridGenerator::convert_hypercube_to_simplex_mesh, 24 per hexahedron),
+   * or a gmsh .msh file. Boundary ids as Mesh/Source documents; hexahedra
+   * of the ball and shell follow the sphere on refinement (a spherical
+   * manifold), tetrahedra keep their flat faces.
    */
   void
-  read_gmsh_file(const std::string &file_name, Triangulation<2> &triangulation);
+  create_coarse_mesh(const MeshParameters &parameters,
+                     const std::string    &work_folder,
+                     Triangulation<3>     &triangulation,
+                     MPI_Comm              communicator);
+
+  /**
+   * Reads a gmsh .msh file (ASCII format 2 or 4): in 2D physical curves
+   * become boundary ids, physical surfaces material ids; in 3D physical
+   * surfaces become boundary ids, physical volumes material ids. Throws
+   * InputError naming
+   * @p file_name if it is missing, unreadable or malformed.
+   */
+  template <int dim>
+  void
+  read_gmsh_file(const std::string  &file_name,
+                 Triangulation<dim> &triangulation);
 
   /** Exact area of a generated domain, or Mesh/Expected area for imported
    *  meshes (0: unknown) [m^2]. */
   double
   domain_area(const MeshParameters &parameters);
 
+  /** Exact volume of a generated 3D domain, or Mesh/Expected area (the
+   *  volume in 3D) for imported meshes (0: unknown) [m^3]. */
+  double
+  domain_volume(const MeshParameters &parameters);
+
   /**
    * The continuum layer's triangulation: the coarse mesh of @p parameters
    * (generated or read, work files in @p work_folder), checked with
    * check_mesh (the result in @p report), distributed with p4est for
-   * quadrilaterals or shared for triangles, and refined Mesh/Global
-   * refinements times. Throws InputError for meshes that mix cell shapes.
+   * quadrilaterals and hexahedra or shared for triangles and tetrahedra,
+   * and refined Mesh/Global refinements times. Throws InputError for meshes
+   * that mix cell shapes.
    */
-  std::unique_ptr<parallel::TriangulationBase<2>>
+  template <int dim>
+  std::unique_ptr<parallel::TriangulationBase<dim>>
   create_continuum_triangulation(const MeshParameters &parameters,
                                  const std::string    &work_folder,
                                  MPI_Comm              communicator,
