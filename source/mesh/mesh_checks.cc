@@ -19,8 +19,9 @@ namespace tmfdem
       return a[0] * b[1] - a[1] * b[0];
     }
 
+    template <int dim>
     std::string
-    describe_cell(const Triangulation<2>::cell_iterator &cell)
+    describe_cell(const typename Triangulation<dim>::cell_iterator &cell)
     {
       std::ostringstream text;
       text << "cell " << cell->index() << " (vertices";
@@ -66,16 +67,26 @@ namespace tmfdem
       return n_pieces;
     }
 
+    /** Refuses @p cell when a cell in @p cells_by_vertices has the same
+     *  vertices; records it otherwise. */
     template <int dim>
-    std::string
-    describe_solid_cell(const typename Triangulation<dim>::cell_iterator &cell)
+    void
+    refuse_duplicate(
+      const typename Triangulation<dim>::active_cell_iterator &cell,
+      std::map<std::vector<unsigned int>, unsigned int> &cells_by_vertices,
+      const std::string                                 &source)
     {
-      std::ostringstream text;
-      text << "cell " << cell->index() << " (vertices";
+      std::vector<unsigned int> key;
       for (const unsigned int v : cell->vertex_indices())
-        text << " " << cell->vertex_index(v) << " (" << cell->vertex(v) << ")";
-      text << ")";
-      return text.str();
+        key.push_back(cell->vertex_index(v));
+      std::sort(key.begin(), key.end());
+      const auto inserted = cells_by_vertices.emplace(key, cell->index());
+      if (!inserted.second)
+        throw InputError(source + ": " + describe_cell<dim>(cell) +
+                         " duplicates cell " +
+                         std::to_string(inserted.first->second) +
+                         " (same vertices). Allowed are meshes whose cells "
+                         "overlap nowhere.");
     }
   } // namespace
 
@@ -165,26 +176,16 @@ namespace tmfdem
                                 cell->vertex(2) - cell->vertex(0)));
           }
         if (std::abs(min_jacobian) <= 1e-10 * longest * longest)
-          throw InputError(source + ": degenerate " + describe_cell(cell) +
+          throw InputError(source + ": degenerate " + describe_cell<2>(cell) +
                            ": its area is zero or nearly so. Allowed are "
                            "cells with a positive area.");
         if (min_jacobian < 0)
-          throw InputError(source + ": inverted " + describe_cell(cell) +
+          throw InputError(source + ": inverted " + describe_cell<2>(cell) +
                            ": negative Jacobian (vertices in clockwise "
                            "order, or a non-convex quadrilateral).");
         report.area += area;
 
-        std::vector<unsigned int> key;
-        for (const unsigned int v : cell->vertex_indices())
-          key.push_back(cell->vertex_index(v));
-        std::sort(key.begin(), key.end());
-        const auto inserted = cells_by_vertices.emplace(key, cell->index());
-        if (!inserted.second)
-          throw InputError(source + ": " + describe_cell(cell) +
-                           " duplicates cell " +
-                           std::to_string(inserted.first->second) +
-                           " (same vertices). Allowed are meshes whose cells "
-                           "overlap nowhere.");
+        refuse_duplicate<2>(cell, cells_by_vertices, source);
       }
     report.mean_edge = n_edges > 0 ? edge_sum / n_edges : 0.;
 
@@ -245,10 +246,7 @@ namespace tmfdem
     report.n_vertices     = triangulation.n_used_vertices();
     report.min_edge       = std::numeric_limits<double>::max();
     double       edge_sum = 0, boundary_area = 0;
-    unsigned int n_edges  = 0;
-    const auto   describe = [](const Triangulation<3>::cell_iterator &cell) {
-      return describe_solid_cell<3>(cell);
-    };
+    unsigned int n_edges = 0;
 
     std::map<std::vector<unsigned int>, unsigned int> cells_by_vertices;
     for (const auto &cell : triangulation.active_cell_iterators())
@@ -305,30 +303,20 @@ namespace tmfdem
             volume = cell->measure();
           }
         else
-          throw InputError(source + ": " + describe(cell) +
+          throw InputError(source + ": " + describe_cell<3>(cell) +
                            " is neither a tetrahedron nor a hexahedron; "
                            "allowed in 3D are these two.");
         if (std::abs(min_jacobian) <= 1e-10 * longest * longest * longest)
-          throw InputError(source + ": degenerate " + describe(cell) +
+          throw InputError(source + ": degenerate " + describe_cell<3>(cell) +
                            ": its volume is zero or nearly so. Allowed are "
                            "cells with a positive volume.");
         if (min_jacobian < 0)
-          throw InputError(source + ": inverted " + describe(cell) +
+          throw InputError(source + ": inverted " + describe_cell<3>(cell) +
                            ": negative Jacobian (vertices in the wrong "
                            "order, or a non-convex hexahedron).");
         report.area += volume;
 
-        std::vector<unsigned int> key;
-        for (const unsigned int v : cell->vertex_indices())
-          key.push_back(cell->vertex_index(v));
-        std::sort(key.begin(), key.end());
-        const auto inserted = cells_by_vertices.emplace(key, cell->index());
-        if (!inserted.second)
-          throw InputError(source + ": " + describe(cell) +
-                           " duplicates cell " +
-                           std::to_string(inserted.first->second) +
-                           " (same vertices). Allowed are meshes whose cells "
-                           "overlap nowhere.");
+        refuse_duplicate<3>(cell, cells_by_vertices, source);
       }
     report.mean_edge          = n_edges > 0 ? edge_sum / n_edges : 0.;
     report.n_connected_pieces = count_connected_pieces(triangulation);
