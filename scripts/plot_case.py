@@ -84,6 +84,48 @@ CASES = {
         abscissa=lambda p, _: np.linalg.norm(p, axis=1), xlabel="r [m]",
         steady=True,
         title="Thick-walled sphere, steady conduction (3D): radial line"),
+    "spherical_shell_stress": dict(
+        dim=3,
+        line="radial",
+        fields=[("sxx", lambda p, _, t: analytic.spherical_shell_stress(
+                    np.linalg.norm(p, axis=1), 20e9, 0.2, 1.8e-5, 0.03, 0.15, 100.0, 0.0)[0],
+                 "sigma_r (sxx on the x axis)", 1e-6),
+                ("syy", lambda p, _, t: analytic.spherical_shell_stress(
+                    np.linalg.norm(p, axis=1), 20e9, 0.2, 1.8e-5, 0.03, 0.15, 100.0, 0.0)[1],
+                 "sigma_t (syy)", 1e-6),
+                ("szz", lambda p, _, t: analytic.spherical_shell_stress(
+                    np.linalg.norm(p, axis=1), 20e9, 0.2, 1.8e-5, 0.03, 0.15, 100.0, 0.0)[1],
+                 "sigma_t (szz)", 1e-6)],
+        unit="MPa",
+        abscissa=lambda p, _: np.linalg.norm(p, axis=1), xlabel="r [m]",
+        steady=True,
+        title="Thick-walled sphere, steady thermal stress (3D, tension +)"),
+    "thick_cylinder-3d": dict(
+        dim=3,
+        line="radial",
+        fields=[("sxx", lambda p, _, t: analytic.cylinder_stress(np.linalg.norm(p, axis=1))[0],
+                 "sigma_r (sxx)", 1e-6),
+                ("syy", lambda p, _, t: analytic.cylinder_stress(np.linalg.norm(p, axis=1))[1],
+                 "sigma_theta (syy)", 1e-6),
+                ("szz", lambda p, _, t: 0.2 * sum(analytic.cylinder_stress(np.linalg.norm(p, axis=1)))
+                 - 20e9 * 1.8e-5 * analytic.cylinder_temperature(np.linalg.norm(p, axis=1)),
+                 "sigma_zz (szz)", 1e-6)],
+        unit="MPa",
+        abscissa=lambda p, _: np.linalg.norm(p, axis=1), xlabel="r [m]",
+        steady=True,
+        title="Thick cylinder in 3D, end rollers: plane strain (tension +)"),
+    "cube_thermal_stress": dict(
+        dim=3,
+        line="diagonal",
+        fields=[("ux", lambda p, _, t: 3e-6 * 1000 * (p[:, 0]**2 - p[:, 1]**2 - p[:, 2]**2) / 2,
+                 "u_x [um]", 1e6),
+                ("uy", lambda p, _, t: 3e-6 * 1000 * p[:, 0] * p[:, 1], "u_y [um]", 1e6),
+                ("uz", lambda p, _, t: 3e-6 * 1000 * p[:, 0] * p[:, 2], "u_z [um]", 1e6),
+                ("sxx", lambda p, _, t: 0 * p[:, 0], "sigma_xx [Pa]", 1.0)],
+        unit="um, Pa",
+        abscissa=lambda p, _: np.linalg.norm(p, axis=1), xlabel="distance along the diagonal [m]",
+        steady=True,
+        title="Free cube, T = 20 + 1000 x C (3D): compatible u, no stress"),
     "plate_transient-3d": dict(
         dim=3,
         line="corner line",

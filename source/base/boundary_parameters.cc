@@ -124,12 +124,30 @@ namespace tmfdem
           "Type",
           "fixed",
           Patterns::Selection(
-            "fixed|roller x|roller y|displacement|traction|velocity"),
-          "fixed: u = 0; roller x: u_x = 0 (u_y free); roller y: u_y = 0 "
-          "(u_x free); displacement: u = (Displacement x, Displacement y); "
-          "traction: nominal traction (Traction x, Traction y), force per "
-          "unit reference length; velocity: v = (Velocity x, Velocity y), "
-          "discrete layer only (the continuum solver refuses it).");
+            "fixed|roller x|roller y|roller z|displacement|traction|"
+            "velocity"),
+          "fixed: u = 0; roller x: u_x = 0 (the other components free); "
+          "roller y: u_y = 0; roller z: u_z = 0 (3D); displacement: u = "
+          "(Displacement x, Displacement y[, Displacement z]); traction: "
+          "nominal traction (Traction x, Traction y[, Traction z]), force "
+          "per unit reference length (2D) or area (3D); velocity: v = "
+          "(Velocity x, Velocity y), discrete layer only (the continuum "
+          "solver refuses it).");
+        for (const char *axis : {"z"})
+          {
+            prm.declare_entry(std::string("Displacement ") + axis,
+                              "0",
+                              Patterns::Anything(),
+                              "Type = displacement, Mesh/Dimension = 3: u_z "
+                              "as a function of x, y, z [m] (reference "
+                              "coordinates) and t [s] [m].");
+            prm.declare_entry(std::string("Traction ") + axis,
+                              "0",
+                              Patterns::Anything(),
+                              "Type = traction, Mesh/Dimension = 3: t_z per "
+                              "unit reference area, function of x, y, z, t "
+                              "[Pa].");
+          }
         const char *axes[] = {"x", "y"};
         for (const char *axis : axes)
           {
@@ -177,6 +195,7 @@ namespace tmfdem
         condition.type         = type == "fixed"        ? Type::fixed :
                                  type == "roller x"     ? Type::roller_x :
                                  type == "roller y"     ? Type::roller_y :
+                                 type == "roller z"     ? Type::roller_z :
                                  type == "displacement" ? Type::displacement :
                                  type == "traction"     ? Type::traction :
                                                           Type::velocity;
@@ -188,6 +207,8 @@ namespace tmfdem
             condition.traction[d] = prm.get(std::string("Traction ") + axes[d]);
             condition.velocity[d] = prm.get(std::string("Velocity ") + axes[d]);
           }
+        condition.displacement[2] = prm.get("Displacement z");
+        condition.traction[2]     = prm.get("Traction z");
         prm.leave_subsection();
         for (const auto id : condition.boundary_ids)
           if (!used.insert(id).second)
@@ -199,6 +220,34 @@ namespace tmfdem
           conditions.push_back(condition);
       }
     prm.leave_subsection();
+  }
+
+  void
+  MechanicalBoundaryParameters::check_dimension(
+    const unsigned int dimension) const
+  {
+    if (dimension == 3)
+      return;
+    for (const auto &condition : conditions)
+      {
+        if (condition.type == MechanicalBoundaryCondition::Type::roller_z)
+          throw InputError(condition.name +
+                           "/Type = roller z: a 2D model has no z "
+                           "displacement; allowed are fixed, roller x, "
+                           "roller y, displacement, traction, velocity.");
+        const bool z_entry =
+          (condition.type == MechanicalBoundaryCondition::Type::displacement &&
+           condition.displacement[2] != "0") ||
+          (condition.type == MechanicalBoundaryCondition::Type::traction &&
+           condition.traction[2] != "0");
+        if (z_entry)
+          throw InputError(
+            condition.name + "/" +
+            (condition.type == MechanicalBoundaryCondition::Type::traction ?
+               "Traction z = " + condition.traction[2] :
+               "Displacement z = " + condition.displacement[2]) +
+            ": Mesh/Dimension = 2 has no z component; allowed is 0.");
+      }
   }
 
 } // namespace tmfdem

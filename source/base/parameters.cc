@@ -59,7 +59,8 @@ namespace tmfdem
       "Source",
       "rectangle",
       Patterns::Selection(
-        "rectangle|annulus|disc|file|block heap|box|ball|spherical shell"),
+        "rectangle|annulus|disc|file|block heap|box|ball|spherical shell|"
+        "cylinder|hollow cylinder"),
       "Where the mesh comes from. 2D: a generated rectangle (boundary ids 0 "
       "left, 1 right, 2 bottom, 3 top), annulus (0 inner, 1 outer), disc (0 "
       "rim), or a gmsh .msh/.geo file (physical curves -> boundary ids, "
@@ -68,7 +69,10 @@ namespace tmfdem
       "3D: a generated box between Lower left corner and Upper right corner "
       "(boundary ids 0 x = x0, 1 x = x1, 2 y = y0, 3 y = y1, 4 z = z0, 5 z = "
       "z1), ball (0 surface) or spherical shell (0 inner, 1 outer surface) "
-      "about Center, or a gmsh .msh file with tetrahedra or hexahedra "
+      "about Center, cylinder (1 mantle, 2 bottom z = z_c - Length / 2, 3 "
+      "top) or hollow cylinder (0 inner, 1 outer mantle, 2 bottom, 3 top) "
+      "with its axis along z through Center, or a gmsh .msh file with "
+      "tetrahedra or hexahedra "
       "(physical surfaces -> boundary ids, physical volumes -> material "
       "ids).");
     prm.declare_entry(
@@ -98,17 +102,33 @@ namespace tmfdem
     prm.declare_entry("Center",
                       "0, 0",
                       space_point_pattern(),
-                      "Annulus and disc: centre x, y; ball and spherical "
-                      "shell: centre x, y, z (z = 0 when left out) [m].");
+                      "Annulus and disc: centre x, y; ball, spherical "
+                      "shell, cylinder and hollow cylinder: centre x, y, z "
+                      "(z = 0 when left out) [m].");
     prm.declare_entry("Inner radius",
                       "0.03",
                       Patterns::Double(0.),
-                      "Annulus and spherical shell: inner radius a [m].");
+                      "Annulus, spherical shell and hollow cylinder: inner "
+                      "radius a [m].");
     prm.declare_entry("Outer radius",
                       "0.15",
                       Patterns::Double(0.),
-                      "Annulus, disc, ball and spherical shell: outer radius "
-                      "b [m].");
+                      "Annulus, disc, ball, spherical shell, cylinder and "
+                      "hollow cylinder: outer radius b [m].");
+    prm.declare_entry(
+      "Radial grading",
+      "1",
+      Patterns::Double(1., 4.),
+      "Annulus, spherical shell and hollow cylinder: the layers of cells lie "
+      "at r = a + (b - a) xi^p with xi = k / (number of layers), p this "
+      "value: 1 uniform layers, > 1 thinner layers at the inner surface, "
+      "where a temperature like 1/r or ln r and its stress vary fastest "
+      "[-].");
+    prm.declare_entry("Length",
+                      "0.1",
+                      Patterns::Double(0.),
+                      "Cylinder and hollow cylinder: length along z, "
+                      "centred at Center [m].");
     prm.declare_entry("File name",
                       "",
                       Patterns::Anything(),
@@ -221,7 +241,9 @@ namespace tmfdem
                              source_name == "block heap" ? Source::block_heap :
                              source_name == "box"        ? Source::box :
                              source_name == "ball"       ? Source::ball :
-                                                     Source::spherical_shell;
+                             source_name == "spherical shell" ? Source::spherical_shell :
+                             source_name == "cylinder" ? Source::cylinder :
+                                                         Source::hollow_cylinder;
     element_type           = prm.get("Element type") == "triangles" ?
                                ElementType::triangles :
                                ElementType::quadrilaterals;
@@ -248,6 +270,8 @@ namespace tmfdem
     center             = point_entry("Center", false);
     inner_radius       = prm.get_double("Inner radius");
     outer_radius       = prm.get_double("Outer radius");
+    length             = prm.get_double("Length");
+    radial_grading     = prm.get_double("Radial grading");
     global_refinements = prm.get_integer("Global refinements");
     material_id        = prm.get_integer("Material id");
     file_name          = prm.get("File name");
@@ -324,11 +348,14 @@ namespace tmfdem
     // (mesh/block_generator.h), before any output is written
 
     const bool solid_source = source == Source::box || source == Source::ball ||
-                              source == Source::spherical_shell;
+                              source == Source::spherical_shell ||
+                              source == Source::cylinder ||
+                              source == Source::hollow_cylinder;
     if (dimension == 3 && !(solid_source || source == Source::file))
       throw InputError("Mesh/Source = " + source_name +
                        " is a 2D domain; Mesh/Dimension = 3 allows box, "
-                       "ball, spherical shell and file.");
+                       "ball, spherical shell, cylinder, hollow cylinder "
+                       "and file.");
     if (dimension == 2 && solid_source)
       throw InputError("Mesh/Source = " + source_name +
                        " is a 3D domain: set Mesh/Dimension = 3 (2D allows "
@@ -348,6 +375,25 @@ namespace tmfdem
                        std::to_string(outer_radius) + ".");
     if (source == Source::ball && !(outer_radius > 0.))
       throw InputError("Mesh/Outer radius must be > 0 for a ball.");
+    if (source == Source::hollow_cylinder &&
+        !(outer_radius > inner_radius && inner_radius > 0.))
+      throw InputError("Mesh: a hollow cylinder needs 0 < Inner radius < "
+                       "Outer radius; got Inner radius = " +
+                       std::to_string(inner_radius) + ", Outer radius = " +
+                       std::to_string(outer_radius) + ".");
+    if (radial_grading != 1. && source != Source::annulus &&
+        source != Source::spherical_shell && source != Source::hollow_cylinder)
+      throw InputError(
+        "Mesh/Radial grading = " + Utilities::to_string(radial_grading) +
+        ": grades the layers of an annulus, spherical shell or "
+        "hollow cylinder; Mesh/Source = " +
+        source_name + " takes 1.");
+    if (source == Source::cylinder && !(outer_radius > 0.))
+      throw InputError("Mesh/Outer radius must be > 0 for a cylinder.");
+    if ((source == Source::cylinder || source == Source::hollow_cylinder) &&
+        !(length > 0. && std::isfinite(length)))
+      throw InputError("Mesh/Length = " + Utilities::to_string(length) +
+                       ": a cylinder needs a finite length > 0 [m].");
     if (source != Source::file && !(element_size > 0.))
       throw InputError("Mesh/Element size = " + std::to_string(element_size) +
                        ": must be > 0 [m].");
@@ -836,6 +882,7 @@ namespace tmfdem
       sections.find(type.type).parse(prm);
     checkpoint.parse_parameters(prm);
     guards.parse_parameters(prm);
+    mechanical_boundary.check_dimension(mesh.dimension);
     if (mesh.dimension == 2)
       {
         for (const auto &probe : monitors.probes)

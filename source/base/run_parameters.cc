@@ -217,12 +217,14 @@ namespace tmfdem
     prm.declare_entry(
       "Idealisation",
       "plane stress",
-      Patterns::Selection("plane stress|plane strain"),
-      "2D idealisation, shared by the continuum and discrete layers. plane "
-      "stress (thin sheet, sigma_zz = 0): plane-stress Lame constants and "
-      "in-plane thermal strain alpha dT. plane strain (long body, eps_zz = "
-      "0): plane-strain Lame constants and in-plane thermal strain (1 + nu) "
-      "alpha dT.");
+      Patterns::Selection("plane stress|plane strain|3D"),
+      "How the mechanics treats the third direction, shared by the "
+      "continuum and discrete layers. plane stress (2D, thin sheet, "
+      "sigma_zz = 0): plane-stress Lame constants and in-plane thermal "
+      "strain alpha dT. plane strain (2D, long body, eps_zz = 0): "
+      "plane-strain Lame constants and in-plane thermal strain (1 + nu) "
+      "alpha dT. 3D (Mesh/Dimension = 3, no idealisation): the 3D Lame "
+      "constants and thermal strain alpha dT in every direction.");
     prm.declare_entry(
       "Strain measure",
       "small",
@@ -311,10 +313,11 @@ namespace tmfdem
       "",
       Patterns::Anything(),
       "Mesh vertices held against rigid-body motion without restraining "
-      "expansion: 'x, y: c; x, y: c' with c = x (u_x = 0), y (u_y = 0) or xy "
-      "(both), x, y in m. Each point must be a vertex of the coarse mesh. "
-      "Example, a free annulus of outer radius b: 'b, 0: y; -b, 0: y; 0, b: "
-      "x'.");
+      "expansion: 'x, y: c; x, y: c' (in 3D 'x, y, z: c') with c the held "
+      "components, any of x, y, z (u_x = 0, u_y = 0, u_z = 0), e.g. x, y, "
+      "xy, yz, xyz; coordinates in m. Each point must be a vertex of the "
+      "mesh. Example, a free annulus of outer radius b: 'b, 0: y; -b, 0: y; "
+      "0, b: x'.");
     prm.leave_subsection();
   }
 
@@ -322,9 +325,11 @@ namespace tmfdem
   MechanicsParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Mechanics");
-    idealisation             = prm.get("Idealisation") == "plane stress" ?
-                                 Idealisation::plane_stress :
-                                 Idealisation::plane_strain;
+    const std::string idealisation_name = prm.get("Idealisation");
+    idealisation =
+      idealisation_name == "plane stress" ? Idealisation::plane_stress :
+      idealisation_name == "plane strain" ? Idealisation::plane_strain :
+                                            Idealisation::solid_3d;
     strain_measure           = prm.get("Strain measure") == "small" ?
                                  StrainMeasure::small :
                                  StrainMeasure::finite;
@@ -351,19 +356,55 @@ namespace tmfdem
       {
         const std::string message =
           "Mechanics/Pinned points: '" + item +
-          "' is not 'x, y: c' with c = x, y or xy (x, y in m).";
+          "' is not 'x, y[, z]: c' with c the held components, one or more "
+          "of x, y, z (e.g. x, y, xy, xyz; coordinates in m).";
         const auto key_value = Utilities::split_string_list(item, ':');
-        if (key_value.size() != 2 || !point_pattern().match(key_value[0]) ||
-            (key_value[1] != "x" && key_value[1] != "y" &&
-             key_value[1] != "xy"))
+        if (key_value.size() != 2 ||
+            !space_point_pattern().match(key_value[0]) ||
+            key_value[1].empty() ||
+            key_value[1].find_first_not_of("xyz") != std::string::npos)
           throw InputError(message);
         PinnedPoint point;
-        point.location = parse_point(key_value[0]);
+        point.location = parse_space_point(key_value[0]);
         point.fix_x    = key_value[1].find('x') != std::string::npos;
         point.fix_y    = key_value[1].find('y') != std::string::npos;
-        point.text     = item;
+        point.fix_z    = key_value[1].find('z') != std::string::npos;
+        point.n_coordinates =
+          Utilities::split_string_list(key_value[0], ',').size();
+        point.text = item;
         pinned_points.push_back(point);
       }
+  }
+
+  void
+  MechanicsParameters::check_dimension(const unsigned int dimension) const
+  {
+    if (dimension == 3 && idealisation != Idealisation::solid_3d)
+      throw InputError(
+        std::string("Mechanics/Idealisation = ") +
+        (idealisation == Idealisation::plane_stress ? "plane stress" :
+                                                      "plane strain") +
+        " is a 2D idealisation; Mesh/Dimension = 3 models the third "
+        "direction itself: allowed is Idealisation = 3D.");
+    if (dimension == 2 && idealisation == Idealisation::solid_3d)
+      throw InputError(
+        "Mechanics/Idealisation = 3D needs Mesh/Dimension = 3; a 2D model "
+        "takes plane stress or plane strain.");
+    for (const auto &point : pinned_points)
+      if ((dimension == 2 && (point.fix_z || point.n_coordinates == 3)) ||
+          (dimension == 3 && point.n_coordinates != 3))
+        throw InputError("Mechanics/Pinned points: '" + point.text +
+                         "': Mesh/Dimension = " + std::to_string(dimension) +
+                         (dimension == 2 ?
+                            " takes 'x, y: c' with c one or both of x, y." :
+                            " takes 'x, y, z: c' with c one or more of x, "
+                            "y, z."));
+    if (dimension == 3 && polar_frame)
+      throw InputError(
+        "Mechanics/Polar frame = true: the polar frame is 2D; in 3D the "
+        "monitors write the six Cartesian stress components (on a line "
+        "along an axis through the centre, the radial and hoop stresses "
+        "are two of them). Allowed is false.");
   }
 
   // ---------------------------------------------------------------- Output

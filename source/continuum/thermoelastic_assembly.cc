@@ -25,43 +25,47 @@ namespace tmfdem
   {
     using Condition = MechanicalBoundaryCondition;
 
-    /** Two parsed expressions as one vector-valued function. */
-    class VectorExpression : public Function<2>
+    /** dim parsed expressions as one vector-valued function. */
+    template <int dim>
+    class VectorExpression : public Function<dim>
     {
     public:
       VectorExpression(
-        const std::array<std::unique_ptr<FunctionParser<2>>, 2> &components,
-        const double                                             time)
-        : Function<2>(2, time)
+        const std::array<std::unique_ptr<FunctionParser<dim>>, dim> &components,
+        const double                                                 time)
+        : Function<dim>(dim, time)
         , components(components)
       {}
       double
-      value(const Point<2> &p, const unsigned int component) const override
+      value(const Point<dim> &p, const unsigned int component) const override
       {
         components[component]->set_time(this->get_time());
         return components[component]->value(p);
       }
 
     private:
-      const std::array<std::unique_ptr<FunctionParser<2>>, 2> &components;
+      const std::array<std::unique_ptr<FunctionParser<dim>>, dim> &components;
     };
 
   } // namespace
 
   // ------------------------------------------------------------ assembly
+  template <int dim>
   void
-  ThermoelasticSolver::compute_quadrature_temperatures()
+  ThermoelasticSolver<dim>::compute_quadrature_temperatures()
   {
-    const Quadrature<2> quadrature = cell_quadrature();
-    FEValues<2> fe_values(*mapping, *fe, quadrature, update_quadrature_points);
+    const Quadrature<dim> quadrature = cell_quadrature();
+    FEValues<dim>         fe_values(*mapping,
+                            *fe,
+                            quadrature,
+                            update_quadrature_points);
     quadrature_temperatures.assign(triangulation->n_active_cells(), {});
     for (const auto &cell : dof_handler->active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
-          const Triangulation<2>::active_cell_iterator tria_cell(triangulation,
-                                                                 cell->level(),
-                                                                 cell->index());
+          const typename Triangulation<dim>::active_cell_iterator
+                tria_cell(triangulation, cell->level(), cell->index());
           auto &T = quadrature_temperatures[cell->active_cell_index()];
           T       = temperatures_at(tria_cell,
                               quadrature.get_points(),
@@ -83,13 +87,19 @@ namespace tmfdem
         }
   }
 
+  template <int dim>
   double
-  ThermoelasticSolver::make_newton_constraints(const double time)
+  ThermoelasticSolver<dim>::make_newton_constraints(const double time)
   {
     std::map<types::global_dof_index, double> prescribed;
-    const Functions::ZeroFunction<2>          zero(2);
-    const ComponentMask x_only(std::vector<bool>{true, false}),
-      y_only(std::vector<bool>{false, true}), both(2, true);
+    const Functions::ZeroFunction<dim>        zero(dim);
+    const auto                                only = [](const unsigned int d) {
+      std::vector<bool> mask(dim, false);
+      mask[d] = true;
+      return ComponentMask(mask);
+    };
+    const ComponentMask x_only = only(0), y_only = only(1),
+                        z_only = only(dim - 1), all(dim, true);
     for (unsigned int n = 0;
          n < parameters.mechanical_boundary.conditions.size();
          ++n)
@@ -97,15 +107,17 @@ namespace tmfdem
         const auto &condition = parameters.mechanical_boundary.conditions[n];
         if (condition.type == Condition::Type::traction)
           continue;
-        const VectorExpression displacement(displacement_functions[n], time);
-        const Function<2>     &values =
+        const VectorExpression<dim> displacement(displacement_functions[n],
+                                                 time);
+        const Function<dim>        &values =
           condition.type == Condition::Type::displacement ?
-                static_cast<const Function<2> &>(displacement) :
-                static_cast<const Function<2> &>(zero);
+                   static_cast<const Function<dim> &>(displacement) :
+                   static_cast<const Function<dim> &>(zero);
         const ComponentMask &mask =
           condition.type == Condition::Type::roller_x ? x_only :
           condition.type == Condition::Type::roller_y ? y_only :
-                                                        both;
+          condition.type == Condition::Type::roller_z ? z_only :
+                                                        all;
         for (const auto id : condition.boundary_ids)
           VectorTools::interpolate_boundary_values(*mapping,
                                                    *dof_handler,
@@ -139,32 +151,36 @@ namespace tmfdem
     return Utilities::MPI::max(largest_increment, communicator);
   }
 
+  template <int dim>
   bool
-  ThermoelasticSolver::assemble(
+  ThermoelasticSolver<dim>::assemble(
     const TrilinosWrappers::MPI::Vector &displacement,
     const AffineConstraints<double>     &constraints_used,
     const bool                           with_matrix)
   {
-    const Quadrature<2>                  quadrature = cell_quadrature();
-    const QGauss<1>                      face_quadrature(fe->degree + 1);
-    FEValues<2>                          fe_values(*mapping,
-                          *fe,
-                          quadrature,
-                          update_gradients | update_JxW_values);
-    FEFaceValues<2>                      fe_face_values(*mapping,
-                                   *fe,
-                                   face_quadrature,
-                                   update_values | update_quadrature_points |
-                                     update_JxW_values);
-    const unsigned int                   n_dofs = fe->n_dofs_per_cell();
-    const unsigned int                   n_q    = quadrature.size();
-    const FEValuesExtractors::Vector     u(0);
-    FullMatrix<double>                   cell_matrix(n_dofs, n_dofs);
-    Vector<double>                       cell_rhs(n_dofs);
+    const Quadrature<dim>            quadrature      = cell_quadrature();
+    const Quadrature<dim - 1>        face_quadrature = face_quadrature_rule();
+    FEValues<dim>                    fe_values(*mapping,
+                            *fe,
+                            quadrature,
+                            update_gradients | update_JxW_values);
+    FEFaceValues<dim>                fe_face_values(*mapping,
+                                     *fe,
+                                     face_quadrature,
+                                     update_values | update_quadrature_points |
+                                       update_JxW_values);
+    const unsigned int               n_dofs = fe->n_dofs_per_cell();
+    const unsigned int               n_q    = quadrature.size();
+    const FEValuesExtractors::Vector u(0);
+    FullMatrix<double>               cell_matrix(n_dofs, n_dofs);
+    Vector<double>                   cell_rhs(n_dofs);
     std::vector<types::global_dof_index> dof_indices(n_dofs);
-    std::vector<Tensor<2, 2>>            grad_u(n_q);
-    std::vector<Tensor<2, 2>>            shape_gradients(n_dofs);
-    std::vector<Tensor<2, 2>>            tangent_times_gradient(n_dofs);
+    std::vector<Tensor<2, dim>>          grad_u(n_q);
+    std::vector<Tensor<2, dim>>          shape_gradients(n_dofs);
+    std::vector<Tensor<2, dim>>          tangent_times_gradient(n_dofs);
+    std::vector<unsigned int>            component(n_dofs);
+    for (unsigned int i = 0; i < n_dofs; ++i)
+      component[i] = fe->system_to_component_index(i).first;
 
     std::vector<int> traction_condition(256, -1);
     for (unsigned int n = 0;
@@ -198,25 +214,48 @@ namespace tmfdem
                   admissible = 0.;
                   continue;
                 }
-              const double       JxW = fe_values.JxW(q);
-              const Tensor<2, 2> P   = material.first_piola(grad_u[q], T[q]);
+              const double         JxW = fe_values.JxW(q);
+              const Tensor<2, dim> P   = material.first_piola(grad_u[q], T[q]);
+              // the gradient of vector shape function i is nonzero only in
+              // its component's row: the contractions skip the zero rows
+              // (the same sums, in the same order, as the full ones)
               for (unsigned int i = 0; i < n_dofs; ++i)
                 {
-                  shape_gradients[i] = fe_values[u].gradient(i, q);
-                  cell_rhs(i) -= scalar_product(P, shape_gradients[i]) * JxW;
+                  shape_gradients[i]     = fe_values[u].gradient(i, q);
+                  const unsigned int c   = component[i];
+                  double             P_G = P[c][0] * shape_gradients[i][c][0];
+                  for (unsigned int J = 1; J < dim; ++J)
+                    P_G += P[c][J] * shape_gradients[i][c][J];
+                  cell_rhs(i) -= P_G * JxW;
                 }
               if (with_matrix)
                 {
-                  const Tensor<4, 2> A = material.tangent(grad_u[q], T[q]);
+                  const Tensor<4, dim> A = material.tangent(grad_u[q], T[q]);
                   for (unsigned int j = 0; j < n_dofs; ++j)
-                    tangent_times_gradient[j] =
-                      double_contract_right(A, shape_gradients[j]);
+                    {
+                      const unsigned int c = component[j];
+                      for (unsigned int a = 0; a < dim; ++a)
+                        for (unsigned int b = 0; b < dim; ++b)
+                          {
+                            double sum = 0.;
+                            for (unsigned int l = 0; l < dim; ++l)
+                              sum += A[a][b][c][l] * shape_gradients[j][c][l];
+                            tangent_times_gradient[j][a][b] = sum;
+                          }
+                    }
                   for (unsigned int i = 0; i < n_dofs; ++i)
-                    for (unsigned int j = 0; j < n_dofs; ++j)
-                      cell_matrix(i, j) +=
-                        scalar_product(shape_gradients[i],
-                                       tangent_times_gradient[j]) *
-                        JxW;
+                    {
+                      const unsigned int c = component[i];
+                      for (unsigned int j = 0; j < n_dofs; ++j)
+                        {
+                          double G_A_G = shape_gradients[i][c][0] *
+                                         tangent_times_gradient[j][c][0];
+                          for (unsigned int J = 1; J < dim; ++J)
+                            G_A_G += shape_gradients[i][c][J] *
+                                     tangent_times_gradient[j][c][J];
+                          cell_matrix(i, j) += G_A_G * JxW;
+                        }
+                    }
                 }
             }
           for (const auto f : cell->face_indices())
@@ -229,9 +268,9 @@ namespace tmfdem
                 fe_face_values.reinit(cell, f);
                 for (unsigned int q = 0; q < face_quadrature.size(); ++q)
                   {
-                    const Point<2> &p = fe_face_values.quadrature_point(q);
-                    Tensor<1, 2>    traction;
-                    for (unsigned int d = 0; d < 2; ++d)
+                    const Point<dim> &p = fe_face_values.quadrature_point(q);
+                    Tensor<1, dim>    traction;
+                    for (unsigned int d = 0; d < dim; ++d)
                       traction[d] = functions[d]->value(p);
                     for (unsigned int i = 0; i < n_dofs; ++i)
                       cell_rhs(i) += traction * fe_face_values[u].value(i, q) *
@@ -256,8 +295,9 @@ namespace tmfdem
     return Utilities::MPI::min(admissible, communicator) > 0.;
   }
 
+  template <int dim>
   double
-  ThermoelasticSolver::residual_norm(
+  ThermoelasticSolver<dim>::residual_norm(
     const TrilinosWrappers::MPI::Vector &displacement)
   {
     if (!assemble(displacement, residual_constraints, false))
@@ -265,8 +305,9 @@ namespace tmfdem
     return system_rhs.l2_norm();
   }
 
+  template <int dim>
   unsigned int
-  ThermoelasticSolver::solve_linear_system(
+  ThermoelasticSolver<dim>::solve_linear_system(
     TrilinosWrappers::MPI::Vector &update)
   {
     update                = 0;
@@ -277,7 +318,7 @@ namespace tmfdem
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     std::vector<std::vector<bool>>                    constant_modes;
     DoFTools::extract_constant_modes(*dof_handler,
-                                     ComponentMask(2, true),
+                                     ComponentMask(dim, true),
                                      constant_modes);
     data.constant_modes        = constant_modes;
     data.elliptic              = true;
@@ -310,8 +351,9 @@ namespace tmfdem
   }
 
   // ------------------------------------------------------------ Newton
+  template <int dim>
   void
-  ThermoelasticSolver::solve(const double time)
+  ThermoelasticSolver<dim>::solve(const double time)
   {
     const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
     temperature_function->set_time(time);
@@ -323,8 +365,12 @@ namespace tmfdem
     double largest_modulus = 0.;
     for (const auto &material : materials)
       largest_modulus = std::max(largest_modulus, material.mu());
-    const double round_off =
-      1e-13 * 3. * largest_modulus * std::sqrt(domain_area);
+    // 1e-13 E times the size of the domain's boundary (a length in 2D, an
+    // area in 3D): round-off of the nodal forces [N/m in 2D, N in 3D]
+    const double boundary_size =
+      dim == 2 ? std::sqrt(domain_area) : std::pow(domain_area, 2. / 3.);
+    const double round_off  = 1e-13 * 3. * largest_modulus * boundary_size;
+    const char  *force_unit = dim == 2 ? " N/m" : " N";
 
     make_newton_constraints(time);
     double residual  = residual_norm(solution);
@@ -332,7 +378,7 @@ namespace tmfdem
     newton_history.push_back({time, 0, residual, 0., 0});
     if (root)
       std::cerr << "newton t = " << time << ": iteration 0, |R| = " << residual
-                << " N/m" << std::endl;
+                << force_unit << std::endl;
 
     TrilinosWrappers::MPI::Vector update(locally_owned_dofs, communicator),
       trial(locally_owned_dofs, communicator);
@@ -392,8 +438,9 @@ namespace tmfdem
           {time, iteration, residual, step, linear_iterations});
         if (root)
           std::cerr << "newton t = " << time << ": iteration " << iteration
-                    << ", |R| = " << residual << " N/m, step " << step << ", "
-                    << linear_iterations << " CG iterations" << std::endl;
+                    << ", |R| = " << residual << force_unit << ", step " << step
+                    << ", " << linear_iterations << " CG iterations"
+                    << std::endl;
         const bool boundary_reached = boundary_increment == 0. || step == 1.;
         if (boundary_reached &&
             (residual <= parameters.mechanics.newton_tolerance * reference ||
@@ -411,13 +458,16 @@ namespace tmfdem
         message << "thermoelastic solver: Newton did not converge at t = "
                 << time << " s within Mechanics/Newton maximum iterations = "
                 << parameters.mechanics.newton_max_iterations << " (residual "
-                << residual << " N/m, target "
+                << residual << force_unit << ", target "
                 << std::max(parameters.mechanics.newton_tolerance * reference,
                             round_off)
-                << " N/m). Raise the iteration limit, or use smaller load "
+                << force_unit
+                << "). Raise the iteration limit, or use smaller load "
                    "steps (Time stepping/Time step).";
         throw RunError(message.str());
       }
   }
 
+  template class ThermoelasticSolver<2>;
+  template class ThermoelasticSolver<3>;
 } // namespace tmfdem

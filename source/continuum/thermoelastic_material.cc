@@ -6,7 +6,8 @@
 
 namespace tmfdem
 {
-  ThermoelasticMaterial::ThermoelasticMaterial(
+  template <int dim>
+  ThermoelasticMaterial<dim>::ThermoelasticMaterial(
     const MaterialProperties  &properties,
     const MechanicsParameters &mechanics)
     : strain_measure(mechanics.strain_measure)
@@ -19,105 +20,113 @@ namespace tmfdem
     const constitutive::LameConstants lame =
       constitutive::lame_constants(youngs_modulus, poisson_ratio, idealisation);
     shear_modulus = lame.mu;
-    lambda_2d     = lame.lambda;
+    lambda_       = lame.lambda;
     beta = constitutive::in_plane_expansion(alpha, poisson_ratio, idealisation);
   }
 
-  Tensor<2, 2>
-  double_contract_right(const Tensor<4, 2> &A, const Tensor<2, 2> &G)
+  template <int dim>
+  Tensor<2, dim>
+  double_contract_right(const Tensor<4, dim> &A, const Tensor<2, dim> &G)
   {
-    Tensor<2, 2> result;
-    for (unsigned int i = 0; i < 2; ++i)
-      for (unsigned int j = 0; j < 2; ++j)
-        for (unsigned int k = 0; k < 2; ++k)
-          for (unsigned int l = 0; l < 2; ++l)
+    Tensor<2, dim> result;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j)
+        for (unsigned int k = 0; k < dim; ++k)
+          for (unsigned int l = 0; l < dim; ++l)
             result[i][j] += A[i][j][k][l] * G[k][l];
     return result;
   }
 
-  Tensor<2, 2>
-  ThermoelasticMaterial::first_piola(const Tensor<2, 2> &grad_u,
-                                     const double        temperature) const
+  template <int dim>
+  Tensor<2, dim>
+  ThermoelasticMaterial<dim>::first_piola(const Tensor<2, dim> &grad_u,
+                                          const double temperature) const
   {
-    const Tensor<2, 2> I = unit_symmetric_tensor<2>();
+    const Tensor<2, dim> I = unit_symmetric_tensor<dim>();
     if (strain_measure == MechanicsParameters::StrainMeasure::small)
       {
-        const Tensor<2, 2> elastic_strain =
+        const Tensor<2, dim> elastic_strain =
           0.5 * (grad_u + transpose(grad_u)) -
           beta * temperature_change(temperature) * I;
-        return lambda_2d * trace(elastic_strain) * I +
+        return lambda_ * trace(elastic_strain) * I +
                2. * shear_modulus * elastic_strain;
       }
-    // P = theta [mu (F_e - F_e^-T) + lambda/2 (J_e^2 - 1) F_e^-T]
-    const double       theta         = thermal_stretch(temperature);
-    const Tensor<2, 2> F_e           = (I + grad_u) / theta;
-    const double       J_e           = determinant(F_e);
-    const Tensor<2, 2> F_e_inverse_T = transpose(invert(F_e));
-    return theta * (shear_modulus * (F_e - F_e_inverse_T) +
-                    0.5 * lambda_2d * (J_e * J_e - 1.) * F_e_inverse_T);
+    // P = theta^(dim-1) [mu (F_e - F_e^-T) + lambda/2 (J_e^2 - 1) F_e^-T]
+    const double         theta         = thermal_stretch(temperature);
+    const Tensor<2, dim> F_e           = (I + grad_u) / theta;
+    const double         J_e           = determinant(F_e);
+    const Tensor<2, dim> F_e_inverse_T = transpose(invert(F_e));
+    const double         area_factor   = dim == 2 ? theta : theta * theta;
+    return area_factor * (shear_modulus * (F_e - F_e_inverse_T) +
+                          0.5 * lambda_ * (J_e * J_e - 1.) * F_e_inverse_T);
   }
 
-  Tensor<4, 2>
-  ThermoelasticMaterial::tangent(const Tensor<2, 2> &grad_u,
-                                 const double        temperature) const
+  template <int dim>
+  Tensor<4, dim>
+  ThermoelasticMaterial<dim>::tangent(const Tensor<2, dim> &grad_u,
+                                      const double          temperature) const
   {
-    Tensor<4, 2> A;
+    Tensor<4, dim> A;
     if (strain_measure == MechanicsParameters::StrainMeasure::small)
       {
-        for (unsigned int i = 0; i < 2; ++i)
-          for (unsigned int j = 0; j < 2; ++j)
-            for (unsigned int k = 0; k < 2; ++k)
-              for (unsigned int l = 0; l < 2; ++l)
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            for (unsigned int k = 0; k < dim; ++k)
+              for (unsigned int l = 0; l < dim; ++l)
                 A[i][j][k][l] =
-                  lambda_2d * (i == j) * (k == l) +
+                  lambda_ * (i == j) * (k == l) +
                   shear_modulus * ((i == k) * (j == l) + (i == l) * (j == k));
         return A;
       }
-    // P(F) = theta P_e(F / theta), so dP/dF = dP_e/dF_e (G = F_e):
+    // P(F) = theta^(dim-1) P_e(F / theta), so dP/dF = theta^(dim-2)
+    // dP_e/dF_e (G = F_e):
     // A_iJkL = mu d_ik d_JL + (mu - lambda/2 (J^2 - 1)) G^-T_iL G^-T_kJ
     //          + lambda J^2 G^-T_iJ G^-T_kL
-    const Tensor<2, 2> I = unit_symmetric_tensor<2>();
-    const Tensor<2, 2> G = (I + grad_u) / thermal_stretch(temperature);
-    const double       J = determinant(G);
-    const Tensor<2, 2> H = transpose(invert(G));
-    const double       c = shear_modulus - 0.5 * lambda_2d * (J * J - 1.);
-    for (unsigned int i = 0; i < 2; ++i)
-      for (unsigned int j = 0; j < 2; ++j)
-        for (unsigned int k = 0; k < 2; ++k)
-          for (unsigned int l = 0; l < 2; ++l)
+    const Tensor<2, dim> I     = unit_symmetric_tensor<dim>();
+    const double         theta = thermal_stretch(temperature);
+    const Tensor<2, dim> G     = (I + grad_u) / theta;
+    const double         J     = determinant(G);
+    const Tensor<2, dim> H     = transpose(invert(G));
+    const double         c     = shear_modulus - 0.5 * lambda_ * (J * J - 1.);
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j)
+        for (unsigned int k = 0; k < dim; ++k)
+          for (unsigned int l = 0; l < dim; ++l)
             A[i][j][k][l] = shear_modulus * (i == k) * (j == l) +
                             c * H[i][l] * H[k][j] +
-                            lambda_2d * J * J * H[i][j] * H[k][l];
+                            lambda_ * J * J * H[i][j] * H[k][l];
+    if (dim == 3)
+      A *= theta;
     return A;
   }
 
-  Tensor<2, 2>
-  ThermoelasticMaterial::cauchy(const Tensor<2, 2> &grad_u,
-                                const double        temperature) const
+  template <int dim>
+  Tensor<2, dim>
+  ThermoelasticMaterial<dim>::cauchy(const Tensor<2, dim> &grad_u,
+                                     const double          temperature) const
   {
     if (strain_measure == MechanicsParameters::StrainMeasure::small)
       return first_piola(grad_u, temperature);
     // Eq. 44 on the elastic part, the core both layers share
-    const Tensor<2, 2> I   = unit_symmetric_tensor<2>();
-    const Tensor<2, 2> F_e = (I + grad_u) / thermal_stretch(temperature);
-    const constitutive::Stress2 s =
-      constitutive::elastic_stress(F_e[0][0],
-                                   F_e[0][1],
-                                   F_e[1][0],
-                                   F_e[1][1],
-                                   lame_constants());
-    Tensor<2, 2> sigma;
-    sigma[0][0] = s.xx;
-    sigma[1][1] = s.yy;
-    sigma[0][1] = s.xy;
-    sigma[1][0] = s.xy;
+    const Tensor<2, dim> I   = unit_symmetric_tensor<dim>();
+    const Tensor<2, dim> F_e = (I + grad_u) / thermal_stretch(temperature);
+    double               Fe[dim][dim], s[dim][dim];
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j)
+        Fe[i][j] = F_e[i][j];
+    constitutive::elastic_stress<dim, double>(Fe, shear_modulus, lambda_, s);
+    Tensor<2, dim> sigma;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j)
+        sigma[i][j] = s[i][j];
     return sigma;
   }
 
+  template <int dim>
   double
-  ThermoelasticMaterial::out_of_plane_stress(
-    const Tensor<2, 2> &in_plane_cauchy,
-    const double        temperature) const
+  ThermoelasticMaterial<dim>::out_of_plane_stress(
+    const Tensor<2, dim> &in_plane_cauchy,
+    const double          temperature) const
   {
     if (idealisation == MechanicsParameters::Idealisation::plane_stress)
       return 0.;
@@ -127,21 +136,29 @@ namespace tmfdem
            youngs_modulus * alpha * temperature_change(temperature);
   }
 
-  Tensor<2, 2>
-  ThermoelasticMaterial::strain(const Tensor<2, 2> &grad_u) const
+  template <int dim>
+  Tensor<2, dim>
+  ThermoelasticMaterial<dim>::strain(const Tensor<2, dim> &grad_u) const
   {
     if (strain_measure == MechanicsParameters::StrainMeasure::small)
       return 0.5 * (grad_u + transpose(grad_u));
     return 0.5 * (grad_u + transpose(grad_u) + transpose(grad_u) * grad_u);
   }
 
+  template <int dim>
   bool
-  ThermoelasticMaterial::admissible(const Tensor<2, 2> &grad_u,
-                                    const double        temperature) const
+  ThermoelasticMaterial<dim>::admissible(const Tensor<2, dim> &grad_u,
+                                         const double temperature) const
   {
     if (strain_measure == MechanicsParameters::StrainMeasure::small)
       return true;
-    const Tensor<2, 2> I = unit_symmetric_tensor<2>();
+    const Tensor<2, dim> I = unit_symmetric_tensor<dim>();
     return thermal_stretch(temperature) > 0. && determinant(I + grad_u) > 0.;
   }
+  template class ThermoelasticMaterial<2>;
+  template class ThermoelasticMaterial<3>;
+  template Tensor<2, 2>
+  double_contract_right(const Tensor<4, 2> &, const Tensor<2, 2> &);
+  template Tensor<2, 3>
+  double_contract_right(const Tensor<4, 3> &, const Tensor<2, 3> &);
 } // namespace tmfdem

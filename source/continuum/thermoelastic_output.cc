@@ -2,6 +2,7 @@
 // vtu files, probes and lines, stress extremes and summary.json.
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
@@ -19,39 +20,71 @@ namespace tmfdem
 {
   namespace
   {
-    /** The reference-cell coordinates of @p p in @p cell. */
-    Point<2>
-    unit_point_of(const Mapping<2>                             &mapping,
-                  const Triangulation<2>::active_cell_iterator &cell,
-                  const Point<2>                               &p)
+    /** The reference-cell coordinates of @p p in @p cell (affine inverse
+     *  on simplices, the mapping's inverse otherwise). */
+    template <int dim>
+    Point<dim>
+    unit_point_of(const Mapping<dim> &mapping,
+                  const typename Triangulation<dim>::active_cell_iterator &cell,
+                  const Point<dim>                                        &p)
     {
-      if (cell->reference_cell() == ReferenceCells::Triangle)
+      if (cell->reference_cell().is_simplex())
         {
-          const Tensor<1, 2> a = cell->vertex(1) - cell->vertex(0),
-                             b = cell->vertex(2) - cell->vertex(0),
-                             d = p - cell->vertex(0);
-          const double det     = a[0] * b[1] - a[1] * b[0];
-          return Point<2>((d[0] * b[1] - d[1] * b[0]) / det,
-                          (a[0] * d[1] - a[1] * d[0]) / det);
+          if constexpr (dim == 2)
+            {
+              const Tensor<1, 2> a = cell->vertex(1) - cell->vertex(0),
+                                 b = cell->vertex(2) - cell->vertex(0),
+                                 d = p - cell->vertex(0);
+              const double det     = a[0] * b[1] - a[1] * b[0];
+              return Point<2>((d[0] * b[1] - d[1] * b[0]) / det,
+                              (a[0] * d[1] - a[1] * d[0]) / det);
+            }
+          else
+            {
+              Tensor<2, dim> edges;
+              for (unsigned int v = 1; v <= dim; ++v)
+                for (unsigned int d = 0; d < dim; ++d)
+                  edges[d][v - 1] = cell->vertex(v)[d] - cell->vertex(0)[d];
+              return Point<dim>(invert(edges) * (p - cell->vertex(0)));
+            }
         }
       return mapping.transform_real_to_unit_cell(cell, p);
+    }
+
+    /** Names of the symmetric tensor components: xx, yy, xy in 2D; xx, yy,
+     *  zz, xy, yz, xz in 3D. */
+    template <int dim>
+    std::vector<std::pair<std::string, std::array<unsigned int, 2>>>
+    tensor_components()
+    {
+      if (dim == 2)
+        return {{"xx", {{0, 0}}}, {"yy", {{1, 1}}}, {"xy", {{0, 1}}}};
+      return {{"xx", {{0, 0}}},
+              {"yy", {{1, 1}}},
+              {"zz", {{2, 2}}},
+              {"xy", {{0, 1}}},
+              {"yz", {{1, 2}}},
+              {"xz", {{0, 2}}}};
     }
 
     /**
      * Stress (Cauchy, tension positive), strain and temperature for the vtu
      * files, computed from the displacement gradient at each output point.
      */
-    class ThermoelasticPostprocessor : public DataPostprocessor<2>
+    template <int dim>
+    class ThermoelasticPostprocessor : public DataPostprocessor<dim>
     {
     public:
+      using Temperatures = std::function<std::vector<double>(
+        const typename Triangulation<dim>::active_cell_iterator &,
+        const std::vector<Point<dim>> &,
+        const std::vector<Point<dim>> &)>;
+
       ThermoelasticPostprocessor(
-        const std::vector<ThermoelasticMaterial> &materials,
-        const Mapping<2>                         &mapping,
-        const std::function<
-          std::vector<double>(const Triangulation<2>::active_cell_iterator &,
-                              const std::vector<Point<2>> &,
-                              const std::vector<Point<2>> &)> &temperatures,
-        const bool                                             with_szz)
+        const std::vector<ThermoelasticMaterial<dim>> &materials,
+        const Mapping<dim>                            &mapping,
+        const Temperatures                            &temperatures,
+        const bool                                     with_szz)
         : materials(materials)
         , mapping(mapping)
         , temperatures(temperatures)
@@ -61,11 +94,14 @@ namespace tmfdem
       std::vector<std::string>
       get_names() const override
       {
-        std::vector<std::string> names = {"sxx", "syy", "sxy"};
+        std::vector<std::string> names;
+        for (const auto &component : tensor_components<dim>())
+          names.push_back("s" + component.first);
         if (with_szz)
           names.push_back("szz");
-        for (const char *name : {"exx", "eyy", "exy", "T"})
-          names.push_back(name);
+        for (const auto &component : tensor_components<dim>())
+          names.push_back("e" + component.first);
+        names.push_back("T");
         return names;
       }
 
@@ -77,88 +113,88 @@ namespace tmfdem
 
       void
       evaluate_vector_field(
-        const DataPostprocessorInputs::Vector<2> &inputs,
-        std::vector<Vector<double>>              &computed) const override
+        const DataPostprocessorInputs::Vector<dim> &inputs,
+        std::vector<Vector<double>>                &computed) const override
       {
-        const auto dof_cell = inputs.template get_cell<2>();
-        const Triangulation<2>::active_cell_iterator cell(
+        const auto dof_cell = inputs.template get_cell<dim>();
+        const typename Triangulation<dim>::active_cell_iterator cell(
           &dof_cell->get_triangulation(),
           dof_cell->level(),
           dof_cell->index());
-        const auto           &points = inputs.evaluation_points;
-        std::vector<Point<2>> unit_points;
+        const auto             &points = inputs.evaluation_points;
+        std::vector<Point<dim>> unit_points;
         for (const auto &p : points)
-          unit_points.push_back(unit_point_of(mapping, cell, p));
+          unit_points.push_back(unit_point_of<dim>(mapping, cell, p));
         const std::vector<double> T = temperatures(cell, unit_points, points);
         const auto               &material = materials[cell->material_id()];
         for (unsigned int q = 0; q < points.size(); ++q)
           {
-            Tensor<2, 2> grad_u;
-            for (unsigned int c = 0; c < 2; ++c)
+            Tensor<2, dim> grad_u;
+            for (unsigned int c = 0; c < dim; ++c)
               grad_u[c] = inputs.solution_gradients[q][c];
-            const Tensor<2, 2> sigma  = material.cauchy(grad_u, T[q]);
-            const Tensor<2, 2> strain = material.strain(grad_u);
-            unsigned int       k      = 0;
-            computed[q](k++)          = sigma[0][0];
-            computed[q](k++)          = sigma[1][1];
-            computed[q](k++)          = sigma[0][1];
+            const Tensor<2, dim> sigma  = material.cauchy(grad_u, T[q]);
+            const Tensor<2, dim> strain = material.strain(grad_u);
+            unsigned int         k      = 0;
+            for (const auto &component : tensor_components<dim>())
+              computed[q](k++) =
+                sigma[component.second[0]][component.second[1]];
             if (with_szz)
               computed[q](k++) = material.out_of_plane_stress(sigma, T[q]);
-            computed[q](k++) = strain[0][0];
-            computed[q](k++) = strain[1][1];
-            computed[q](k++) = strain[0][1];
+            for (const auto &component : tensor_components<dim>())
+              computed[q](k++) =
+                strain[component.second[0]][component.second[1]];
             computed[q](k++) = T[q];
           }
       }
 
     private:
-      const std::vector<ThermoelasticMaterial> &materials;
-      const Mapping<2>                         &mapping;
-      const std::function<
-        std::vector<double>(const Triangulation<2>::active_cell_iterator &,
-                            const std::vector<Point<2>> &,
-                            const std::vector<Point<2>> &)>
-                 temperatures;
-      const bool with_szz;
+      const std::vector<ThermoelasticMaterial<dim>> &materials;
+      const Mapping<dim>                            &mapping;
+      const Temperatures                             temperatures;
+      const bool                                     with_szz;
     };
 
   } // namespace
 
   // ------------------------------------------------------------ output
+  template <int dim>
   std::vector<double>
-  ThermoelasticSolver::monitor_values(
-    const DoFHandler<2>::active_cell_iterator &cell,
-    const Point<2>                            &unit_point) const
+  ThermoelasticSolver<dim>::monitor_values(
+    const typename DoFHandler<dim>::active_cell_iterator &cell,
+    const Point<dim>                                     &unit_point) const
   {
-    const Quadrature<2> quadrature(std::vector<Point<2>>{unit_point});
-    FEValues<2>         fe_values(*mapping,
-                          *fe,
-                          quadrature,
-                          update_values | update_gradients |
-                            update_quadrature_points);
+    const Quadrature<dim> quadrature(std::vector<Point<dim>>{unit_point});
+    FEValues<dim>         fe_values(*mapping,
+                            *fe,
+                            quadrature,
+                            update_values | update_gradients |
+                              update_quadrature_points);
     fe_values.reinit(cell);
     const FEValuesExtractors::Vector u(0);
-    std::vector<Tensor<1, 2>>        displacement(1);
-    std::vector<Tensor<2, 2>>        grad_u(1);
+    std::vector<Tensor<1, dim>>      displacement(1);
+    std::vector<Tensor<2, dim>>      grad_u(1);
     fe_values[u].get_function_values(solution, displacement);
     fe_values[u].get_function_gradients(solution, grad_u);
-    const Triangulation<2>::active_cell_iterator tria_cell(triangulation,
-                                                           cell->level(),
-                                                           cell->index());
-    const Point<2>            p = fe_values.quadrature_point(0);
+    const typename Triangulation<dim>::active_cell_iterator
+                     tria_cell(triangulation, cell->level(), cell->index());
+    const Point<dim> p          = fe_values.quadrature_point(0);
     const std::vector<double> T = temperatures_at(tria_cell, {unit_point}, {p});
-    const Tensor<2, 2>        sigma =
+    const Tensor<2, dim>      sigma =
       materials[cell->material_id()].cauchy(grad_u[0], T[0]);
-    std::vector<double> values = {T[0],
-                                  displacement[0][0],
-                                  displacement[0][1],
-                                  sigma[0][0],
-                                  sigma[1][1],
-                                  sigma[0][1]};
+    std::vector<double> values = {T[0]};
+    for (unsigned int d = 0; d < dim; ++d)
+      values.push_back(displacement[0][d]);
+    for (const auto &component : tensor_components<dim>())
+      values.push_back(sigma[component.second[0]][component.second[1]]);
     if (parameters.mechanics.polar_frame)
       {
-        const Tensor<1, 2> radial = p - parameters.mechanics.polar_centre;
-        const auto         polar  = polar_stress(sigma[0][0],
+        // 2D only (MechanicsParameters::check_dimension)
+        const Tensor<1, dim> radial =
+          p - MeshParameters::in_dimension<dim>(
+                Point<3>(parameters.mechanics.polar_centre[0],
+                         parameters.mechanics.polar_centre[1],
+                         0.));
+        const auto polar = polar_stress(sigma[0][0],
                                         sigma[1][1],
                                         sigma[0][1],
                                         radial[0],
@@ -169,27 +205,31 @@ namespace tmfdem
     return values;
   }
 
+  template <int dim>
   void
-  ThermoelasticSolver::write_output(const double time)
+  ThermoelasticSolver<dim>::write_output(const double time)
   {
-    monitors->write(time,
-                    *mapping,
-                    *dof_handler,
-                    [this](const DoFHandler<2>::active_cell_iterator &cell,
-                           const Point<2> &unit_point) {
-                      return monitor_values(cell, unit_point);
-                    });
+    monitors->write(
+      time,
+      *mapping,
+      *dof_handler,
+      [this](const typename DoFHandler<dim>::active_cell_iterator &cell,
+             const Point<dim>                                     &unit_point) {
+        return monitor_values(cell, unit_point);
+      });
 
-    // stress extremes over the quadrature points of the last solve
-    const Quadrature<2> quadrature = cell_quadrature();
-    FEValues<2>         fe_values(*mapping, *fe, quadrature, update_gradients);
+    // stress extremes over the quadrature points of the last solve: the
+    // largest |sigma_ij| per component, the largest and smallest principal
+    // stress
+    const auto            components   = tensor_components<dim>();
+    const unsigned int    n_components = components.size();
+    const Quadrature<dim> quadrature   = cell_quadrature();
+    FEValues<dim> fe_values(*mapping, *fe, quadrature, update_gradients);
     const FEValuesExtractors::Vector u(0);
-    std::vector<Tensor<2, 2>>        grad_u(quadrature.size());
-    std::array<double, 5>            extremes = {{0.,
-                                                  0.,
-                                                  0.,
-                                                  -std::numeric_limits<double>::max(),
-                                                  std::numeric_limits<double>::max()}};
+    std::vector<Tensor<2, dim>>      grad_u(quadrature.size());
+    std::vector<double>              extremes(n_components, 0.);
+    double largest_principal  = -std::numeric_limits<double>::max();
+    double smallest_principal = std::numeric_limits<double>::max();
     for (const auto &cell : dof_handler->active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -198,48 +238,68 @@ namespace tmfdem
           const auto &T = quadrature_temperatures[cell->active_cell_index()];
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
-              const Tensor<2, 2> s =
+              const Tensor<2, dim> s =
                 materials[cell->material_id()].cauchy(grad_u[q], T[q]);
-              const double mean = 0.5 * (s[0][0] + s[1][1]);
-              const double radius =
-                std::hypot(0.5 * (s[0][0] - s[1][1]), s[0][1]);
-              extremes[0] = std::max(extremes[0], std::abs(s[0][0]));
-              extremes[1] = std::max(extremes[1], std::abs(s[1][1]));
-              extremes[2] = std::max(extremes[2], std::abs(s[0][1]));
-              extremes[3] = std::max(extremes[3], mean + radius);
-              extremes[4] = std::min(extremes[4], mean - radius);
+              for (unsigned int k = 0; k < n_components; ++k)
+                extremes[k] = std::max(
+                  extremes[k],
+                  std::abs(
+                    s[components[k].second[0]][components[k].second[1]]));
+              if constexpr (dim == 2)
+                {
+                  const double mean = 0.5 * (s[0][0] + s[1][1]);
+                  const double radius =
+                    std::hypot(0.5 * (s[0][0] - s[1][1]), s[0][1]);
+                  largest_principal =
+                    std::max(largest_principal, mean + radius);
+                  smallest_principal =
+                    std::min(smallest_principal, mean - radius);
+                }
+              else
+                {
+                  const std::array<double, dim> principal =
+                    eigenvalues(symmetrize(s)); // descending
+                  largest_principal = std::max(largest_principal, principal[0]);
+                  smallest_principal =
+                    std::min(smallest_principal, principal[dim - 1]);
+                }
             }
         }
-    for (unsigned int k = 0; k < 4; ++k)
+    stress_extremes.resize(n_components + 2);
+    for (unsigned int k = 0; k < n_components; ++k)
       stress_extremes[k] = Utilities::MPI::max(extremes[k], communicator);
-    stress_extremes[4] = Utilities::MPI::min(extremes[4], communicator);
+    stress_extremes[n_components] =
+      Utilities::MPI::max(largest_principal, communicator);
+    stress_extremes[n_components + 1] =
+      Utilities::MPI::min(smallest_principal, communicator);
 
     if (parameters.output.write_vtu)
       {
         const bool with_szz =
+          dim == 2 &&
           parameters.mechanics.idealisation ==
             MechanicsParameters::Idealisation::plane_strain &&
           parameters.mechanics.strain_measure ==
             MechanicsParameters::StrainMeasure::small;
-        const ThermoelasticPostprocessor postprocessor(
+        const ThermoelasticPostprocessor<dim> postprocessor(
           materials,
           *mapping,
-          [this](const Triangulation<2>::active_cell_iterator &cell,
-                 const std::vector<Point<2>>                  &unit_points,
-                 const std::vector<Point<2>>                  &points) {
+          [this](const typename Triangulation<dim>::active_cell_iterator &cell,
+                 const std::vector<Point<dim>> &unit_points,
+                 const std::vector<Point<dim>> &points) {
             return temperatures_at(cell, unit_points, points);
           },
           with_szz);
-        DataOut<2> data_out;
+        DataOut<dim> data_out;
         data_out.attach_dof_handler(*dof_handler);
         const std::vector<
           DataComponentInterpretation::DataComponentInterpretation>
           vector_field(
-            2,
+            dim,
             DataComponentInterpretation::component_is_part_of_vector);
         data_out.add_data_vector(solution,
-                                 std::vector<std::string>(2, "displacement"),
-                                 DataOut<2>::type_dof_data,
+                                 std::vector<std::string>(dim, "displacement"),
+                                 DataOut<dim>::type_dof_data,
                                  vector_field);
         data_out.add_data_vector(solution, postprocessor);
         write_solution(data_out, time);
@@ -247,8 +307,9 @@ namespace tmfdem
     write_summary(time);
   }
 
+  template <int dim>
   void
-  ThermoelasticSolver::write_summary(const double time) const
+  ThermoelasticSolver<dim>::write_summary(const double time) const
   {
     const auto             &mechanics = parameters.mechanics;
     std::vector<JsonObject> history;
@@ -263,12 +324,15 @@ namespace tmfdem
         history.push_back(object);
       }
     JsonObject stress;
-    stress.add("units", std::string("Pa, Cauchy, tension positive"))
-      .add("max_abs_sxx", stress_extremes[0])
-      .add("max_abs_syy", stress_extremes[1])
-      .add("max_abs_sxy", stress_extremes[2])
-      .add("max_principal", stress_extremes[3])
-      .add("min_principal", stress_extremes[4]);
+    stress.add("units", std::string("Pa, Cauchy, tension positive"));
+    // zeros before the first output (a failed first solve)
+    const auto          components = tensor_components<dim>();
+    std::vector<double> extremes   = stress_extremes;
+    extremes.resize(components.size() + 2, 0.);
+    for (unsigned int k = 0; k < components.size(); ++k)
+      stress.add("max_abs_s" + components[k].first, extremes[k]);
+    stress.add("max_principal", extremes[components.size()])
+      .add("min_principal", extremes[components.size() + 1]);
     const double wall_time = this->wall_time();
     JsonObject   summary   = summary_head();
     summary
@@ -276,7 +340,10 @@ namespace tmfdem
            std::string(mechanics.idealisation ==
                            MechanicsParameters::Idealisation::plane_stress ?
                          "plane stress" :
-                         "plane strain"))
+                       mechanics.idealisation ==
+                           MechanicsParameters::Idealisation::plane_strain ?
+                         "plane strain" :
+                         "3D"))
       .add("strain_measure",
            std::string(mechanics.strain_measure ==
                            MechanicsParameters::StrainMeasure::small ?
@@ -303,4 +370,6 @@ namespace tmfdem
                             summary.str() + "\n");
   }
 
+  template class ThermoelasticSolver<2>;
+  template class ThermoelasticSolver<3>;
 } // namespace tmfdem

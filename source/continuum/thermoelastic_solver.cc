@@ -34,72 +34,87 @@ namespace tmfdem
   } // namespace
 
   // ------------------------------------------------------------ set up
-  ThermoelasticSolver::ThermoelasticSolver(const Parameters &parameters,
-                                           MPI_Comm          communicator)
-    : ContinuumModel<2>(parameters, communicator)
+  template <int dim>
+  ThermoelasticSolver<dim>::ThermoelasticSolver(const Parameters &parameters,
+                                                MPI_Comm          communicator)
+    : ContinuumModel<dim>(parameters, communicator)
     , wall_start(std::chrono::steady_clock::now())
   {
     for (const auto &properties : parameters.materials.materials)
       materials.emplace_back(properties, parameters.mechanics);
+    parameters.mechanics.check_dimension(dim);
+    if (dim != 2 && parameters.mechanics.temperature_source ==
+                      MechanicsParameters::TemperatureSource::discrete_heat)
+      throw InputError(
+        "Mechanics/Temperature source = discrete heat: the discrete layer "
+        "runs in 2D; with Mesh/Dimension = 3 allowed are function and heat "
+        "solver.");
     temperature_function =
-      make_expression_function(parameters.mechanics.temperature,
-                               "Mechanics/Temperature");
-    temperature_field = [this](const Triangulation<2>::active_cell_iterator &,
-                               const std::vector<Point<2>> &,
-                               const std::vector<Point<2>> &points,
-                               std::vector<double>         &temperatures) {
-      for (unsigned int q = 0; q < points.size(); ++q)
-        temperatures[q] = temperature_function->value(points[q]);
-    };
-    const char *axes[] = {"x", "y"};
+      make_expression_function<dim>(parameters.mechanics.temperature,
+                                    "Mechanics/Temperature");
+    temperature_field =
+      [this](const typename Triangulation<dim>::active_cell_iterator &,
+             const std::vector<Point<dim>> &,
+             const std::vector<Point<dim>> &points,
+             std::vector<double>           &temperatures) {
+        for (unsigned int q = 0; q < points.size(); ++q)
+          temperatures[q] = temperature_function->value(points[q]);
+      };
+    const char *axes[] = {"x", "y", "z"};
     for (const auto &condition : parameters.mechanical_boundary.conditions)
       {
-        std::array<std::unique_ptr<FunctionParser<2>>, 2> displacement,
+        std::array<std::unique_ptr<FunctionParser<dim>>, dim> displacement,
           traction;
-        for (unsigned int d = 0; d < 2; ++d)
+        for (unsigned int d = 0; d < dim; ++d)
           {
             displacement[d] =
-              make_expression_function(condition.displacement[d],
-                                       condition.name + "/Displacement " +
-                                         axes[d]);
+              make_expression_function<dim>(condition.displacement[d],
+                                            condition.name + "/Displacement " +
+                                              axes[d]);
             traction[d] =
-              make_expression_function(condition.traction[d],
-                                       condition.name + "/Traction " + axes[d]);
+              make_expression_function<dim>(condition.traction[d],
+                                            condition.name + "/Traction " +
+                                              axes[d]);
           }
         displacement_functions.push_back(std::move(displacement));
         traction_functions.push_back(std::move(traction));
       }
   }
 
-  ThermoelasticSolver::~ThermoelasticSolver()
+  template <int dim>
+  ThermoelasticSolver<dim>::~ThermoelasticSolver()
   {
     mesh_change_connection.disconnect();
   }
 
+  template <int dim>
   double
-  ThermoelasticSolver::wall_time() const
+  ThermoelasticSolver<dim>::wall_time() const
   {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() -
                                          wall_start)
       .count();
   }
 
+  template <int dim>
   const TrilinosWrappers::MPI::Vector &
-  ThermoelasticSolver::get_displacement() const
+  ThermoelasticSolver<dim>::get_displacement() const
   {
     return solution;
   }
 
+  template <int dim>
   void
-  ThermoelasticSolver::set_temperature(const TemperatureField &field)
+  ThermoelasticSolver<dim>::set_temperature(const TemperatureField &field)
   {
     temperature_field = field;
   }
 
+  template <int dim>
   void
-  ThermoelasticSolver::set_temperature(
-    const DoFHandler<2>                 &temperature_dofs,
-    const Mapping<2>                    &temperature_mapping,
+  ThermoelasticSolver<dim>::set_temperature(
+    const DoFHandler<dim>               &temperature_dofs,
+    const Mapping<dim>                  &temperature_mapping,
     const TrilinosWrappers::MPI::Vector &temperature)
   {
     // FEValues cached for the last set of unit points (the quadrature
@@ -107,29 +122,29 @@ namespace tmfdem
     // thread: assembly and DataOut's postprocessor call this from TBB tasks
     struct Cache
     {
-      std::vector<Point<2>>        unit_points;
-      std::unique_ptr<FEValues<2>> fe_values;
+      std::vector<Point<dim>>        unit_points;
+      std::unique_ptr<FEValues<dim>> fe_values;
     };
     auto caches = std::make_shared<Threads::ThreadLocalStorage<Cache>>();
     temperature_field =
       [&temperature_dofs,
        &temperature_mapping,
        &temperature,
-       caches](const Triangulation<2>::active_cell_iterator &cell,
-               const std::vector<Point<2>>                  &unit_points,
-               const std::vector<Point<2>> &,
+       caches](const typename Triangulation<dim>::active_cell_iterator &cell,
+               const std::vector<Point<dim>> &unit_points,
+               const std::vector<Point<dim>> &,
                std::vector<double> &temperatures) {
         Cache &cache = caches->get();
         if (!cache.fe_values || cache.unit_points != unit_points)
           {
             cache.unit_points = unit_points;
             cache.fe_values =
-              std::make_unique<FEValues<2>>(temperature_mapping,
-                                            temperature_dofs.get_fe(),
-                                            Quadrature<2>(unit_points),
-                                            update_values);
+              std::make_unique<FEValues<dim>>(temperature_mapping,
+                                              temperature_dofs.get_fe(),
+                                              Quadrature<dim>(unit_points),
+                                              update_values);
           }
-        const DoFHandler<2>::active_cell_iterator temperature_cell(
+        const typename DoFHandler<dim>::active_cell_iterator temperature_cell(
           &cell->get_triangulation(),
           cell->level(),
           cell->index(),
@@ -139,19 +154,21 @@ namespace tmfdem
       };
   }
 
+  template <int dim>
   std::vector<double>
-  ThermoelasticSolver::temperatures_at(
-    const Triangulation<2>::active_cell_iterator &cell,
-    const std::vector<Point<2>>                  &unit_points,
-    const std::vector<Point<2>>                  &points) const
+  ThermoelasticSolver<dim>::temperatures_at(
+    const typename Triangulation<dim>::active_cell_iterator &cell,
+    const std::vector<Point<dim>>                           &unit_points,
+    const std::vector<Point<dim>>                           &points) const
   {
     std::vector<double> temperatures(points.size());
     temperature_field(cell, unit_points, points, temperatures);
     return temperatures;
   }
 
+  template <int dim>
   void
-  ThermoelasticSolver::check_boundary_conditions() const
+  ThermoelasticSolver<dim>::check_boundary_conditions() const
   {
     for (const auto &condition : parameters.mechanical_boundary.conditions)
       {
@@ -160,16 +177,17 @@ namespace tmfdem
             condition.name +
             "/Type = velocity: prescribed velocities are for the discrete "
             "layer only; the continuum thermoelastic solver is quasi-static "
-            "and accepts fixed, roller x, roller y, displacement and "
-            "traction.");
+            "and accepts fixed, roller x, roller y, roller z (3D), "
+            "displacement and traction.");
         check_boundary_ids(condition.name, condition.boundary_ids);
       }
     check_material_ids();
     check_adaptivity();
   }
 
+  template <int dim>
   void
-  ThermoelasticSolver::setup(parallel::TriangulationBase<2> *external)
+  ThermoelasticSolver<dim>::setup(parallel::TriangulationBase<dim> *external)
   {
     if (external != nullptr)
       use_mesh(*external);
@@ -184,21 +202,33 @@ namespace tmfdem
       [this]() { mesh_changed = true; });
 
     const unsigned int degree = parameters.mechanics.degree;
-    create_fe(degree, 2);
+    create_fe(degree, dim);
     check_boundary_conditions();
     setup_dofs();
     domain_area = GridTools::volume(*triangulation, *mapping);
 
-    std::vector<std::string> fields = {"T", "ux", "uy", "sxx", "syy", "sxy"};
+    std::vector<std::string> fields =
+      dim == 2 ?
+        std::vector<std::string>{"T", "ux", "uy", "sxx", "syy", "sxy"} :
+        std::vector<std::string>{"T",
+                                 "ux",
+                                 "uy",
+                                 "uz",
+                                 "sxx",
+                                 "syy",
+                                 "szz",
+                                 "sxy",
+                                 "syz",
+                                 "sxz"};
     if (parameters.mechanics.polar_frame)
       {
         fields.push_back("srr");
         fields.push_back("stt");
       }
-    monitors = std::make_unique<Monitors<2>>(parameters.monitors,
-                                             parameters.output.directory,
-                                             fields,
-                                             communicator);
+    monitors = std::make_unique<Monitors<dim>>(parameters.monitors,
+                                               parameters.output.directory,
+                                               fields,
+                                               communicator);
     monitors->check_points(*mapping, *dof_handler);
     open_solution_series();
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -207,8 +237,9 @@ namespace tmfdem
                 << " displacement dofs (degree " << degree << ")" << std::endl;
   }
 
+  template <int dim>
   void
-  ThermoelasticSolver::setup_dofs()
+  ThermoelasticSolver<dim>::setup_dofs()
   {
     distribute_dofs();
     hanging_node_constraints.clear();
@@ -230,20 +261,22 @@ namespace tmfdem
     mesh_changed = false;
   }
 
+  template <int dim>
   void
-  ThermoelasticSolver::find_pinned_dofs()
+  ThermoelasticSolver<dim>::find_pinned_dofs()
   {
     pinned_dofs.clear();
     const unsigned int dofs_per_vertex = fe->n_dofs_per_vertex();
     std::vector<types::global_dof_index> cell_dofs(fe->n_dofs_per_cell());
     for (const auto &point : parameters.mechanics.pinned_points)
       {
-        double found = 0.;
+        double           found = 0.;
+        const Point<dim> location =
+          MeshParameters::in_dimension<dim>(point.location);
         for (const auto &cell : dof_handler->active_cell_iterators())
           if (!cell->is_artificial())
             for (const auto v : cell->vertex_indices())
-              if (cell->vertex(v).distance(point.location) <
-                  1e-6 * cell->diameter())
+              if (cell->vertex(v).distance(location) < 1e-6 * cell->diameter())
                 {
                   found = 1.;
                   cell->get_dof_indices(cell_dofs);
@@ -253,7 +286,8 @@ namespace tmfdem
                       const unsigned int component =
                         fe->system_to_component_index(local).first;
                       if ((component == 0 && point.fix_x) ||
-                          (component == 1 && point.fix_y))
+                          (component == 1 && point.fix_y) ||
+                          (component == 2 && point.fix_z))
                         pinned_dofs.push_back(cell_dofs[local]);
                     }
                 }
@@ -269,8 +303,9 @@ namespace tmfdem
   }
 
   // ------------------------------------------------------------ AMR
+  template <int dim>
   void
-  ThermoelasticSolver::adapt_mesh()
+  ThermoelasticSolver<dim>::adapt_mesh()
   {
     TrilinosWrappers::MPI::Vector distributed;
     refine_mesh_by_kelly(
@@ -281,8 +316,9 @@ namespace tmfdem
     solution = distributed;
   }
 
+  template <int dim>
   void
-  ThermoelasticSolver::follow_mesh_change()
+  ThermoelasticSolver<dim>::follow_mesh_change()
   {
     if (!mesh_changed)
       return;
@@ -292,8 +328,9 @@ namespace tmfdem
   }
 
   // ------------------------------------------------------------ drivers
+  template <int dim>
   void
-  ThermoelasticSolver::check_initial_conditions() const
+  ThermoelasticSolver<dim>::check_initial_conditions() const
   {
     if (parameters.initial.stress_free)
       throw InputError(
@@ -303,8 +340,9 @@ namespace tmfdem
         "instead).");
   }
 
+  template <int dim>
   void
-  ThermoelasticSolver::check_input()
+  ThermoelasticSolver<dim>::check_input()
   {
     check_initial_conditions();
     // Temperature source = heat solver: coupling::ContinuumThermomechanics
@@ -317,23 +355,26 @@ namespace tmfdem
           throw InputError(
             "Adaptive refinement/Enable = true: Mechanics/Temperature "
             "source = discrete heat keeps the mesh; allowed is false.");
-        create_temperature_field_source("discrete heat",
-                                        parameters,
-                                        *triangulation,
-                                        communicator);
+        if constexpr (dim == 2)
+          create_temperature_field_source("discrete heat",
+                                          parameters,
+                                          *triangulation,
+                                          communicator);
       }
   }
 
+  template <int dim>
   void
-  ThermoelasticSolver::run()
+  ThermoelasticSolver<dim>::run()
   {
     refuse_resume();
     run_with_temperature_function();
     report_done();
   }
 
+  template <int dim>
   void
-  ThermoelasticSolver::report_done() const
+  ThermoelasticSolver<dim>::report_done() const
   {
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       std::cout << "done: " << solves << " solves, " << total_newton_iterations
@@ -343,22 +384,24 @@ namespace tmfdem
                 << wall_time() << " s wall" << std::endl;
   }
 
+  template <int dim>
   void
-  ThermoelasticSolver::run_with_temperature_function()
+  ThermoelasticSolver<dim>::run_with_temperature_function()
   {
     setup();
     // Temperature source = discrete heat: the discrete layer's heat on this
     // mesh, advanced to the time of every solve
     std::unique_ptr<TemperatureFieldSource> field_source;
-    if (parameters.mechanics.temperature_source ==
-        MechanicsParameters::TemperatureSource::discrete_heat)
-      {
-        field_source = create_temperature_field_source("discrete heat",
-                                                       parameters,
-                                                       *triangulation,
-                                                       communicator);
-        set_temperature(field_source->field());
-      }
+    if constexpr (dim == 2)
+      if (parameters.mechanics.temperature_source ==
+          MechanicsParameters::TemperatureSource::discrete_heat)
+        {
+          field_source = create_temperature_field_source("discrete heat",
+                                                         parameters,
+                                                         *triangulation,
+                                                         communicator);
+          set_temperature(field_source->field());
+        }
     const auto solve_at = [&](const double time) {
       if (field_source)
         field_source->advance_to(time);
@@ -424,4 +467,7 @@ namespace tmfdem
           });
         }
   }
+
+  template class ThermoelasticSolver<2>;
+  template class ThermoelasticSolver<3>;
 } // namespace tmfdem

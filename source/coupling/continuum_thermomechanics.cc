@@ -15,9 +15,10 @@ namespace tmfdem
       // heat is ThermoelasticSolver alone, from the heat solver this loop
       const bool registered = register_simulation(
         "continuum thermoelastic",
-        "quasi-static thermal stress with deal.II: small or finite strain, "
-        "plane stress or plane strain, temperature from a function or the "
-        "continuum heat solver (Newton, AMR on quadrilaterals, MPI)",
+        "quasi-static thermal stress with deal.II in 2D or 3D: small or "
+        "finite strain, plane stress, plane strain or 3D, temperature from a "
+        "function or the continuum heat solver (Newton, AMR on "
+        "quadrilaterals and hexahedra, MPI)",
         {{"Mesh",
           "Materials",
           "Initial conditions",
@@ -45,13 +46,25 @@ namespace tmfdem
            }}}},
         [](const Parameters &parameters,
            MPI_Comm          communicator) -> std::unique_ptr<Simulation> {
-          if (parameters.mechanics.temperature_source ==
-              MechanicsParameters::TemperatureSource::heat_solver)
-            return std::make_unique<ContinuumThermomechanics>(parameters,
+          const bool from_heat_solver =
+            parameters.mechanics.temperature_source ==
+            MechanicsParameters::TemperatureSource::heat_solver;
+          if (parameters.mesh.dimension == 3)
+            {
+              if (from_heat_solver)
+                return std::make_unique<ContinuumThermomechanics<3>>(
+                  parameters,
+                  communicator);
+              return std::make_unique<ThermoelasticSolver<3>>(parameters,
                                                               communicator);
-          return std::make_unique<ThermoelasticSolver>(parameters,
-                                                       communicator);
-        });
+            }
+          if (from_heat_solver)
+            return std::make_unique<ContinuumThermomechanics<2>>(parameters,
+                                                                 communicator);
+          return std::make_unique<ThermoelasticSolver<2>>(parameters,
+                                                          communicator);
+        },
+        {2, 3});
 
       /** The heat solver's parameters: outputs in <directory>/heat. */
       Parameters
@@ -64,25 +77,28 @@ namespace tmfdem
       }
     } // namespace
 
-    ContinuumThermomechanics::ContinuumThermomechanics(
+    template <int dim>
+    ContinuumThermomechanics<dim>::ContinuumThermomechanics(
       const Parameters &parameters,
       MPI_Comm          communicator)
       : parameters(parameters)
       , communicator(communicator)
-      , heat(std::make_unique<HeatSolver<2>>(heat_parameters(parameters),
-                                             communicator))
+      , heat(std::make_unique<HeatSolver<dim>>(heat_parameters(parameters),
+                                               communicator))
       , mechanics(
-          std::make_unique<ThermoelasticSolver>(parameters, communicator))
+          std::make_unique<ThermoelasticSolver<dim>>(parameters, communicator))
     {}
 
-    ContinuumThermomechanics::~ContinuumThermomechanics()
+    template <int dim>
+    ContinuumThermomechanics<dim>::~ContinuumThermomechanics()
     {
       // the mechanics' DoFs live on the heat solver's mesh
       mechanics.reset();
     }
 
+    template <int dim>
     void
-    ContinuumThermomechanics::check_input()
+    ContinuumThermomechanics<dim>::check_input()
     {
       mechanics->check_initial_conditions();
       heat->check_input();
@@ -91,8 +107,9 @@ namespace tmfdem
       mechanics_set_up = true;
     }
 
+    template <int dim>
     void
-    ContinuumThermomechanics::run()
+    ContinuumThermomechanics<dim>::run()
     {
       mechanics->refuse_resume();
       create_output_folder(parameters.output.directory, communicator);
@@ -104,8 +121,9 @@ namespace tmfdem
       mechanics->report_done();
     }
 
+    template <int dim>
     void
-    ContinuumThermomechanics::solve_mechanics(const double time)
+    ContinuumThermomechanics<dim>::solve_mechanics(const double time)
     {
       if (!mechanics_set_up)
         {
@@ -120,15 +138,17 @@ namespace tmfdem
       mechanics->solve(time);
     }
 
+    template <int dim>
     void
-    ContinuumThermomechanics::write_outputs(const double time)
+    ContinuumThermomechanics<dim>::write_outputs(const double time)
     {
       mechanics->write_output(time);
       heat->write_output(time);
     }
 
+    template <int dim>
     void
-    ContinuumThermomechanics::run_steady()
+    ContinuumThermomechanics<dim>::run_steady()
     {
       ProgressReporter progress(parameters.output.progress_interval,
                                 0.,
@@ -145,8 +165,9 @@ namespace tmfdem
     // mechanics takes the temperature and is solved; at output times both
     // write. With Coupling interval = 0 the coupling times are the output
     // times.
+    template <int dim>
     void
-    ContinuumThermomechanics::run_transient()
+    ContinuumThermomechanics<dim>::run_transient()
     {
       const double start = parameters.time.start_time,
                    end   = parameters.time.end_time;
@@ -199,5 +220,8 @@ namespace tmfdem
           }
       heat->write_summary(heat->current_time(), progress.elapsed(), true);
     }
+
+    template class ContinuumThermomechanics<2>;
+    template class ContinuumThermomechanics<3>;
   } // namespace coupling
 } // namespace tmfdem

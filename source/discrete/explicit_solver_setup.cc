@@ -30,8 +30,9 @@ namespace tmfdem
         return;
 
       const auto &dm = parameters.get<DiscreteMechanicsParameters>();
-      idealisation   = parameters.mechanics.idealisation; // one enum
-      softening_law  = dm.softening_law;
+      parameters.mechanics.check_dimension(2);
+      idealisation  = parameters.mechanics.idealisation; // one enum
+      softening_law = dm.softening_law;
 
       build_discrete_mesh(parameters,
                           communicator,

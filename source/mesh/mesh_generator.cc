@@ -632,9 +632,13 @@ namespace tmfdem
             std::vector<CellData<2>> cells;
             for (unsigned int ring = 0; ring <= n_rings; ++ring)
               {
-                // geometric grading would suit log profiles, but uniform
-                // spacing keeps this a plain structured mesh
-                const double r = a + (b - a) * ring / n_rings;
+                // uniform, or graded towards the inner circle
+                const double p = parameters.radial_grading;
+                const double r =
+                  p == 1. ?
+                    a + (b - a) * ring / n_rings :
+                    a + (b - a) *
+                          std::pow(static_cast<double>(ring) / n_rings, p);
                 for (unsigned int k = 0; k < n_around; ++k)
                   {
                     const double phi = 2. * numbers::PI * k / n_around;
@@ -739,7 +743,9 @@ namespace tmfdem
       parameters.source == MeshParameters::Source::annulus ||
       parameters.source == MeshParameters::Source::disc ||
       parameters.source == MeshParameters::Source::ball ||
-      parameters.source == MeshParameters::Source::spherical_shell;
+      parameters.source == MeshParameters::Source::spherical_shell ||
+      parameters.source == MeshParameters::Source::cylinder ||
+      parameters.source == MeshParameters::Source::hollow_cylinder;
     report =
       check_mesh(coarse,
                  source,

@@ -1,10 +1,11 @@
 /**
  * @file
- * The 3D coarse meshes of Mesh/Dimension = 3: a box, a ball and a spherical
- * shell of hexahedra (or tetrahedra split from them), and gmsh .msh files
- * with tetrahedra or hexahedra.
+ * The 3D coarse meshes of Mesh/Dimension = 3: a box, a ball, a spherical
+ * shell, a cylinder and a hollow cylinder of hexahedra (or tetrahedra split
+ * from them), and gmsh .msh files with tetrahedra or hexahedra.
  */
 #include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
 
 #include <algorithm>
@@ -16,8 +17,45 @@ namespace tmfdem
 {
   namespace
   {
-    /** Manifold id of the cells and faces that follow a sphere. */
+    /** Manifold id of the cells and faces that follow a sphere (or the
+     *  cylinders about the axis of a cylinder). */
     constexpr types::manifold_id sphere_manifold_id = 1;
+
+    bool
+    is_cylinder(const MeshParameters &parameters)
+    {
+      return parameters.source == MeshParameters::Source::cylinder ||
+             parameters.source == MeshParameters::Source::hollow_cylinder;
+    }
+
+    /**
+     * The cylinder or hollow cylinder of @p parameters as hexahedra: the 2D
+     * disc or annulus of the same radii and Element size (mesh_generator.cc)
+     * extruded along z in layers no thicker than the Element size, centred
+     * at Center.
+     */
+    void
+    create_cylinder(const MeshParameters &parameters,
+                    const std::string    &work_folder,
+                    Triangulation<3>     &hexahedra,
+                    MPI_Comm              communicator)
+    {
+      MeshParameters section = parameters;
+      section.dimension      = 2;
+      section.element_type   = MeshParameters::ElementType::quadrilaterals;
+      section.source = parameters.source == MeshParameters::Source::cylinder ?
+                         MeshParameters::Source::disc :
+                         MeshParameters::Source::annulus;
+      Triangulation<2> disc;
+      create_coarse_mesh(section, work_folder, disc, communicator);
+      const double       h = parameters.element_size, L = parameters.length;
+      const unsigned int n_layers =
+        std::max(1u, static_cast<unsigned int>(std::ceil(L / h - 1e-9)));
+      GridGenerator::extrude_triangulation(disc, n_layers + 1, L, hexahedra);
+      Tensor<1, 3> shift;
+      shift[2] = parameters.center[2] - 0.5 * L;
+      GridTools::shift(shift, hexahedra);
+    }
 
     /** Longest edge of the active cells [m]. */
     double
@@ -89,6 +127,26 @@ namespace tmfdem
                                                  parameters.outer_radius) ?
                                         0 :
                                         1);
+              else if (is_cylinder(parameters))
+                {
+                  // ends by z; mantles by the distance from the axis
+                  const double z_bottom =
+                    parameters.center[2] - 0.5 * parameters.length;
+                  const double tolerance = 1e-6 * parameters.length;
+                  const double r = std::hypot(c[0] - parameters.center[0],
+                                              c[1] - parameters.center[1]);
+                  if (std::abs(c[2] - z_bottom) < tolerance)
+                    face->set_boundary_id(2);
+                  else if (std::abs(c[2] - z_bottom - parameters.length) <
+                           tolerance)
+                    face->set_boundary_id(3);
+                  else if (parameters.source == Source::hollow_cylinder &&
+                           r < 0.5 * (parameters.inner_radius +
+                                      parameters.outer_radius))
+                    face->set_boundary_id(0);
+                  else
+                    face->set_boundary_id(1);
+                }
               else
                 face->set_boundary_id(0);
             }
@@ -110,6 +168,13 @@ namespace tmfdem
         case Source::spherical_shell:
           return 4. / 3. * numbers::PI *
                  (std::pow(p.outer_radius, 3) - std::pow(p.inner_radius, 3));
+        case Source::cylinder:
+          return numbers::PI * p.outer_radius * p.outer_radius * p.length;
+        case Source::hollow_cylinder:
+          return numbers::PI *
+                 (p.outer_radius * p.outer_radius -
+                  p.inner_radius * p.inner_radius) *
+                 p.length;
         default:
           return p.expected_area;
       }
@@ -119,10 +184,9 @@ namespace tmfdem
   create_coarse_mesh(const MeshParameters &parameters,
                      const std::string    &work_folder,
                      Triangulation<3>     &triangulation,
-                     MPI_Comm /*communicator*/)
+                     MPI_Comm              communicator)
   {
     using Source = MeshParameters::Source;
-    (void)work_folder;
     if (parameters.source == Source::file)
       {
         const std::string &name = parameters.file_name;
@@ -167,6 +231,8 @@ namespace tmfdem
                                                   parameters.lower_left,
                                                   parameters.upper_right);
       }
+    else if (is_cylinder(parameters))
+      create_cylinder(parameters, work_folder, hexahedra, communicator);
     else
       {
         if (parameters.source == Source::ball)
@@ -179,6 +245,24 @@ namespace tmfdem
                                      parameters.inner_radius,
                                      parameters.outer_radius);
         refine_to_size_and_flatten(hexahedra, h);
+        if (parameters.source == Source::spherical_shell &&
+            parameters.radial_grading != 1.)
+          {
+            // the uniform layers moved to r = a + (b - a) xi^p along their
+            // rays from the centre
+            const double a = parameters.inner_radius,
+                         b = parameters.outer_radius,
+                         p = parameters.radial_grading;
+            GridTools::transform(
+              [&](const Point<3> &x) {
+                const Tensor<1, 3> ray = x - parameters.center;
+                const double       r   = ray.norm();
+                const double       xi  = std::clamp((r - a) / (b - a), 0., 1.);
+                return Point<3>(parameters.center +
+                                (a + (b - a) * std::pow(xi, p)) / r * ray);
+              },
+              hexahedra);
+          }
       }
     set_boundary_ids(parameters, hexahedra);
 
@@ -208,6 +292,28 @@ namespace tmfdem
             triangulation.set_all_manifold_ids(sphere_manifold_id);
             triangulation.set_manifold(sphere_manifold_id,
                                        SphericalManifold<3>(parameters.center));
+          }
+        else if (parameters.source == Source::hollow_cylinder)
+          {
+            // every cell follows the cylinders about the axis (as the 2D
+            // annulus follows its circles)
+            triangulation.set_all_manifold_ids(sphere_manifold_id);
+            triangulation.set_manifold(
+              sphere_manifold_id,
+              CylindricalManifold<3>(Tensor<1, 3>({0., 0., 1.}),
+                                     parameters.center));
+          }
+        else if (parameters.source == Source::cylinder)
+          {
+            // the mantle follows the cylinder (as the 2D disc's rim)
+            for (const auto &cell : triangulation.active_cell_iterators())
+              for (const auto &face : cell->face_iterators())
+                if (face->at_boundary() && face->boundary_id() == 1)
+                  face->set_all_manifold_ids(sphere_manifold_id);
+            triangulation.set_manifold(
+              sphere_manifold_id,
+              CylindricalManifold<3>(Tensor<1, 3>({0., 0., 1.}),
+                                     parameters.center));
           }
       }
     for (const auto &cell : triangulation.active_cell_iterators())

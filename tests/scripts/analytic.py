@@ -223,6 +223,29 @@ def spherical_shell_temperature(r, a, b, t_a, t_b):
     return t_b + (t_a - t_b) * (1 / r - 1 / b) / (1 / a - 1 / b)
 
 
+def spherical_shell_stress(r, E, nu, alpha, a, b, t_a, t_b, t_ref=0.0):
+    """Thermal stresses in a thick-walled sphere a < r < b with free
+    surfaces under the steady radial temperature of
+    spherical_shell_temperature (Timoshenko & Goodier, Sec. 152), TENSION
+    POSITIVE: (sigma_r, sigma_t) [Pa], sigma_t the hoop stress (both
+    tangential directions), with I(r) = int_a^r (T - t_ref) r^2 dr:
+    sigma_r = 2 alpha E / (1 - nu) [(r^3 - a^3) I(b) / ((b^3 - a^3) r^3) - I(r) / r^3],
+    sigma_t = alpha E / (1 - nu) [(2 r^3 + a^3) I(b) / ((b^3 - a^3) r^3) + I(r) / r^3 - (T - t_ref)].
+    T = c0 + c1 / r gives I(r) = c0 (r^3 - a^3) / 3 + c1 (r^2 - a^2) / 2."""
+    r = np.asarray(r, dtype=float)
+    c1 = (t_a - t_b) / (1 / a - 1 / b)
+    c0 = t_b - c1 / b - t_ref
+
+    def integral(x):
+        return c0 * (x**3 - a**3) / 3 + c1 * (x**2 - a**2) / 2
+
+    T = c0 + c1 / r
+    k = alpha * E / (1 - nu)
+    s_r = 2 * k * ((r**3 - a**3) * integral(b) / ((b**3 - a**3) * r**3) - integral(r) / r**3)
+    s_t = k * ((2 * r**3 + a**3) * integral(b) / ((b**3 - a**3) * r**3) + integral(r) / r**3 - T)
+    return s_r, s_t
+
+
 def spherical_shell_heat_flow(k, a, b, t_a, t_b):
     """Steady heat flow from r = a to r = b: 4 pi k (T_a - T_b) / (1/a - 1/b) [W]."""
     return 4 * np.pi * k * (t_a - t_b) / (1 / a - 1 / b)

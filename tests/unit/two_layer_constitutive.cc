@@ -68,9 +68,9 @@ namespace
               const constitutive::Idealisation idealisation,
               const Case                      &k)
   {
-    const ThermoelasticMaterial continuum(properties,
-                                          finite_strain(idealisation));
-    Tensor<2, 2>                grad_u;
+    const ThermoelasticMaterial<2> continuum(properties,
+                                             finite_strain(idealisation));
+    Tensor<2, 2>                   grad_u;
     grad_u[0][0] = k.f00 - 1.;
     grad_u[0][1] = k.f01;
     grad_u[1][0] = k.f10;
@@ -137,9 +137,9 @@ TEST(TwoLayerConstitutive, SameStressForSameDeformationAndTemperature)
   double worst = 0.; // relative to the stress scale
   for (const auto idealisation : idealisations)
     {
-      const ThermoelasticMaterial   continuum(properties,
-                                            finite_strain(idealisation));
-      const discrete::LameConstants lame =
+      const ThermoelasticMaterial<2> continuum(properties,
+                                               finite_strain(idealisation));
+      const discrete::LameConstants  lame =
         discrete::lame_constants(properties.youngs_modulus,
                                  properties.poisson_ratio,
                                  idealisation);

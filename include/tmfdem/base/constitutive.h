@@ -34,7 +34,8 @@ namespace tmfdem
     enum class Idealisation
     {
       plane_stress, ///< sigma_zz = 0
-      plane_strain  ///< eps_zz = 0
+      plane_strain, ///< eps_zz = 0
+      solid_3d      ///< a 3D model: no idealisation, the 3D constants
     };
 
     /** Elastic constants of the in-plane law [Pa]. */
@@ -53,9 +54,9 @@ namespace tmfdem
     /**
      * Lame constants of the in-plane law for @p idealisation, from Young's
      * modulus @p youngs_modulus [Pa] and Poisson's ratio @p poisson_ratio
-     * [-]: mu = E / (2 (1 + nu)) in both; plane strain takes lambda = E nu /
-     * ((1 + nu)(1 - 2 nu)), plane stress the reduced lambda* = E nu / (1 -
-     * nu^2).
+     * [-]: mu = E / (2 (1 + nu)) in all; plane strain and a 3D solid take
+     * lambda = E nu / ((1 + nu)(1 - 2 nu)), plane stress the reduced
+     * lambda* = E nu / (1 - nu^2).
      */
     inline LameConstants
     lame_constants(const double       youngs_modulus,
@@ -64,7 +65,7 @@ namespace tmfdem
     {
       LameConstants c;
       c.mu = youngs_modulus / (2. * (1. + poisson_ratio));
-      if (idealisation == Idealisation::plane_strain)
+      if (idealisation != Idealisation::plane_stress)
         c.lambda = youngs_modulus * poisson_ratio /
                    ((1. + poisson_ratio) * (1. - 2. * poisson_ratio));
       else
@@ -76,9 +77,9 @@ namespace tmfdem
     /**
      * In-plane thermal expansion coefficient beta [1/K] of the idealisation
      * for the (3D, isotropic) coefficient @p expansion_coefficient [1/K]:
-     * alpha in plane stress, (1 + nu) alpha in plane strain (the
-     * out-of-plane constraint eps_zz = 0 adds nu alpha dT in plane; see
-     * doc/theory.md).
+     * alpha in plane stress and in a 3D solid, (1 + nu) alpha in plane
+     * strain (the out-of-plane constraint eps_zz = 0 adds nu alpha dT in
+     * plane; see doc/theory.md).
      */
     inline double
     in_plane_expansion(const double       expansion_coefficient,
@@ -106,15 +107,61 @@ namespace tmfdem
                     delta_T;
     }
 
+    /** det A of a dim x dim matrix (rows first) [-]. */
+    template <int dim, typename Number>
+    __attribute__((always_inline)) inline Number
+    determinant(const Number (&A)[dim][dim])
+    {
+      static_assert(dim == 2 || dim == 3, "2D or 3D");
+      if constexpr (dim == 2)
+        return A[0][0] * A[1][1] - A[0][1] * A[1][0];
+      else
+        return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+               A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+               A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    }
+
     /**
      * Cauchy stress of paper Eq. 44 [Pa] on the elastic deformation gradient
-     * F_e = [fe00, fe01; fe10, fe11] [-] (F_e = F / s):
+     * @p Fe [-] (F_e = F / s, rows first), in 2D or 3D:
      * sigma = mu / J (B - I) + lambda / 2 (J - 1 / J) I with J = det F_e and
-     * B = F_e F_e^T. Reduces to 2 mu eps + lambda tr(eps) I for small strain.
-     * Lame constants @p mu, @p lambda [Pa]. @p Number is double or a vector
-     * of doubles (one element per lane, discrete/element_kernel.h): the one
-     * body of the formula for the continuum layer, the discrete layer's
-     * element loop and its vector batches.
+     * B = F_e F_e^T, written into @p sigma (symmetric, all entries set).
+     * Reduces to 2 mu eps + lambda tr(eps) I for small strain. Lame
+     * constants @p mu, @p lambda [Pa]. @p Number is double or a vector of
+     * doubles (one element per lane, discrete/element_kernel.h): the one
+     * body of the formula for the continuum layer in 2D and 3D, the
+     * discrete layer's element loop and its vector batches.
+     */
+    template <int dim, typename Number>
+    __attribute__((always_inline)) inline void
+    elastic_stress(const Number (&Fe)[dim][dim],
+                   const Number mu,
+                   const Number lambda,
+                   Number (&sigma)[dim][dim])
+    {
+      const Number J         = determinant<dim>(Fe);
+      const Number inverse_J = 1. / J;
+      const Number mu_J      = mu * inverse_J;
+      const Number vol       = 0.5 * lambda * (J - inverse_J);
+      for (int i = 0; i < dim; ++i)
+        for (int j = i; j < dim; ++j)
+          {
+            Number b_ij = Fe[i][0] * Fe[j][0];
+            for (int k = 1; k < dim; ++k)
+              b_ij = b_ij + Fe[i][k] * Fe[j][k];
+            if (i == j)
+              sigma[i][i] = mu_J * (b_ij - 1.) + vol;
+            else
+              {
+                sigma[i][j] = mu_J * b_ij;
+                sigma[j][i] = sigma[i][j];
+              }
+          }
+    }
+
+    /**
+     * The 2D stress of elastic_stress() on the components fe00, fe01, fe10,
+     * fe11 of F_e, written into @p sxx, @p syy, @p sxy [Pa].
      */
     template <typename Number>
     __attribute__((always_inline)) inline void
@@ -128,16 +175,12 @@ namespace tmfdem
                    Number      &syy,
                    Number      &sxy)
     {
-      const Number J         = fe00 * fe11 - fe01 * fe10;
-      const Number b_xx      = fe00 * fe00 + fe01 * fe01;
-      const Number b_yy      = fe10 * fe10 + fe11 * fe11;
-      const Number b_xy      = fe00 * fe10 + fe01 * fe11;
-      const Number inverse_J = 1. / J;
-      const Number mu_J      = mu * inverse_J;
-      const Number vol       = 0.5 * lambda * (J - inverse_J);
-      sxx                    = mu_J * (b_xx - 1.) + vol;
-      syy                    = mu_J * (b_yy - 1.) + vol;
-      sxy                    = mu_J * b_xy;
+      const Number Fe[2][2] = {{fe00, fe01}, {fe10, fe11}};
+      Number       sigma[2][2];
+      elastic_stress<2>(Fe, mu, lambda, sigma);
+      sxx = sigma[0][0];
+      syy = sigma[1][1];
+      sxy = sigma[0][1];
     }
 
     /** The same for doubles, as a Stress2 [Pa]. */

@@ -55,7 +55,9 @@ namespace tmfdem
       block_heap,
       box,
       ball,
-      spherical_shell
+      spherical_shell,
+      cylinder,
+      hollow_cylinder
     };
     /** Cell shape of generated meshes (files bring their own): in 3D
      *  triangles stand for tetrahedra, quadrilaterals for hexahedra. */
@@ -81,6 +83,13 @@ namespace tmfdem
     double inner_radius = 0.03;
     /** Annulus, disc, ball and spherical shell outer radius [m]. */
     double outer_radius = 0.15;
+    /** Cylinder and hollow cylinder: length along z, centred at Center
+     *  [m]. */
+    double length = 0.1;
+    /** Annulus, spherical shell and hollow cylinder: the layers of cells
+     *  lie at r = a + (b - a) xi^p, xi = k / n_layers; p = 1 uniform, p >
+     *  1 thinner layers at the inner surface [-]. */
+    double radial_grading = 1.;
     /** gmsh `.msh` file, resolved against the prm file's folder. */
     std::string file_name;
     /** Wall-clock limit of one gmsh run of a `.geo` file [s] (Gmsh time
@@ -380,10 +389,12 @@ namespace tmfdem
     /** One point whose displacement components are held at zero. */
     struct PinnedPoint
     {
-      Point<2>    location;      ///< a mesh vertex [m]
-      bool        fix_x = false; ///< u_x = 0
-      bool        fix_y = false; ///< u_y = 0
-      std::string text;          ///< as written, for messages
+      Point<3>     location;              ///< a mesh vertex [m]; z = 0 in 2D
+      bool         fix_x         = false; ///< u_x = 0
+      bool         fix_y         = false; ///< u_y = 0
+      bool         fix_z         = false; ///< u_z = 0 (3D)
+      unsigned int n_coordinates = 2;     ///< as written: x, y or x, y, z
+      std::string  text;                  ///< as written, for messages
     };
 
     Idealisation      idealisation       = Idealisation::plane_stress;
@@ -409,6 +420,10 @@ namespace tmfdem
     declare_parameters(ParameterHandler &prm);
     void
     parse_parameters(ParameterHandler &prm);
+    /** InputError unless Idealisation, Pinned points and Polar frame suit
+     *  a model of @p dimension (2 or 3). */
+    void
+    check_dimension(const unsigned int dimension) const;
   };
 
   /** One mechanical boundary condition on a set of boundary ids. */
@@ -419,6 +434,7 @@ namespace tmfdem
       fixed,
       roller_x,
       roller_y,
+      roller_z,
       displacement,
       traction,
       velocity
@@ -427,10 +443,12 @@ namespace tmfdem
     std::string                     name;
     std::vector<types::boundary_id> boundary_ids;
     Type                            type = Type::fixed;
-    /** u_x(x, y, t), u_y(x, y, t) for Type = displacement [m]. */
-    std::array<std::string, 2> displacement = {{"0", "0"}};
-    /** Nominal traction t_x, t_y (x, y, t) for Type = traction [Pa]. */
-    std::array<std::string, 2> traction = {{"0", "0"}};
+    /** u_x, u_y (, u_z) as functions of x, y (, z), t for Type =
+     *  displacement [m]. */
+    std::array<std::string, 3> displacement = {{"0", "0", "0"}};
+    /** Nominal traction t_x, t_y (, t_z) (x, y (, z), t) for Type =
+     *  traction [Pa]. */
+    std::array<std::string, 3> traction = {{"0", "0", "0"}};
     /** v_x, v_y (x, y, t) for Type = velocity (discrete layer) [m/s]. */
     std::array<std::string, 2> velocity = {{"0", "0"}};
   };
@@ -449,6 +467,10 @@ namespace tmfdem
     declare_parameters(ParameterHandler &prm);
     void
     parse_parameters(ParameterHandler &prm);
+    /** InputError for z components (roller z, Displacement z, Traction z)
+     *  in a model of @p dimension 2. */
+    void
+    check_dimension(const unsigned int dimension) const;
   };
 
   /** Subsection `Output`. */

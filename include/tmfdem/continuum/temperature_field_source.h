@@ -29,11 +29,15 @@ namespace tmfdem
    * are @p unit_points in its reference cell, at the time of the current
    * solve; written into @p temperatures (same size as the points).
    */
-  using TemperatureField =
-    std::function<void(const Triangulation<2>::active_cell_iterator &cell,
-                       const std::vector<Point<2>> &unit_points,
-                       const std::vector<Point<2>> &points,
-                       std::vector<double>         &temperatures)>;
+  template <int dim>
+  using TemperatureFieldOf = std::function<
+    void(const typename Triangulation<dim>::active_cell_iterator &cell,
+         const std::vector<Point<dim>>                           &unit_points,
+         const std::vector<Point<dim>>                           &points,
+         std::vector<double> &temperatures)>;
+
+  /** The 2D field, which the sources of other layers provide. */
+  using TemperatureField = TemperatureFieldOf<2>;
 
   /** A temperature field computed by another layer on the mesh of the
    *  thermoelastic model, advanced in time by that layer. */

@@ -1,11 +1,12 @@
 /**
  * @file
  * The continuum thermoelastic solver: quasi-static small- or finite-strain
- * thermoelasticity in 2D (plane stress or plane strain) driven by a
+ * thermoelasticity in 2D (plane stress or plane strain) and 3D driven by a
  * temperature field, one-way coupled T -> u. Total Lagrangian, Newton's
  * method with the consistent tangent and a backtracking line search, Trilinos
- * CG with algebraic multigrid, Kelly adaptive refinement on quadrilaterals,
- * MPI (p4est for quadrilaterals, a shared triangulation for triangles).
+ * CG with algebraic multigrid, Kelly adaptive refinement on quadrilaterals
+ * and hexahedra, MPI (p4est for quadrilaterals and hexahedra, a shared
+ * triangulation for triangles and tetrahedra).
  */
 #ifndef tmfdem_continuum_thermoelastic_solver_h
 #define tmfdem_continuum_thermoelastic_solver_h
@@ -42,17 +43,53 @@ namespace tmfdem
    * u in m, stresses in Pa, T in C, t in s.
    *
    * The temperature comes from `Mechanics/Temperature` (a function of x, y,
-   * t), from a HeatSolver on the same triangulation (the continuum
+   * (z,) t), from a HeatSolver on the same triangulation (the continuum
    * thermo-mechanical loop, coupling::ContinuumThermomechanics, sets it
    * before each solve), or from another layer: a TemperatureFieldSource
    * registered under the `Mechanics/Temperature source` name (the discrete
-   * layer's heat, coupling::DiscreteHeatField) or set_temperature().
+   * layer's heat, coupling::DiscreteHeatField, 2D only) or
+   * set_temperature().
    */
-  class ThermoelasticSolver : public ContinuumModel<2>
+  template <int dim>
+  class ThermoelasticSolver : public ContinuumModel<dim>
   {
+    using Base = ContinuumModel<dim>;
+
+  public:
+    using Base::refuse_resume;
+    using Base::stop_if_requested;
+
+  protected:
+    using Base::add_run_entries;
+    using Base::cell_quadrature;
+    using Base::check_adaptivity;
+    using Base::check_boundary_ids;
+    using Base::check_material_ids;
+    using Base::communicator;
+    using Base::create_fe;
+    using Base::create_mesh;
+    using Base::distribute_dofs;
+    using Base::distributed_sparsity;
+    using Base::dof_handler;
+    using Base::face_quadrature_rule;
+    using Base::fe;
+    using Base::locally_owned_dofs;
+    using Base::locally_relevant_dofs;
+    using Base::mapping;
+    using Base::mesh_report;
+    using Base::monitors;
+    using Base::open_solution_series;
+    using Base::output_schedule;
+    using Base::parameters;
+    using Base::refine_mesh_by_kelly;
+    using Base::summary_head;
+    using Base::triangulation;
+    using Base::use_mesh;
+    using Base::write_solution;
+
   public:
     /** Temperature [C] at points of a cell (temperature_field_source.h). */
-    using TemperatureField = tmfdem::TemperatureField;
+    using TemperatureField = TemperatureFieldOf<dim>;
 
     ThermoelasticSolver(const Parameters &parameters, MPI_Comm communicator);
     ~ThermoelasticSolver() override;
@@ -71,8 +108,8 @@ namespace tmfdem
      * temperature of the following solves.
      */
     void
-    set_temperature(const DoFHandler<2>                 &dof_handler,
-                    const Mapping<2>                    &mapping,
+    set_temperature(const DoFHandler<dim>               &dof_handler,
+                    const Mapping<dim>                  &mapping,
                     const TrilinosWrappers::MPI::Vector &temperature);
 
     /**
@@ -81,7 +118,7 @@ namespace tmfdem
      * boundary conditions and monitors, and checks the input.
      */
     void
-    setup(parallel::TriangulationBase<2> *triangulation = nullptr);
+    setup(parallel::TriangulationBase<dim> *triangulation = nullptr);
     /** Quasi-static solve at @p time [s]: Newton to equilibrium. Throws
      *  RunError if Newton or CG fails. */
     void
@@ -153,13 +190,14 @@ namespace tmfdem
     write_summary(const double time) const;
     /** Temperatures at arbitrary points of one cell. */
     std::vector<double>
-    temperatures_at(const Triangulation<2>::active_cell_iterator &cell,
-                    const std::vector<Point<2>>                  &unit_points,
-                    const std::vector<Point<2>>                  &points) const;
+    temperatures_at(
+      const typename Triangulation<dim>::active_cell_iterator &cell,
+      const std::vector<Point<dim>>                           &unit_points,
+      const std::vector<Point<dim>>                           &points) const;
     /** The values written to probes.csv and lines.csv at one point. */
     std::vector<double>
-    monitor_values(const DoFHandler<2>::active_cell_iterator &cell,
-                   const Point<2>                            &unit_point) const;
+    monitor_values(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                   const Point<dim> &unit_point) const;
     void
     run_with_temperature_function();
     /** Wall time since construction [s]. */
@@ -168,7 +206,7 @@ namespace tmfdem
 
     boost::signals2::connection mesh_change_connection;
     bool                        mesh_changed = false;
-    double                      domain_area  = 0.; ///< [m^2]
+    double                      domain_area  = 0.; ///< [m^dim]
 
     AffineConstraints<double>            hanging_node_constraints;
     AffineConstraints<double>            newton_constraints;   ///< increments
@@ -178,12 +216,12 @@ namespace tmfdem
     TrilinosWrappers::MPI::Vector        solution; ///< ghosted displacement
     std::vector<types::global_dof_index> pinned_dofs;
 
-    std::vector<ThermoelasticMaterial> materials;
-    std::unique_ptr<FunctionParser<2>> temperature_function;
-    TemperatureField                   temperature_field;
-    std::vector<std::vector<double>>   quadrature_temperatures;
-    /** Per mechanical condition: x and y functions of its values. */
-    std::vector<std::array<std::unique_ptr<FunctionParser<2>>, 2>>
+    std::vector<ThermoelasticMaterial<dim>> materials;
+    std::unique_ptr<FunctionParser<dim>>    temperature_function;
+    TemperatureField                        temperature_field;
+    std::vector<std::vector<double>>        quadrature_temperatures;
+    /** Per mechanical condition: the functions of its components. */
+    std::vector<std::array<std::unique_ptr<FunctionParser<dim>>, dim>>
       displacement_functions, traction_functions;
 
     std::vector<NewtonRecord>             newton_history;
@@ -191,8 +229,10 @@ namespace tmfdem
     unsigned long                         total_newton_iterations = 0;
     unsigned long                         total_linear_iterations = 0;
     std::chrono::steady_clock::time_point wall_start;
-    /** Extremes of the Cauchy stress at the last output [Pa]. */
-    std::array<double, 5> stress_extremes = {{0., 0., 0., 0., 0.}};
+    /** Extremes of the Cauchy stress at the last output [Pa]: the largest
+     *  |sigma_ij| of the dim (dim + 1) / 2 components (xx, yy, (zz,) xy (,
+     *  yz, xz)), the largest and the smallest principal stress. */
+    std::vector<double> stress_extremes;
   };
 } // namespace tmfdem
 

@@ -19,6 +19,7 @@ namespace tmfdem
 {
   template <int dim>
   class HeatSolver;
+  template <int dim>
   class ThermoelasticSolver;
 
   namespace coupling
@@ -26,8 +27,10 @@ namespace tmfdem
     /**
      * Owns the heat solver (its outputs in <Output/Directory>/heat) and the
      * thermoelastic solver (outputs in <Output/Directory>) on the heat
-     * solver's triangulation, and runs the loop between them.
+     * solver's triangulation, and runs the loop between them, in @p dim
+     * dimensions.
      */
+    template <int dim>
     class ContinuumThermomechanics : public Simulation
     {
     public:
@@ -55,11 +58,11 @@ namespace tmfdem
       void
       write_outputs(const double time);
 
-      const Parameters                     parameters;
-      MPI_Comm                             communicator;
-      std::unique_ptr<HeatSolver<2>>       heat;
-      std::unique_ptr<ThermoelasticSolver> mechanics; ///< on heat's mesh
-      bool                                 mechanics_set_up = false;
+      const Parameters                          parameters;
+      MPI_Comm                                  communicator;
+      std::unique_ptr<HeatSolver<dim>>          heat;
+      std::unique_ptr<ThermoelasticSolver<dim>> mechanics; ///< on heat's mesh
+      bool                                      mechanics_set_up = false;
     };
   } // namespace coupling
 } // namespace tmfdem
