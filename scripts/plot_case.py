@@ -26,6 +26,19 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 sys.dont_write_bytecode = True  # keep tests/scripts free of __pycache__
 import analytic  # noqa: E402
 
+def shell_stress(p):
+    """(sigma_r, sigma_t) of prm/spherical_shell_stress.prm at points p."""
+    return analytic.spherical_shell_stress(np.linalg.norm(p, axis=1), 20e9, 0.2, 1.8e-5,
+                                           0.03, 0.15, 100.0, 0.0)
+
+
+def cylinder_plane_strain(p):
+    """(sigma_r, sigma_theta, sigma_zz) of the 5.4 cylinder in plane strain at points p."""
+    r = np.linalg.norm(p, axis=1)
+    s_r, s_t = analytic.cylinder_stress(r)
+    return s_r, s_t, 0.2 * (s_r + s_t) - 20e9 * 1.8e-5 * analytic.cylinder_temperature(r)
+
+
 # case -> line in lines.csv, reference T(x, y, t), abscissa s(x, y) and its label,
 # steady (plot one curve, no "t = " labels) or transient (skip t = 0, the initial state)
 CASES = {
@@ -87,15 +100,9 @@ CASES = {
     "spherical_shell_stress": dict(
         dim=3,
         line="radial",
-        fields=[("sxx", lambda p, _, t: analytic.spherical_shell_stress(
-                    np.linalg.norm(p, axis=1), 20e9, 0.2, 1.8e-5, 0.03, 0.15, 100.0, 0.0)[0],
-                 "sigma_r (sxx on the x axis)", 1e-6),
-                ("syy", lambda p, _, t: analytic.spherical_shell_stress(
-                    np.linalg.norm(p, axis=1), 20e9, 0.2, 1.8e-5, 0.03, 0.15, 100.0, 0.0)[1],
-                 "sigma_t (syy)", 1e-6),
-                ("szz", lambda p, _, t: analytic.spherical_shell_stress(
-                    np.linalg.norm(p, axis=1), 20e9, 0.2, 1.8e-5, 0.03, 0.15, 100.0, 0.0)[1],
-                 "sigma_t (szz)", 1e-6)],
+        fields=[("sxx", lambda p, _, t: shell_stress(p)[0], "sigma_r (sxx on the x axis)", 1e-6),
+                ("syy", lambda p, _, t: shell_stress(p)[1], "sigma_t (syy)", 1e-6),
+                ("szz", lambda p, _, t: shell_stress(p)[1], "sigma_t (szz)", 1e-6)],
         unit="MPa",
         abscissa=lambda p, _: np.linalg.norm(p, axis=1), xlabel="r [m]",
         steady=True,
@@ -103,13 +110,9 @@ CASES = {
     "thick_cylinder-3d": dict(
         dim=3,
         line="radial",
-        fields=[("sxx", lambda p, _, t: analytic.cylinder_stress(np.linalg.norm(p, axis=1))[0],
-                 "sigma_r (sxx)", 1e-6),
-                ("syy", lambda p, _, t: analytic.cylinder_stress(np.linalg.norm(p, axis=1))[1],
-                 "sigma_theta (syy)", 1e-6),
-                ("szz", lambda p, _, t: 0.2 * sum(analytic.cylinder_stress(np.linalg.norm(p, axis=1)))
-                 - 20e9 * 1.8e-5 * analytic.cylinder_temperature(np.linalg.norm(p, axis=1)),
-                 "sigma_zz (szz)", 1e-6)],
+        fields=[("sxx", lambda p, _, t: cylinder_plane_strain(p)[0], "sigma_r (sxx)", 1e-6),
+                ("syy", lambda p, _, t: cylinder_plane_strain(p)[1], "sigma_theta (syy)", 1e-6),
+                ("szz", lambda p, _, t: cylinder_plane_strain(p)[2], "sigma_zz (szz)", 1e-6)],
         unit="MPa",
         abscissa=lambda p, _: np.linalg.norm(p, axis=1), xlabel="r [m]",
         steady=True,
