@@ -21,7 +21,8 @@ byte for byte at either precision, and VTK reads the two-rank pvtu; meshio
 reads every vtu, also the crack file written before any joint breaks.
 
 paraview: ParaView's own readers (pvbatch under xvfb-run) open the
-continuum and the discrete solution.pvd, cracks.pvd and a two-rank pvtu:
+continuum solution.pvd in 2D and in 3D (prm/cube_thermal_stress.prm,
+hexahedra), the discrete solution.pvd, cracks.pvd and a two-rank pvtu:
 time steps, array names, sizes and value ranges as VTK's Python module
 decodes them; scripts/render_paraview.py writes a PNG. Exit 77 (ctest
 SKIP_RETURN_CODE) when pvbatch or xvfb-run is missing.
@@ -280,9 +281,13 @@ def paraview():
     if not os.path.exists(os.path.join(continuum, "summary.json")):
         run(binary, os.path.join(ROOT, "prm", "plate_transient-continuum.prm"), continuum,
             "Time stepping/End time=10", "Output/Times=2")
+    # a 3D continuum solution: the thermoelastic cube (hexahedra, Q2)
+    cube = os.path.join(out, "continuum_3d")
+    if not os.path.exists(os.path.join(cube, "summary.json")):
+        run(binary, os.path.join(ROOT, "prm", "cube_thermal_stress.prm"), cube)
     spec = []
-    for pvd in (os.path.join(continuum, "solution.pvd"), os.path.join(disc, "solution.pvd"),
-                os.path.join(disc, "cracks.pvd")):
+    for pvd in (os.path.join(continuum, "solution.pvd"), os.path.join(cube, "solution.pvd"),
+                os.path.join(disc, "solution.pvd"), os.path.join(disc, "cracks.pvd")):
         times = pvd_times(pvd)
         spec.append(expected(pvd, times[-1], times))
     first_cracks = os.path.join(disc, "cracks.pvd")
