@@ -303,11 +303,17 @@ namespace tmfdem
                       "about Polar centre to probes.csv and lines.csv, in the "
                       "continuum and the discrete models; the discrete "
                       "layer's solution vtu files hold them as cell data "
-                      "too (srr, stt at the deformed triangle's centroid).");
+                      "too (srr, stt at the deformed triangle's centroid). "
+                      "In 3D the frame is cylindrical about the axis "
+                      "parallel to z through Polar centre (a borehole, a "
+                      "cylinder of Mesh/Source = cylinder or hollow "
+                      "cylinder): srr radial and stt circumferential about "
+                      "that axis.");
     prm.declare_entry("Polar centre",
                       "0, 0",
                       point_pattern(),
-                      "Centre of the polar frame x, y [m].");
+                      "Centre of the polar frame x, y (in 3D: where its "
+                      "axis, parallel to z, meets the x-y plane) [m].");
     prm.declare_entry(
       "Pinned points",
       "",
@@ -399,12 +405,6 @@ namespace tmfdem
                             " takes 'x, y: c' with c one or both of x, y." :
                             " takes 'x, y, z: c' with c one or more of x, "
                             "y, z."));
-    if (dimension == 3 && polar_frame)
-      throw InputError(
-        "Mechanics/Polar frame = true: the polar frame is 2D; in 3D the "
-        "monitors write the six Cartesian stress components (on a line "
-        "along an axis through the centre, the radial and hoop stresses "
-        "are two of them). Allowed is false.");
   }
 
   // ---------------------------------------------------------------- Output

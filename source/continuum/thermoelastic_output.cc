@@ -188,7 +188,9 @@ namespace tmfdem
       values.push_back(sigma[component.second[0]][component.second[1]]);
     if (parameters.mechanics.polar_frame)
       {
-        // 2D only (MechanicsParameters::check_dimension)
+        // in 3D cylindrical about the axis parallel to z through the
+        // centre: its radial direction is the in-plane one, so srr and stt
+        // come from sxx, syy, sxy as in 2D
         const Tensor<1, dim> radial =
           p - MeshParameters::in_dimension<dim>(
                 Point<3>(parameters.mechanics.polar_centre[0],

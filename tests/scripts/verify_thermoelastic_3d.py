@@ -31,7 +31,9 @@ cylinder    prm/thick_cylinder-3d.prm: the paper's 5.4 cylinder as a 3D
             slice with rollers on its end faces (hexahedra, Q3, heat solver):
             sigma_r, sigma_theta, sigma_zz on the x axis within 1 % of max
             |sigma_theta| of the plane-strain solution (-Eq. 49, sigma_zz =
-            nu (sigma_r + sigma_theta) - E alpha T), |u_z| <= 1e-9 m; and
+            nu (sigma_r + sigma_theta) - E alpha T), and the polar frame's
+            srr, stt about the axis on a diagonal at z = 0.005 m within the
+            same bound, |u_z| <= 1e-9 m; and
             the cross-dimension check: the 3D stresses within 1 % of max
             |sigma_theta| of the 2D plane-strain run
             (prm/thick_cylinder-continuum.prm, its sigma_zz = nu (sigma_xx
@@ -222,6 +224,13 @@ if "cylinder" in cases:
                                   f"{error:.2e} < 1 %")
     err_T = np.abs(f["T"] - T_exact).max()
     ok &= check(err_T < 0.5, f"cylinder 3D: max |T - T_exact| = {err_T:.3f} C < 0.5 C")
+    diagonal, fd = last(folder)["diagonal"]
+    r_d = np.hypot(diagonal[:, 0], diagonal[:, 1])
+    d_r, d_t = cylinder_stress(r_d, idealisation="plane strain")
+    for name, column, exact in (("sigma_r", "srr", d_r), ("sigma_theta", "stt", d_t)):
+        error = np.abs(fd[column] - exact).max() / scale
+        ok &= check(error < 0.01, f"cylinder 3D, polar frame on the diagonal: max |{column} - {name}| / "
+                                  f"max |sigma_theta| = {error:.2e} < 1 %")
     uz = np.abs(f["uz"]).max()
     ok &= check(uz <= 1e-9, f"cylinder 3D: max |u_z| = {uz:.2e} m (end rollers: plane strain)")
     # the 2D plane-strain model of the same cylinder at the same points

@@ -420,8 +420,8 @@ namespace tmfdem
     declare_parameters(ParameterHandler &prm);
     void
     parse_parameters(ParameterHandler &prm);
-    /** InputError unless Idealisation, Pinned points and Polar frame suit
-     *  a model of @p dimension (2 or 3). */
+    /** InputError unless Idealisation and Pinned points suit a model of
+     *  @p dimension (2 or 3). */
     void
     check_dimension(const unsigned int dimension) const;
   };
