@@ -3,7 +3,7 @@
 
     plot_discrete_case.py CASE OUTPUT_FOLDER PNG
 
-CASE is one of joint_pull, block_on_incline, two_blocks_collision,
+CASE is one of joint_pull, joint_pull-3d, block_on_incline, two_blocks_collision,
 brazilian_disc, plate_traction, plate_transient, contact_conduction,
 sheet_free_expansion, sheet_restrained_expansion. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
 probes.csv, summary.json, solution_*.vtu, cracks_*.vtu). Cases that compare
@@ -11,6 +11,8 @@ several runs read one sub-folder per run, the layout the verification
 scripts write:
 
     joint_pull:        OUTPUT_FOLDER/{Munjiza,linear}_{I,II}/   (verify_discrete_joint.py)
+    joint_pull-3d:     OUTPUT_FOLDER/pull_{Munjiza,linear}_{I_x,II_y,II_z}/
+                       (verify_discrete_3d.py)
     block_on_incline:  OUTPUT_FOLDER/theta_<deg>_mu_<mu>[_damping_0.2]/ (verify_discrete_dynamics.py incline)
     plate_transient:   OUTPUT_FOLDER/{h0.05,continuum_P1,beta100,beta1000,beta10000}/
                        (verify_discrete_plate.py)
@@ -101,38 +103,36 @@ def cohesive_curve(f, G, k, law, n=4000):
     return d, t, work, op, w, integral
 
 
-def plot_joint_pull(folder, png):
-    # prm/joint_pull.prm: E = 1e9, penalty factors 10 -> p = 1e10 Pa, joint length 1 m
-    k = 1e10
-    modes = {"I": dict(f=1e6, G=1000.0, v=("0.01", "0"), end="0.3", name="opening o"),
-             "II": dict(f=2e6, G=5000.0, v=("0", "0.01"), end="0.7", name="slip s")}
+def joint_pull_panels(png, k, area, columns, title, unit):
+    """The joint-pull figure: per column (mode, f, G, run folder and prm
+    settings per law, axis name) the traction from tmfdem's joint_work
+    history (dW/dd / area) on the exact law, and the work against G area.
+    k: the joint's penalty per unit area [Pa/m]; unit: of the work."""
     speed = 0.01
-    fig, axes = plt.subplots(2, 2, figsize=(11, 7.5), dpi=150, sharex="col")
+    fig, axes = plt.subplots(2, len(columns), figsize=(5.5 * len(columns), 7.5), dpi=150,
+                             sharex="col", squeeze=False)
     colours = {"Munjiza": "C0", "linear": "C3"}
-    print("joint_pull: work to break one 1 m joint")
-    print(f"{'law':>8} {'mode':>5} {'G L [J/m]':>10} {'work [J/m]':>12} {'error [%]':>10} "
-          f"{'break at [mm]':>14} {'o_p+w [mm]':>11}")
-    for col, (mode, m) in enumerate(modes.items()):
+    print(f"{'law':>8} {'mode':>5} {'G A [' + unit + ']':>10} {'work [' + unit + ']':>12} "
+          f"{'error [%]':>10} {'break at [mm]':>14} {'o_p+w [mm]':>11}")
+    for col, m in enumerate(columns):
         ax_t, ax_w = axes[0, col], axes[1, col]
+        GA = m["G"] * area
         for law in ("Munjiza", "linear"):
-            run = os.path.join(folder, f"{law}_{mode}")
-            ensure_run(run, "joint_pull.prm", f"Discrete mechanics/Softening law={law}",
-                       f"Discrete bodies/Body 2/Velocity x={m['v'][0]}",
-                       f"Discrete bodies/Body 2/Velocity y={m['v'][1]}",
-                       f"Time stepping/End time={m['end']}")
+            run = m["run"](law)
+            ensure_run(run, m["prm"], *m["settings"](law))
             h = read_csv(os.path.join(run, "history.csv"))
             h = h[np.unique(h["time"], return_index=True)[1]]  # the last row repeats
             s = read_summary(run)
             d = speed * h["time"]
             W = h["joint_work"]
             d_ex, t_ex, W_ex, op, w, integral = cohesive_curve(m["f"], m["G"], k, law)
-            # traction from the work: dW/dd (joint length 1 m)
-            tm = np.gradient(W, d)
+            # traction from the work: dW/dd per unit area
+            tm = np.gradient(W, d) / area
             broken = h["broken_joints"] > 0
             d_break = d[np.argmax(broken)] if broken.any() else float("nan")
             work = s["energy"]["joint_work"]
-            err = 100 * abs(work / m["G"] - 1)
-            print(f"{law:>8} {mode:>5} {m['G']:>10.0f} {work:>12.4f} {err:>10.4f} "
+            err = 100 * abs(work / GA - 1)
+            print(f"{law:>8} {m['mode']:>5} {GA:>10.0f} {work:>12.4f} {err:>10.4f} "
                   f"{1e3 * d_break:>14.4f} {1e3 * (op + w):>11.4f}")
             c = colours[law]
             ax_t.plot(1e3 * d_ex, 1e-6 * t_ex, "-", color=c, lw=1.2,
@@ -140,22 +140,64 @@ def plot_joint_pull(folder, png):
             keep = ~broken
             ax_t.plot(1e3 * d[keep][::6], 1e-6 * tm[keep][::6], "o", color=c, ms=2.5,
                       mfc="none", label=f"{law}: tmfdem, dW/d{m['name'][-1]}")
-            ax_w.plot(1e3 * d_ex, W_ex, "-", color=c, lw=1.2)
+            ax_w.plot(1e3 * d_ex, area * W_ex, "-", color=c, lw=1.2)
             ax_w.plot(1e3 * d[::6], W[::6], "o", color=c, ms=2.5, mfc="none",
-                      label=f"{law}: {work:.3f} J/m at break (error {err:.4f} %)")
-        ax_w.axhline(m["G"], color="k", ls="--", lw=0.8, label=f"G L = {m['G']:.0f} J/m")
-        ax_t.set_title(f"Mode {mode}: f = {m['f'] / 1e6:g} MPa, G = {m['G']:g} J/m^2, "
-                       f"k = p / h = 1e10 Pa/m", fontsize=9)
+                      label=f"{law}: {work:.3f} {unit} at break (error {err:.4f} %)")
+        ax_w.axhline(GA, color="k", ls="--", lw=0.8, label=f"G A = {GA:.0f} {unit}")
+        ax_t.set_title(f"Mode {m['mode']}{m.get('along', '')}: f = {m['f'] / 1e6:g} MPa, "
+                       f"G = {m['G']:g} J/m^2, k = p / h = {k:.4g} Pa/m", fontsize=9)
         ax_t.set_ylabel("traction [MPa]")
-        ax_w.set_ylabel("work done on the joint [J/m]")
+        ax_w.set_ylabel(f"work done on the joint [{unit}]")
         ax_w.set_xlabel(f"{m['name']} [mm] (= 0.01 m/s x t)")
         for ax in (ax_t, ax_w):
             ax.grid(alpha=0.3)
             ax.legend(fontsize=7)
-    fig.suptitle("One joint pulled (Mode I) and sheared (Mode II): lines exact, markers tmfdem")
+    fig.suptitle(title)
     fig.tight_layout()
     fig.savefig(png)
     print(f"wrote {png}")
+
+
+def plot_joint_pull(folder, png):
+    # prm/joint_pull.prm: E = 1e9, penalty factors 10 -> p = 1e10 Pa, joint length 1 m
+    modes = {"I": dict(f=1e6, G=1000.0, v=("0.01", "0"), end="0.3", name="opening o"),
+             "II": dict(f=2e6, G=5000.0, v=("0", "0.01"), end="0.7", name="slip s")}
+    columns = []
+    for mode, m in modes.items():
+        columns.append(dict(
+            m, mode=mode, prm="joint_pull.prm",
+            run=lambda law, mode=mode: os.path.join(folder, f"{law}_{mode}"),
+            settings=lambda law, m=m: (f"Discrete mechanics/Softening law={law}",
+                                       f"Discrete bodies/Body 2/Velocity x={m['v'][0]}",
+                                       f"Discrete bodies/Body 2/Velocity y={m['v'][1]}",
+                                       f"Time stepping/End time={m['end']}")))
+    print("joint_pull: work to break one 1 m joint")
+    joint_pull_panels(png, 1e10, 1.0, columns,
+                      "One joint pulled (Mode I) and sheared (Mode II): lines exact, "
+                      "markers tmfdem", "J/m")
+
+
+def plot_joint_pull_3d(folder, png):
+    # prm/joint_pull-3d.prm: p = 10 E = 1e10 Pa over the face's mean edge
+    # h = (1 + 1 + sqrt 2) / 3 m; face area 0.5 m^2
+    h = (2 + math.sqrt(2)) / 3
+    columns = []
+    for mode, axis, f, G, end, name in (("I", "x", 1e6, 1000.0, "0.3", "opening o"),
+                                        ("II", "y", 2e6, 5000.0, "0.7", "slip |s|"),
+                                        ("II", "z", 2e6, 5000.0, "0.7", "slip |s|")):
+        columns.append(dict(
+            mode=mode, f=f, G=G, name=name, along=f" along {axis}", prm="joint_pull-3d.prm",
+            run=lambda law, mode=mode, axis=axis: os.path.join(folder,
+                                                               f"pull_{law}_{mode}_{axis}"),
+            settings=lambda law, axis=axis, end=end: (
+                f"Discrete mechanics/Softening law={law}",
+                *[f"Discrete bodies/Body 2/Velocity {a}={'0.01' if a == axis else '0'}"
+                  for a in "xyz"],
+                f"Time stepping/End time={end}")))
+    print("joint_pull-3d: work to break one face joint of 0.5 m^2")
+    joint_pull_panels(png, 1e10 / h, 0.5, columns,
+                      "One face joint between two tetrahedra pulled (Mode I) and slid "
+                      "(Mode II, two directions): lines exact, markers tmfdem", "J")
 
 
 # ---------------------------------------------------- block_on_incline
@@ -680,6 +722,7 @@ def plot_sheet_restrained_expansion(folder, png):
 
 
 CASES = {"joint_pull": plot_joint_pull,
+         "joint_pull-3d": plot_joint_pull_3d,
          "block_on_incline": plot_block_on_incline,
          "two_blocks_collision": plot_two_blocks_collision,
          "brazilian_disc": plot_brazilian_disc,

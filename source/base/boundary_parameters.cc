@@ -147,6 +147,12 @@ namespace tmfdem
                               "Type = traction, Mesh/Dimension = 3: t_z per "
                               "unit reference area, function of x, y, z, t "
                               "[Pa].");
+            prm.declare_entry(std::string("Velocity ") + axis,
+                              "0",
+                              Patterns::Anything(),
+                              "Type = velocity (discrete layer only), "
+                              "Mesh/Dimension = 3: v_z, function of x, y, z "
+                              "(reference coordinates), t [m/s].");
           }
         const char *axes[] = {"x", "y"};
         for (const char *axis : axes)
@@ -209,6 +215,7 @@ namespace tmfdem
           }
         condition.displacement[2] = prm.get("Displacement z");
         condition.traction[2]     = prm.get("Traction z");
+        condition.velocity[2]     = prm.get("Velocity z");
         prm.leave_subsection();
         for (const auto id : condition.boundary_ids)
           if (!used.insert(id).second)
@@ -239,12 +246,16 @@ namespace tmfdem
           (condition.type == MechanicalBoundaryCondition::Type::displacement &&
            condition.displacement[2] != "0") ||
           (condition.type == MechanicalBoundaryCondition::Type::traction &&
-           condition.traction[2] != "0");
+           condition.traction[2] != "0") ||
+          (condition.type == MechanicalBoundaryCondition::Type::velocity &&
+           condition.velocity[2] != "0");
         if (z_entry)
           throw InputError(
             condition.name + "/" +
             (condition.type == MechanicalBoundaryCondition::Type::traction ?
                "Traction z = " + condition.traction[2] :
+             condition.type == MechanicalBoundaryCondition::Type::velocity ?
+               "Velocity z = " + condition.velocity[2] :
                "Displacement z = " + condition.displacement[2]) +
             ": Mesh/Dimension = 2 has no z component; allowed is 0.");
       }

@@ -2,11 +2,13 @@
 #include <deal.II/grid/reference_cell.h>
 #include <deal.II/grid/tria.h>
 
+#include <cmath>
 #include <numeric>
 #include <set>
 #include <sstream>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/element_kernel.h>
 #include <tmfdem/discrete/solid.h>
 #include <unordered_map>
 
@@ -18,8 +20,13 @@ namespace tmfdem
     DiscreteModel::build(const DoFHandler<2> &dof_handler)
     {
       const auto &triangulation = dof_handler.get_triangulation();
+      dim                       = 2;
       n_elements                = triangulation.n_active_cells();
       n_nodes                   = 3 * n_elements;
+      z.clear();
+      z_ref.clear();
+      vz.clear();
+      joint_area.clear();
       if (dof_handler.n_dofs() != n_nodes)
         throw RunError("discrete layer: the DoFHandler has " +
                        std::to_string(dof_handler.n_dofs()) +
@@ -165,6 +172,189 @@ namespace tmfdem
     }
 
     void
+    DiscreteModel::build(const DoFHandler<3> &dof_handler)
+    {
+      const auto &triangulation = dof_handler.get_triangulation();
+      dim                       = 3;
+      n_elements                = triangulation.n_active_cells();
+      n_nodes                   = 4 * n_elements;
+      if (dof_handler.n_dofs() != n_nodes)
+        throw RunError("discrete layer: the DoFHandler has " +
+                       std::to_string(dof_handler.n_dofs()) +
+                       " DoFs, expected 4 per tetrahedron (FE_SimplexDGP(1)).");
+
+      x_ref.assign(n_nodes, 0.);
+      y_ref.assign(n_nodes, 0.);
+      z_ref.assign(n_nodes, 0.);
+      node_vertex.assign(n_nodes, 0);
+      mesh_index.resize(n_elements);
+      std::iota(mesh_index.begin(), mesh_index.end(), 0u);
+      mass.assign(n_nodes, 0.);
+      vx.assign(n_nodes, 0.);
+      vy.assign(n_nodes, 0.);
+      vz.assign(n_nodes, 0.);
+      inverse_basis.assign(9 * n_elements, 0.);
+      reference_area.assign(n_elements, 0.);
+      material.assign(n_elements, 0);
+      body.assign(n_elements, no_body);
+      thermal_stretch.assign(n_elements, 1.);
+      stress.assign(6 * n_elements, 0.);
+      edge_joint.assign(4 * n_elements, -1);
+      edge_boundary.assign(4 * n_elements, numbers::internal_face_boundary_id);
+      joint_nodes.clear();
+      joint_elements.clear();
+
+      // the local vertex of @p cell at the global vertex @p v (4: none)
+      const auto local_vertex = [](const auto &cell, const unsigned int v) {
+        for (unsigned int m = 0; m < 4; ++m)
+          if (cell->vertex_index(m) == v)
+            return m;
+        return 4u;
+      };
+      std::vector<types::global_dof_index> dofs(4);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        {
+          const unsigned int e = cell->active_cell_index();
+          std::ostringstream where;
+          where << "(" << cell->center() << ")";
+          if (cell->reference_cell() != ReferenceCells::Tetrahedron)
+            throw InputError("discrete layer: cell " + std::to_string(e) +
+                             " at " + where.str() +
+                             " is not a tetrahedron; the discrete layer in "
+                             "3D needs a tetrahedral mesh (Mesh/Element type "
+                             "= tetrahedra).");
+          cell->get_dof_indices(dofs);
+          for (unsigned int k = 0; k < 4; ++k)
+            if (dofs[k] != 4 * e + k)
+              throw RunError("discrete layer: unexpected DoF numbering of "
+                             "FE_SimplexDGP(1) at cell " +
+                             std::to_string(e) + ".");
+          for (unsigned int k = 0; k < 4; ++k)
+            {
+              x_ref[4 * e + k]       = cell->vertex(k)[0];
+              y_ref[4 * e + k]       = cell->vertex(k)[1];
+              z_ref[4 * e + k]       = cell->vertex(k)[2];
+              node_vertex[4 * e + k] = cell->vertex_index(k);
+            }
+          material[e] = cell->material_id();
+          // the basis [x1 - x0, x2 - x0, x3 - x0] (columns), its inverse
+          const double *const nodes[3] = {&x_ref[4 * e],
+                                          &y_ref[4 * e],
+                                          &z_ref[4 * e]};
+          double              basis[3][3], inverse_matrix[3][3];
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int k = 0; k < 3; ++k)
+              basis[i][k] = nodes[i][k + 1] - nodes[i][0];
+          const double det = constitutive::determinant<3>(basis);
+          if (!(det > 0.))
+            throw InputError(
+              "discrete layer: tetrahedron " + std::to_string(e) + " at " +
+              where.str() + " has " +
+              (det == 0. ? std::string("zero volume") :
+                           std::string("negatively oriented vertices")) +
+              "; every tetrahedron must have positive volume with "
+              "(x1 - x0) x (x2 - x0) . (x3 - x0) > 0.");
+          inverse<3>(basis, det, inverse_matrix);
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int k = 0; k < 3; ++k)
+              inverse_basis[9 * e + 3 * i + k] = inverse_matrix[i][k];
+          reference_area[e] = det / 6.;
+
+          for (unsigned int f = 0; f < 4; ++f)
+            {
+              const auto face = cell->face(f);
+              if (face->at_boundary())
+                {
+                  edge_boundary[4 * e + f] = face->boundary_id();
+                  continue;
+                }
+              const auto neighbour = cell->neighbor(f);
+              if (neighbour->has_children() ||
+                  neighbour->level() != cell->level())
+                throw InputError(
+                  "discrete layer: the mesh has hanging nodes at "
+                  "tetrahedron " +
+                  std::to_string(e) + " at " + where.str() +
+                  "; the discrete layer needs a conforming mesh (use global "
+                  "refinement only).");
+              const unsigned int n = neighbour->active_cell_index();
+              if (n < e)
+                continue; // made when visiting n
+              // the face's vertices in A, ordered so that (a1 - a0) x
+              // (a2 - a0) points out of A (away from its fourth vertex)
+              unsigned int a[3];
+              for (unsigned int k = 0; k < 3; ++k)
+                a[k] = local_vertex(cell, face->vertex_index(k));
+              const unsigned int opposite = 6 - a[0] - a[1] - a[2];
+              double             e1[3], e2[3], to_opposite[3];
+              for (unsigned int i = 0; i < 3; ++i)
+                {
+                  e1[i]          = nodes[i][a[1]] - nodes[i][a[0]];
+                  e2[i]          = nodes[i][a[2]] - nodes[i][a[0]];
+                  to_opposite[i] = nodes[i][opposite] - nodes[i][a[0]];
+                }
+              const double orientation =
+                (e1[1] * e2[2] - e1[2] * e2[1]) * to_opposite[0] +
+                (e1[2] * e2[0] - e1[0] * e2[2]) * to_opposite[1] +
+                (e1[0] * e2[1] - e1[1] * e2[0]) * to_opposite[2];
+              if (orientation > 0.)
+                std::swap(a[1], a[2]);
+              unsigned int b[3];
+              for (unsigned int k = 0; k < 3; ++k)
+                b[k] = local_vertex(neighbour, cell->vertex_index(a[k]));
+              // the neighbour's face that is this one
+              const unsigned int fb = cell->neighbor_of_neighbor(f);
+              const unsigned int j  = joint_elements.size() / 2;
+              joint_nodes.insert(joint_nodes.end(),
+                                 {4 * e + a[0],
+                                  4 * e + a[1],
+                                  4 * e + a[2],
+                                  4 * n + b[0],
+                                  4 * n + b[1],
+                                  4 * n + b[2]});
+              joint_elements.insert(joint_elements.end(), {e, n});
+              edge_joint[4 * e + f]  = 2 * j;
+              edge_joint[4 * n + fb] = 2 * j + 1;
+            }
+        }
+      n_joints = joint_elements.size() / 2;
+      x        = x_ref;
+      y        = y_ref;
+      z        = z_ref;
+      joint_constants.assign(n_joints, JointConstants());
+      joint_length.assign(n_joints, 0.);
+      joint_area.assign(n_joints, 0.);
+      for (unsigned int j = 0; j < n_joints; ++j)
+        {
+          const unsigned int *a = &joint_nodes[6 * j];
+          const auto edge = [&](const unsigned int p, const unsigned int q) {
+            return std::sqrt((x_ref[q] - x_ref[p]) * (x_ref[q] - x_ref[p]) +
+                             (y_ref[q] - y_ref[p]) * (y_ref[q] - y_ref[p]) +
+                             (z_ref[q] - z_ref[p]) * (z_ref[q] - z_ref[p]));
+          };
+          joint_length[j] =
+            (edge(a[0], a[1]) + edge(a[1], a[2]) + edge(a[2], a[0])) / 3.;
+          double e1[3], e2[3];
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              const std::vector<double> &c =
+                i == 0 ? x_ref : (i == 1 ? y_ref : z_ref);
+              e1[i] = c[a[1]] - c[a[0]];
+              e2[i] = c[a[2]] - c[a[0]];
+            }
+          joint_area[j] =
+            0.5 * std::sqrt(std::pow(e1[1] * e2[2] - e1[2] * e2[1], 2) +
+                            std::pow(e1[2] * e2[0] - e1[0] * e2[2], 2) +
+                            std::pow(e1[0] * e2[1] - e1[1] * e2[0], 2));
+        }
+      joint_damage.assign(3 * n_joints, 0.);
+      joint_status.assign(n_joints, JointStatus::intact);
+      joint_break_time.assign(n_joints, -1.);
+      // per node: the forces of the joints on its three faces (x, y, z each)
+      node_joint_force.assign(9 * n_nodes, 0.);
+    }
+
+    void
     DiscreteModel::check_boundary_ids(
       const std::string                     &entry,
       const std::vector<types::boundary_id> &ids) const
@@ -191,7 +381,7 @@ namespace tmfdem
     {
       std::vector<unsigned char> free_edge(n_elements, 0);
       for (unsigned int e = 0; e < n_elements; ++e)
-        for (unsigned int k = 0; k < 3; ++k)
+        for (unsigned int k = 0; k < nodes_per_element(); ++k)
           if (intact_neighbour(e, k) < 0)
             {
               free_edge[e] = 1;
@@ -200,7 +390,7 @@ namespace tmfdem
       std::vector<unsigned char> candidate = free_edge;
       for (unsigned int e = 0; e < n_elements; ++e)
         if (free_edge[e])
-          for (unsigned int k = 0; k < 3; ++k)
+          for (unsigned int k = 0; k < nodes_per_element(); ++k)
             {
               const int neighbour = intact_neighbour(e, k);
               if (neighbour >= 0)
@@ -224,10 +414,15 @@ namespace tmfdem
     unsigned int
     DiscreteModel::n_damaged_joints() const
     {
-      unsigned int n = 0;
+      unsigned int       n = 0;
+      const unsigned int q = gauss_points_per_joint();
       for (unsigned int j = 0; j < n_joints; ++j)
-        n += joint_status[j] != JointStatus::intact ||
-             joint_damage[2 * j] > 0. || joint_damage[2 * j + 1] > 0.;
+        {
+          bool damaged = joint_status[j] != JointStatus::intact;
+          for (unsigned int p = 0; p < q; ++p)
+            damaged = damaged || joint_damage[q * j + p] > 0.;
+          n += damaged;
+        }
       return n;
     }
 
@@ -247,10 +442,11 @@ namespace tmfdem
         if (joint_status[j] != JointStatus::intact)
           {
             ++n_broken;
-            for (unsigned int end = 0; end < 2; ++end)
+            // the vertices of the edge or face (its nodes on side A)
+            for (unsigned int end = 0; end < dim; ++end)
               {
                 const unsigned int vertex =
-                  node_vertex[joint_nodes[4 * j + end]];
+                  node_vertex[joint_nodes[nodes_per_joint() * j + end]];
                 const auto [it, inserted] = joint_at_vertex.emplace(vertex, j);
                 if (!inserted)
                   {

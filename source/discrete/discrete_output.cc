@@ -199,28 +199,28 @@ namespace tmfdem
       using ArrayWriter = std::function<void(VtuText &)>;
 
       /** A piece of @p n_cells cells of VTK type @p vtk_type with
-       *  @p nodes_per_cell nodes each. */
+       *  @p nodes_per_cell nodes each; @p point_dim coordinates per point
+       *  in @p points_in (2: z = 0). */
       std::string
       grid(const VtuEncoding               &encoding,
-           const std::vector<double>       &points_xy,
+           const std::vector<double>       &points_in,
            const std::vector<unsigned int> &connectivity,
            const std::size_t                n_cells,
            const unsigned int               nodes_per_cell,
            const unsigned int               vtk_type,
            const ArrayWriter               &point_data,
-           const ArrayWriter               &cell_data)
+           const ArrayWriter               &cell_data,
+           const unsigned int               point_dim = 2)
       {
-        const std::size_t n_points = points_xy.size() / 2;
+        const std::size_t n_points = points_in.size() / point_dim;
         VtuText           out(encoding);
         out.add("<Piece NumberOfPoints=\"" + std::to_string(n_points) +
                 "\" NumberOfCells=\"" + std::to_string(n_cells) +
                 "\">\n<Points>\n");
         std::vector<double> points(3 * n_points, 0.);
         for (std::size_t i = 0; i < n_points; ++i)
-          {
-            points[3 * i]     = points_xy[2 * i];
-            points[3 * i + 1] = points_xy[2 * i + 1];
-          }
+          for (unsigned int d = 0; d < point_dim; ++d)
+            points[3 * i + d] = points_in[point_dim * i + d];
         out.real_array("", 3, points);
         out.add("</Points>\n<Cells>\n");
         out.data_array<std::int64_t>("connectivity", 1, connectivity);
@@ -370,6 +370,82 @@ namespace tmfdem
       write_file_atomically(folder + "/" + base_name + ".pvd", pvd.str());
     }
 
+    namespace
+    {
+      /** discrete_solution_vtu() of a tetrahedral model (dim = 3). */
+      std::string
+      tetrahedra_solution_vtu(const DiscreteModel &model,
+                              const VtuEncoding   &encoding)
+      {
+        const unsigned int  n_cells = model.n_elements, n_points = 4 * n_cells;
+        std::vector<double> points(3 * n_points), displacement(3 * n_points),
+          velocity(3 * n_points);
+        std::vector<unsigned int> connectivity(n_points);
+        for (unsigned int n = 0; n < n_points; ++n)
+          {
+            points[3 * n]           = model.x[n];
+            points[3 * n + 1]       = model.y[n];
+            points[3 * n + 2]       = model.z[n];
+            connectivity[n]         = n;
+            displacement[3 * n]     = model.x[n] - model.x_ref[n];
+            displacement[3 * n + 1] = model.y[n] - model.y_ref[n];
+            displacement[3 * n + 2] = model.z[n] - model.z_ref[n];
+            velocity[3 * n]         = model.vx[n];
+            velocity[3 * n + 1]     = model.vy[n];
+            velocity[3 * n + 2]     = model.vz[n];
+          }
+        const auto point_data = [&](VtuText &out) {
+          out.real_array("displacement", 3, displacement);
+          out.real_array("velocity", 3, velocity);
+        };
+        // the six stress components, the largest joint damage of the faces
+        const char *names[6] = {"sxx", "syy", "szz", "sxy", "syz", "sxz"};
+        std::vector<std::vector<double>> stress(6,
+                                                std::vector<double>(n_cells));
+        std::vector<double>              damage(n_cells, 0.);
+        std::vector<int>                 material(n_cells), body(n_cells);
+        for (unsigned int e = 0; e < n_cells; ++e)
+          {
+            for (unsigned int i = 0; i < 6; ++i)
+              stress[i][e] = model.stress[6 * e + i];
+            material[e] = model.material[e];
+            body[e]     = model.body[e] == no_body ?
+                            -1 :
+                            static_cast<int>(model.body_number[model.body[e]]);
+            for (unsigned int f = 0; f < 4; ++f)
+              {
+                const int code = model.edge_joint[4 * e + f];
+                if (code < 0)
+                  continue;
+                const unsigned int j = code / 2;
+                double             d = 1.;
+                if (model.joint_status[j] == JointStatus::intact)
+                  d = std::max({model.joint_damage[3 * j],
+                                model.joint_damage[3 * j + 1],
+                                model.joint_damage[3 * j + 2]});
+                damage[e] = std::max(damage[e], d);
+              }
+          }
+        const auto cell_data = [&](VtuText &out) {
+          for (unsigned int i = 0; i < 6; ++i)
+            out.real_array(names[i], 1, stress[i]);
+          out.real_array("joint_damage", 1, damage);
+          out.data_array<std::int32_t>("material_id", 1, material);
+          out.data_array<std::int32_t>("body", 1, body);
+        };
+        // VTK_TETRA = 10
+        return grid(encoding,
+                    points,
+                    connectivity,
+                    n_cells,
+                    4,
+                    10,
+                    point_data,
+                    cell_data,
+                    3);
+      }
+    } // namespace
+
     std::string
     discrete_solution_vtu(
       const DiscreteModel &model,
@@ -380,6 +456,8 @@ namespace tmfdem
       const unsigned int           end_element,
       const std::array<double, 2> *polar_centre)
     {
+      if (model.dim == 3)
+        return tetrahedra_solution_vtu(model, encoding);
       // triangles [first, end) own the nodes [3 first, 3 end)
       const unsigned int  first    = std::min(first_element, model.n_elements);
       const unsigned int  end      = std::min(end_element, model.n_elements);
@@ -493,10 +571,26 @@ namespace tmfdem
       std::vector<unsigned int> connectivity;
       std::vector<int>          mode;
       std::vector<double>       break_time;
+      // broken faces of tetrahedra: triangles at the mean of their node
+      // pairs (VTK_TRIANGLE = 5)
+      const unsigned int dim = model.dim;
       for (unsigned int j = first_joint;
            j < std::min(end_joint, model.n_joints);
            ++j)
-        if (model.joint_status[j] != JointStatus::intact)
+        if (dim == 3 && model.joint_status[j] != JointStatus::intact)
+          {
+            const unsigned int *n = &model.joint_nodes[6 * j];
+            for (unsigned int k = 0; k < 3; ++k)
+              {
+                connectivity.push_back(points.size() / 3);
+                points.push_back(0.5 * (model.x[n[k]] + model.x[n[3 + k]]));
+                points.push_back(0.5 * (model.y[n[k]] + model.y[n[3 + k]]));
+                points.push_back(0.5 * (model.z[n[k]] + model.z[n[3 + k]]));
+              }
+            mode.push_back(static_cast<int>(model.joint_status[j]));
+            break_time.push_back(model.joint_break_time[j]);
+          }
+        else if (model.joint_status[j] != JointStatus::intact)
           {
             const unsigned int *n = &model.joint_nodes[4 * j];
             for (unsigned int end = 0; end < 2; ++end)
@@ -526,10 +620,11 @@ namespace tmfdem
                   points,
                   connectivity,
                   mode.size(),
-                  none ? 0 : 2,
-                  none ? 2 : 3,
+                  none ? 0 : dim,
+                  none ? 2 : (dim == 3 ? 5 : 3),
                   {},
-                  cell_data);
+                  cell_data,
+                  dim);
     }
 
     std::string

@@ -757,6 +757,16 @@ namespace tmfdem
                           "0",
                           Patterns::Anything(),
                           "Initial velocity v_y(x, y) of a free body [m/s].");
+        prm.declare_entry("Velocity z",
+                          "0",
+                          Patterns::Anything(),
+                          "Mesh/Dimension = 3: prescribed velocity v_z(t) for "
+                          "Motion = velocity, function of t [m/s].");
+        prm.declare_entry("Initial velocity z",
+                          "0",
+                          Patterns::Anything(),
+                          "Mesh/Dimension = 3: initial velocity v_z(x, y, z) "
+                          "of a free body [m/s].");
         prm.declare_entry(
           "Initial temperature",
           "",
@@ -796,6 +806,8 @@ namespace tmfdem
         body.velocity_y = prm.get("Velocity y");
         body.initial_velocity_x = prm.get("Initial velocity x");
         body.initial_velocity_y = prm.get("Initial velocity y");
+        body.velocity_z         = prm.get("Velocity z");
+        body.initial_velocity_z = prm.get("Initial velocity z");
         body.initial_temperature =
           Utilities::trim(prm.get("Initial temperature"));
         prm.leave_subsection();

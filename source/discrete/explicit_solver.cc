@@ -26,6 +26,7 @@
 #include <tmfdem/discrete/explicit_solver.h>
 #include <tmfdem/discrete/joints.h>
 #include <tmfdem/discrete/temperature_source.h>
+#include <tmfdem/discrete/tetrahedral_solver.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 #include <tmfdem/io/output_schedule.h>
@@ -73,11 +74,17 @@ namespace tmfdem
       const bool registered = register_simulation(
         "discrete mechanics",
         "explicit FDEM dynamics: finite-strain triangles, cohesive joints, "
-        "contact with friction (no heat)",
+        "contact with friction (no heat); in 3D tetrahedra with cohesive "
+        "joints on their faces (no contact yet)",
         explicit_sections(false),
-        [](const Parameters &parameters, MPI_Comm communicator) {
+        [](const Parameters &parameters,
+           MPI_Comm          communicator) -> std::unique_ptr<Simulation> {
+          if (parameters.mesh.dimension == 3)
+            return std::make_unique<TetrahedralSolver>(parameters,
+                                                       communicator);
           return std::make_unique<ExplicitSolver>(parameters, communicator);
-        });
+        },
+        {2, 3});
       const bool registered_thermal = register_simulation(
         "discrete thermo-mechanics",
         "the discrete layer with heat: conduction, joint exchange and contact "

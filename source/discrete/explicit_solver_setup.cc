@@ -31,7 +31,15 @@ namespace tmfdem
 
       const auto &dm = parameters.get<DiscreteMechanicsParameters>();
       parameters.mechanics.check_dimension(2);
-      idealisation  = parameters.mechanics.idealisation; // one enum
+      for (const auto &body : parameters.get<DiscreteBodyParameters>().bodies)
+        for (const auto &[entry, value] :
+             {std::make_pair("Velocity z", body.velocity_z),
+              std::make_pair("Initial velocity z", body.initial_velocity_z)})
+          if (value != "0")
+            throw InputError(body.name + "/" + entry + " = " + value +
+                             ": Mesh/Dimension = 2 has no z component; "
+                             "allowed is 0.");
+      idealisation = parameters.mechanics.idealisation; // one enum
       softening_law = dm.softening_law;
 
       build_discrete_mesh(parameters,

@@ -18,15 +18,16 @@ namespace tmfdem
         return factor;
       // (mesh index of the element, its edge) of each joint's first side
       std::vector<std::pair<std::uint64_t, unsigned int>> order(model.n_joints);
+      const unsigned int faces = model.nodes_per_element();
       for (unsigned int e = 0; e < model.n_elements; ++e)
-        for (unsigned int k = 0; k < 3; ++k)
+        for (unsigned int k = 0; k < faces; ++k)
           {
-            const int code = model.edge_joint[3 * e + k];
+            const int code = model.edge_joint[faces * e + k];
             if (code < 0)
               continue;
             const unsigned int  j = code / 2;
             const std::uint64_t key =
-              3 * std::uint64_t(model.mesh_index[e]) + k;
+              faces * std::uint64_t(model.mesh_index[e]) + k;
             const unsigned int other =
               model.joint_elements[2 * j + 1 - code % 2];
             if (model.mesh_index[e] < model.mesh_index[other])

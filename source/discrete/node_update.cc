@@ -109,23 +109,24 @@ namespace tmfdem
         if (in.anisotropy != nullptr)
           for (unsigned int i = 0; i < 6; ++i)
             anisotropy[i] = gather<Lanes>(&in.anisotropy[6 * e0 + i], 6);
-        const Lanes            eta = gather<Lanes>(&in.viscosity[e0], 1);
-        ElementResponse<Lanes> r;
-        element_response<Lanes>(X,
-                                Y,
-                                VX,
-                                VY,
-                                ib,
-                                inv_s,
-                                mu,
-                                lambda,
-                                in.anisotropy != nullptr ? anisotropy : nullptr,
-                                eta,
-                                r);
+        const Lanes               eta = gather<Lanes>(&in.viscosity[e0], 1);
+        const Lanes *const        nodes[2]      = {X, Y};
+        const Lanes *const        velocities[2] = {VX, VY};
+        ElementResponse<2, Lanes> r;
+        element_response<2, Lanes>(nodes,
+                                   velocities,
+                                   ib,
+                                   inv_s,
+                                   mu,
+                                   lambda,
+                                   in.anisotropy != nullptr ? anisotropy :
+                                                              nullptr,
+                                   eta,
+                                   r);
         const Lanes det = r.det;
-        scatter(r.sxx + r.vxx, &m.stress[3 * e0], 3);
-        scatter(r.syy + r.vyy, &m.stress[3 * e0 + 1], 3);
-        scatter(r.sxy + r.vxy, &m.stress[3 * e0 + 2], 3);
+        scatter(r.stress[0][0] + r.viscous[0][0], &m.stress[3 * e0], 3);
+        scatter(r.stress[1][1] + r.viscous[1][1], &m.stress[3 * e0 + 1], 3);
+        scatter(r.stress[0][1] + r.viscous[0][1], &m.stress[3 * e0 + 2], 3);
         const Lanes zero = {};
         Lanes       t_elastic[3], t_viscous[3], t_damping[3], t_joint[3],
           t_contact[3], t_external[3], speed2[3];
@@ -133,10 +134,10 @@ namespace tmfdem
         for (unsigned int k = 0; k < 3; ++k)
           {
             NodeForces<Lanes> f;
-            f.elastic[0] = r.fex[k];
-            f.elastic[1] = r.fey[k];
-            f.viscous[0] = r.fvx[k];
-            f.viscous[1] = r.fvy[k];
+            f.elastic[0] = r.f_elastic[k][0];
+            f.elastic[1] = r.f_elastic[k][1];
+            f.viscous[0] = r.f_viscous[k][0];
+            f.viscous[1] = r.f_viscous[k][1];
             for (unsigned int i = 0; i < 2; ++i)
               f.joint[i] =
                 0. + gather<Lanes>(&m.node_joint_force[4 * (n0 + k) + i], 12) +
@@ -400,34 +401,34 @@ namespace tmfdem
             const double      *VX = &m.vx[n0], *VY = &m.vy[n0];
             // 1 / s: no division where there is no thermal stretch (the
             // mechanical models; F * 1 is F, bit for bit)
-            const double            s     = m.thermal_stretch[e];
-            const double            inv_s = s == 1. ? 1. : 1. / s;
-            ElementResponse<double> r;
-            element_response<double>(X,
-                                     Y,
-                                     VX,
-                                     VY,
-                                     &m.inverse_basis[4 * e],
-                                     inv_s,
-                                     element_lame[e].mu,
-                                     element_lame[e].lambda,
-                                     anisotropic ? &element_anisotropy[6 * e] :
-                                                   nullptr,
-                                     viscosity[e],
-                                     r);
+            const double               s             = m.thermal_stretch[e];
+            const double               inv_s         = s == 1. ? 1. : 1. / s;
+            const double *const        nodes[2]      = {X, Y};
+            const double *const        velocities[2] = {VX, VY};
+            ElementResponse<2, double> r;
+            element_response<2, double>(nodes,
+                                        velocities,
+                                        &m.inverse_basis[4 * e],
+                                        inv_s,
+                                        element_lame[e].mu,
+                                        element_lame[e].lambda,
+                                        anisotropic ?
+                                          &element_anisotropy[6 * e] :
+                                          nullptr,
+                                        viscosity[e],
+                                        r);
             if (!(r.det > 0.) && inverted < 0.)
               inverted = e;
-            m.stress[3 * e]     = r.sxx + r.vxx;
-            m.stress[3 * e + 1] = r.syy + r.vyy;
-            m.stress[3 * e + 2] = r.sxy + r.vxy;
+            m.stress[3 * e]     = r.stress[0][0] + r.viscous[0][0];
+            m.stress[3 * e + 1] = r.stress[1][1] + r.viscous[1][1];
+            m.stress[3 * e + 2] = r.stress[0][1] + r.viscous[0][1];
             double f_el[6], f_v[6];
             for (unsigned int k = 0; k < 3; ++k)
-              {
-                f_el[2 * k]     = r.fex[k];
-                f_el[2 * k + 1] = r.fey[k];
-                f_v[2 * k]      = r.fvx[k];
-                f_v[2 * k + 1]  = r.fvy[k];
-              }
+              for (unsigned int i = 0; i < 2; ++i)
+                {
+                  f_el[2 * k + i] = r.f_elastic[k][i];
+                  f_v[2 * k + i]  = r.f_viscous[k][i];
+                }
 
             // dt / ((1 + c dt / 2) m) per node: one division per element
             // where its three nodes have the same mass (the lumped mass of

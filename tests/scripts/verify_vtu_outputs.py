@@ -22,7 +22,9 @@ reads every vtu, also the crack file written before any joint breaks.
 
 paraview: ParaView's own readers (pvbatch under xvfb-run) open the
 continuum solution.pvd in 2D and in 3D (prm/cube_thermal_stress.prm,
-hexahedra), the discrete solution.pvd, cracks.pvd and a two-rank pvtu:
+hexahedra), the discrete solution.pvd, cracks.pvd and a two-rank pvtu, and
+the discrete layer's 3D solution.pvd and cracks.pvd (tetrahedra and broken
+faces, tests/data/discrete/cube_pull-3d.prm):
 time steps, array names, sizes and value ranges as VTK's Python module
 decodes them; scripts/render_paraview.py writes a PNG. Exit 77 (ctest
 SKIP_RETURN_CODE) when pvbatch or xvfb-run is missing.
@@ -285,9 +287,17 @@ def paraview():
     cube = os.path.join(out, "continuum_3d")
     if not os.path.exists(os.path.join(cube, "summary.json")):
         run(binary, os.path.join(ROOT, "prm", "cube_thermal_stress.prm"), cube)
+    # a 3D discrete solution: the cube of tetrahedra pulled until joints
+    # break (solution: tetrahedra; cracks: broken faces as triangles)
+    discrete_3d = os.path.join(out, "discrete_3d")
+    if not os.path.exists(os.path.join(discrete_3d, "summary.json")):
+        run(binary, os.path.join(ROOT, "tests", "data", "discrete", "cube_pull-3d.prm"),
+            discrete_3d, "Output/Write vtu=true", "Output/Times=1e-4")
     spec = []
     for pvd in (os.path.join(continuum, "solution.pvd"), os.path.join(cube, "solution.pvd"),
-                os.path.join(disc, "solution.pvd"), os.path.join(disc, "cracks.pvd")):
+                os.path.join(disc, "solution.pvd"), os.path.join(disc, "cracks.pvd"),
+                os.path.join(discrete_3d, "solution.pvd"),
+                os.path.join(discrete_3d, "cracks.pvd")):
         times = pvd_times(pvd)
         spec.append(expected(pvd, times[-1], times))
     first_cracks = os.path.join(disc, "cracks.pvd")

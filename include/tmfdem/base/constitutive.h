@@ -205,11 +205,27 @@ namespace tmfdem
     }
 
     /**
-     * Strain energy per unit area of the stress-free (intermediate)
-     * configuration [J/m^2] whose derivative is Eq. 44, for F_e = [fe00,
-     * fe01; fe10, fe11] [-]:
-     * psi = mu/2 (tr B - 2) - mu ln J + lambda/4 (J^2 - 1 - 2 ln J).
+     * Strain energy per unit area (2D) or volume (3D) of the stress-free
+     * (intermediate) configuration [J/m^2, J/m^3] whose derivative is
+     * Eq. 44, for the elastic deformation gradient @p Fe (rows first) [-]:
+     * psi = mu/2 (tr B - dim) - mu ln J + lambda/4 (J^2 - 1 - 2 ln J).
      */
+    template <int dim>
+    inline double
+    strain_energy_density(const double (&Fe)[dim][dim],
+                          const LameConstants &lame)
+    {
+      const double J       = determinant<dim>(Fe);
+      double       trace_B = 0.;
+      for (int i = 0; i < dim; ++i)
+        for (int j = 0; j < dim; ++j)
+          trace_B += Fe[i][j] * Fe[i][j];
+      const double log_J = std::log(J);
+      return 0.5 * lame.mu * (trace_B - dim) - lame.mu * log_J +
+             0.25 * lame.lambda * (J * J - 1. - 2. * log_J);
+    }
+
+    /** The same in 2D for F_e = [fe00, fe01; fe10, fe11] [-]. */
     inline double
     strain_energy_density(const double         fe00,
                           const double         fe01,
@@ -217,12 +233,8 @@ namespace tmfdem
                           const double         fe11,
                           const LameConstants &lame)
     {
-      const double J = fe00 * fe11 - fe01 * fe10;
-      const double trace_B =
-        fe00 * fe00 + fe01 * fe01 + fe10 * fe10 + fe11 * fe11;
-      const double log_J = std::log(J);
-      return 0.5 * lame.mu * (trace_B - 2.) - lame.mu * log_J +
-             0.25 * lame.lambda * (J * J - 1. - 2. * log_J);
+      const double Fe[2][2] = {{fe00, fe01}, {fe10, fe11}};
+      return strain_energy_density<2>(Fe, lame);
     }
   } // namespace constitutive
 } // namespace tmfdem

@@ -449,8 +449,9 @@ namespace tmfdem
     /** Nominal traction t_x, t_y (, t_z) (x, y (, z), t) for Type =
      *  traction [Pa]. */
     std::array<std::string, 3> traction = {{"0", "0", "0"}};
-    /** v_x, v_y (x, y, t) for Type = velocity (discrete layer) [m/s]. */
-    std::array<std::string, 2> velocity = {{"0", "0"}};
+    /** v_x, v_y (, v_z) as functions of x, y (, z), t for Type = velocity
+     *  (discrete layer) [m/s]. */
+    std::array<std::string, 3> velocity = {{"0", "0", "0"}};
   };
 
   /**

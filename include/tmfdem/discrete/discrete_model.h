@@ -1,10 +1,14 @@
 /**
  * @file
  * The state of the discrete layer in flat structure-of-arrays form: the
- * exploded mesh (every triangle owns its three nodes; node 3e+k is local
- * node k of element e, counter-clockwise), the joints on every interior
- * edge, and the per-element and per-joint history. Built once from a
- * deal.II triangulation; the explicit loop touches nothing else.
+ * exploded mesh (every simplex owns its nodes: in 2D node 3e+k is local node
+ * k of triangle e, counter-clockwise; in 3D node 4e+k is local vertex k of
+ * tetrahedron e, positively oriented), the joints on every interior edge
+ * (2D) or triangular face (3D), and the per-element and per-joint history.
+ * Built once from a deal.II triangulation; the explicit loop touches nothing
+ * else. The strides follow the dimension: dim + 1 nodes and faces per
+ * element, 2 dim nodes and dim Gauss points per joint, dim^2 entries of the
+ * inverse basis per element.
  *
  * Node numbering equals the DoF numbering of FE_SimplexDGP(1) on the same
  * triangulation (checked when built), so a nodal field of the discrete layer
@@ -43,15 +47,40 @@ namespace tmfdem
     /** The flat state of the discrete layer. Units SI. */
     struct DiscreteModel
     {
+      /** Space dimension: 2 (triangles, joints on edges) or 3 (tetrahedra,
+       *  joints on triangular faces). */
+      unsigned int dim        = 2;
       unsigned int n_elements = 0;
       unsigned int n_nodes    = 0;
       unsigned int n_joints   = 0;
+
+      /** Nodes (and faces) per element: dim + 1. */
+      unsigned int
+      nodes_per_element() const
+      {
+        return dim + 1;
+      }
+      /** Nodes per joint: dim on each side. */
+      unsigned int
+      nodes_per_joint() const
+      {
+        return 2 * dim;
+      }
+      /** Gauss points per joint: 2 on an edge, 3 on a triangular face. */
+      unsigned int
+      gauss_points_per_joint() const
+      {
+        return dim;
+      }
 
       // ------------------------------------------------------------ nodes
       std::vector<double> x, y;         ///< current position [m]
       std::vector<double> x_ref, y_ref; ///< reference position [m]
       std::vector<double> vx, vy;       ///< velocity (half step) [m/s]
-      std::vector<double> mass;         ///< lumped mass [kg/m]
+      /** The third components in 3D (empty in 2D) [m], [m/s]. */
+      std::vector<double> z, z_ref, vz;
+      /** Lumped mass [kg/m in 2D, kg in 3D]. */
+      std::vector<double> mass;
       /** Vertex of the original (unexploded) mesh the node sits on. */
       std::vector<unsigned int> node_vertex;
 
@@ -62,9 +91,12 @@ namespace tmfdem
       std::vector<unsigned int> mesh_index;
 
       // --------------------------------------------------------- elements
-      /** Inverse initial basis F_i^-1 (row-major 2x2) per element. */
-      std::vector<double>             inverse_basis;
-      std::vector<double>             reference_area; ///< [m^2]
+      /** Inverse initial basis F_i^-1 (row-major dim x dim) per element
+       *  [1/m]. */
+      std::vector<double> inverse_basis;
+      /** Reference area of a triangle [m^2], volume of a tetrahedron
+       *  [m^3]. */
+      std::vector<double>             reference_area;
       std::vector<types::material_id> material;
       /** Body index per element (see DiscreteBodyParameters), or no_body. */
       std::vector<unsigned char> body;
@@ -78,27 +110,37 @@ namespace tmfdem
        *  [-] (Discrete mechanics/Expansion heterogeneity, heterogeneity.h);
        *  empty: 1 everywhere. */
       std::vector<double> expansion_factor;
-      /** Cauchy stress of the last step per element (xx, yy, xy) [Pa]. */
+      /** Cauchy stress of the last step per element (2D: xx, yy, xy; 3D:
+       *  xx, yy, zz, xy, yz, xz) [Pa]. */
       std::vector<double> stress;
       /**
-       * Per element edge k (nodes k -> k+1): 2 j + side for joint j with
-       * the element on side 0 (A) or 1 (B), or -1 for a boundary edge.
+       * Per element edge k (2D: nodes k -> k+1) or face k (3D: deal.II's
+       * face k of the tetrahedron): 2 j + side for joint j with the element
+       * on side 0 (A) or 1 (B), or -1 for a boundary edge or face.
        */
       std::vector<int> edge_joint;
-      /** Boundary id per element edge (numbers::internal_face_boundary_id
-       *  for interior edges). */
+      /** Boundary id per element edge or face
+       *  (numbers::internal_face_boundary_id for interior ones). */
       std::vector<types::boundary_id> edge_boundary;
 
       // ----------------------------------------------------------- joints
-      /** Nodes a0, a1 (edge of element A, counter-clockwise in A) and
-       *  b0, b1 of element B coinciding initially with a0, a1. */
+      /** 2D: nodes a0, a1 (edge of element A, counter-clockwise in A) and
+       *  b0, b1 of element B coinciding initially with a0, a1. 3D: a0, a1,
+       *  a2 (face of A, (a1 - a0) x (a2 - a0) pointing out of A) and b0, b1,
+       *  b2 of B coinciding initially with them. */
       std::vector<unsigned int>   joint_nodes;
       std::vector<unsigned int>   joint_elements; ///< A, B per joint
       std::vector<JointConstants> joint_constants;
-      std::vector<double>         joint_length; ///< reference [m]
-      std::vector<double>         joint_damage; ///< per Gauss point (2)
-      std::vector<JointStatus>    joint_status;
-      std::vector<double>         joint_break_time; ///< [s]
+      /** Reference size of each joint [m]: the edge's length in 2D, the
+       *  mean length of the face's three edges in 3D (the penalties are
+       *  per this size: make_joint_constants()). */
+      std::vector<double> joint_length;
+      /** Reference area of each face joint [m^2] (3D; empty in 2D). */
+      std::vector<double> joint_area;
+      /** Damage per Gauss point (2 per joint in 2D, 3 in 3D) [-]. */
+      std::vector<double>      joint_damage;
+      std::vector<JointStatus> joint_status;
+      std::vector<double>      joint_break_time; ///< [s]
       /**
        * The joint forces of the last step per node [N/m], four per node:
        * (x, y) from the joint of the element edge that starts at the node,
@@ -107,7 +149,9 @@ namespace tmfdem
        * a1 and b0 end it). Each slot has one writer (the joint of that
        * edge), so the joint pass scatters without conflicts and the node
        * update reads its node's forces in order, without indirection. Zero
-       * where the edge has no intact joint. Not state: every step forms it
+       * where the edge has no intact joint. In 3D nine per node: (x, y, z)
+       * from the joint of each of the element's three faces at the node, in
+       * the order of the element's faces. Not state: every step forms it
        * before the node update reads it (not in checkpoints).
        */
       std::vector<double> node_joint_force;
@@ -121,12 +165,21 @@ namespace tmfdem
       void
       build(const DoFHandler<2> &dof_handler);
 
+      /**
+       * The same in 3D from @p dof_handler with FE_SimplexDGP(1) on a
+       * serial tetrahedral mesh: joints on every interior triangular face.
+       * Throws InputError for a cell that is not a tetrahedron or has a
+       * non-positive volume, and for hanging nodes (naming the cell).
+       */
+      void
+      build(const DoFHandler<3> &dof_handler);
+
       /** Elements joined across edge k of element e by an intact joint, or
        *  -1. */
       int
       intact_neighbour(const unsigned int e, const unsigned int k) const
       {
-        const int code = edge_joint[3 * e + k];
+        const int code = edge_joint[nodes_per_element() * e + k];
         if (code < 0)
           return -1;
         const unsigned int j = code / 2;
@@ -139,7 +192,7 @@ namespace tmfdem
       bool
       joined(const unsigned int a, const unsigned int b) const
       {
-        for (unsigned int k = 0; k < 3; ++k)
+        for (unsigned int k = 0; k < nodes_per_element(); ++k)
           if (intact_neighbour(a, k) == static_cast<int>(b))
             return true;
         return false;

@@ -221,6 +221,10 @@ namespace tmfdem
     std::string                     velocity_y = "0"; ///< v_y(t) [m/s]
     std::string initial_velocity_x = "0"; ///< v_x(x, y) at start [m/s]
     std::string initial_velocity_y = "0"; ///< v_y(x, y) at start [m/s]
+    /** v_z(t) (Mesh/Dimension = 3) [m/s]. */
+    std::string velocity_z = "0";
+    /** v_z(x, y, z) at start (Mesh/Dimension = 3) [m/s]. */
+    std::string initial_velocity_z = "0";
     /** T(x, y) at the start time [C]; empty: the materials' or the global
      *  initial temperature (Parameters::initial_temperature_of()). */
     std::string initial_temperature;

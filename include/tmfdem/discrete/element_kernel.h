@@ -1,18 +1,19 @@
 /**
  * @file
- * One triangle's stress and nodal forces in one explicit step, written once
- * for the element-by-element loop (Number = double) and for the vector
- * batches (Number = a GCC vector of doubles, one triangle per lane;
+ * One element's stress and nodal forces in one explicit step, written once
+ * for triangles (dim = 2) and tetrahedra (dim = 3), for the
+ * element-by-element loop (Number = double) and for the vector batches
+ * (Number = a GCC vector of doubles, one element per lane;
  * source/discrete/node_update.cc): the deformation gradient F from the
  * current nodes and the inverse initial basis (paper Eq. 39), its elastic
  * part F_e = F / s, the Cauchy stress of Eq. 44 on F_e
- * (constitutive::elastic_stress()) plus the anisotropic correction of joint
- * compliance compensation (anisotropic_stress()), the viscous stress
- * 2 eta sym(dF/dt F^-1) (Eqs. 45-46) and the nodal forces of both
+ * (constitutive::elastic_stress()) plus, in 2D, the anisotropic correction
+ * of joint compliance compensation (anisotropic_stress()), the viscous
+ * stress 2 eta sym(dF/dt F^-1) (Eqs. 45-46) and the nodal forces of both
  * (nodal_forces()); then each node's resultant, its damped velocity
  * update and the works of its forces over the step (NodeForces,
- * damped_velocity(), node_works()). Both instantiations perform the same
- * operations in the same order, so a triangle in a batch gets bitwise the
+ * damped_velocity(), node_works()). Both number types perform the same
+ * operations in the same order, so an element in a batch gets bitwise the
  * forces and nodes of the scalar loop (node_update.cc is compiled without
  * FMA contraction).
  */
@@ -26,124 +27,148 @@ namespace tmfdem
 {
   namespace discrete
   {
-    /** What element_response() computes for one triangle (or one per
-     *  lane). */
-    template <typename Number>
+    /** What element_response() computes for one simplex (or one per
+     *  lane): a triangle (dim = 2) or a tetrahedron (dim = 3). */
+    template <int dim, typename Number>
     struct ElementResponse
     {
-      Number det;            ///< det F [-] (not > 0: an inverted triangle)
-      Number sxx, syy, sxy;  ///< elastic and anisotropic Cauchy stress [Pa]
-      Number vxx, vyy, vxy;  ///< viscous stress [Pa]; exactly +0 where eta = 0
-      Number fex[3], fey[3]; ///< nodal forces of the elastic stress [N/m]
-      Number fvx[3], fvy[3]; ///< of the viscous stress [N/m]; +0 where eta = 0
+      Number det; ///< det F [-] (not > 0: an inverted element)
+      /** Elastic and anisotropic Cauchy stress (symmetric) [Pa]. */
+      Number stress[dim][dim];
+      /** Viscous stress (symmetric) [Pa]; exactly +0 where eta = 0. */
+      Number viscous[dim][dim];
+      /** Nodal forces of the elastic stress, [node][component] [N/m in 2D,
+       *  N in 3D]. */
+      Number f_elastic[dim + 1][dim];
+      /** Of the viscous stress; +0 where eta = 0. */
+      Number f_viscous[dim + 1][dim];
     };
 
     /**
-     * [u1 - u0, u2 - u0; v1 - v0, v2 - v0] times the inverse initial basis
-     * @p ib (row-major 2x2) [1/m], written row-major to @p G: the
-     * deformation gradient from the nodes' positions (@p u, @p v = x, y)
-     * and its rate from their velocities, in the order of Eigen's 2x2
-     * product.
+     * The inverse of @p F [-] as Eigen forms a fixed-size one: 1 / det F
+     * (@p det), then the adjugate's entries times it, written to @p G.
      */
-    template <typename Number>
+    template <int dim, typename Number>
     __attribute__((always_inline)) inline void
-    times_inverse_basis(const Number *u,
-                        const Number *v,
-                        const Number *ib,
-                        Number       *G)
+    inverse(const Number (&F)[dim][dim],
+            const Number det,
+            Number (&G)[dim][dim])
     {
-      const Number b00 = u[1] - u[0], b01 = u[2] - u[0];
-      const Number b10 = v[1] - v[0], b11 = v[2] - v[0];
-      G[0] = b00 * ib[0] + b01 * ib[2];
-      G[1] = b00 * ib[1] + b01 * ib[3];
-      G[2] = b10 * ib[0] + b11 * ib[2];
-      G[3] = b10 * ib[1] + b11 * ib[3];
+      const Number invdet = 1. / det;
+      if constexpr (dim == 2)
+        {
+          G[0][0] = F[1][1] * invdet;
+          G[1][0] = -F[1][0] * invdet;
+          G[0][1] = -F[0][1] * invdet;
+          G[1][1] = F[0][0] * invdet;
+        }
+      else
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j)
+            {
+              // adj(F)_ij = cofactor C_ji
+              const int r0 = (j + 1) % 3, r1 = (j + 2) % 3;
+              const int c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+              G[i][j] =
+                (F[r0][c0] * F[r1][c1] - F[r0][c1] * F[r1][c0]) * invdet;
+            }
     }
 
     /**
-     * The stress and nodal forces of a constant-strain triangle with
-     * current nodes @p x, @p y [m] and nodal velocities @p vx, @p vy [m/s]
-     * (three each), inverse initial basis @p inverse_basis (row-major 2x2)
-     * [1/m], inverse thermal stretch @p inverse_stretch (1 / s) [-], Lame
-     * constants @p mu, @p lambda [Pa], Mandel components of the anisotropic
-     * correction @p anisotropy (six, or nullptr for none) [Pa] and
-     * viscosity @p eta [Pa s] (no viscous stress where eta is not > 0).
+     * The stress and nodal forces of a constant-strain simplex (triangle or
+     * tetrahedron) with current nodes @p x (x[i][a]: component i of node a)
+     * [m] and nodal velocities @p v (the same layout) [m/s], inverse initial
+     * basis @p inverse_basis (row-major dim x dim) [1/m], inverse thermal
+     * stretch @p inverse_stretch (1 / s) [-], Lame constants @p mu,
+     * @p lambda [Pa], Mandel components of the anisotropic correction
+     * @p anisotropy (six, or nullptr for none; 2D only) [Pa] and viscosity
+     * @p eta [Pa s] (no viscous stress where eta is not > 0).
      */
-    template <typename Number>
+    template <int dim, typename Number>
     __attribute__((always_inline)) inline void
-    element_response(const Number            *x,
-                     const Number            *y,
-                     const Number            *vx,
-                     const Number            *vy,
-                     const Number            *inverse_basis,
-                     const Number             inverse_stretch,
-                     const Number             mu,
-                     const Number             lambda,
-                     const Number            *anisotropy,
-                     const Number             eta,
-                     ElementResponse<Number> &r)
+    element_response(const Number *const (&x)[dim],
+                     const Number *const (&v)[dim],
+                     const Number                 *inverse_basis,
+                     const Number                  inverse_stretch,
+                     const Number                  mu,
+                     const Number                  lambda,
+                     const Number                 *anisotropy,
+                     const Number                  eta,
+                     ElementResponse<dim, Number> &r)
     {
-      // F = [x1 - x0, x2 - x0; y1 - y0, y2 - y0] Fi^-1
-      Number F[4];
-      times_inverse_basis(x, y, inverse_basis, F);
-      const Number F00 = F[0], F01 = F[1], F10 = F[2], F11 = F[3];
-      r.det = F00 * F11 - F10 * F01;
+      // F = [x_1 - x_0, ...] Fi^-1
+      Number F[dim][dim];
+      times_inverse_basis<dim>(x, inverse_basis, F);
+      r.det = constitutive::determinant<dim>(F);
       // F_e = F / s; Eq. 44 and the anisotropic correction on it
-      const Number f00 = F00 * inverse_stretch, f01 = F01 * inverse_stretch;
-      const Number f10 = F10 * inverse_stretch, f11 = F11 * inverse_stretch;
-      constitutive::elastic_stress(f00,
-                                   f01,
-                                   f10,
-                                   f11,
-                                   mu,
-                                   lambda,
-                                   r.sxx,
-                                   r.syy,
-                                   r.sxy);
-      if (anisotropy != nullptr)
-        {
-          Number axx, ayy, axy;
-          anisotropic_stress(f00, f01, f10, f11, anisotropy, axx, ayy, axy);
-          r.sxx += axx;
-          r.syy += ayy;
-          r.sxy += axy;
-        }
-      nodal_forces(r.sxx, r.syy, r.sxy, x, y, r.fex, r.fey);
+      Number Fe[dim][dim];
+      for (int i = 0; i < dim; ++i)
+        for (int j = 0; j < dim; ++j)
+          Fe[i][j] = F[i][j] * inverse_stretch;
+      constitutive::elastic_stress<dim>(Fe, mu, lambda, r.stress);
+      if constexpr (dim == 2)
+        if (anisotropy != nullptr)
+          {
+            Number axx, ayy, axy;
+            anisotropic_stress(Fe[0][0],
+                               Fe[0][1],
+                               Fe[1][0],
+                               Fe[1][1],
+                               anisotropy,
+                               axx,
+                               ayy,
+                               axy);
+            r.stress[0][0] += axx;
+            r.stress[1][1] += ayy;
+            r.stress[0][1] += axy;
+            r.stress[1][0] = r.stress[0][1];
+          }
+      nodal_forces<dim>(r.stress, x, r.f_elastic);
 
       // viscous stress 2 eta sym(dF/dt F^-1) where eta > 0, else +0; a
-      // single triangle skips the arithmetic where eta is not > 0
+      // single element skips the arithmetic where eta is not > 0
       const Number zero{};
       bool         any_viscous = true;
       if constexpr (std::is_same_v<Number, double>)
         any_viscous = eta > 0.;
       if (!any_viscous)
         {
-          r.vxx = r.vyy = r.vxy = zero;
-          for (unsigned int k = 0; k < 3; ++k)
-            r.fvx[k] = r.fvy[k] = zero;
+          for (int i = 0; i < dim; ++i)
+            for (int j = 0; j < dim; ++j)
+              r.viscous[i][j] = zero;
+          for (int a = 0; a <= dim; ++a)
+            for (int i = 0; i < dim; ++i)
+              r.f_viscous[a][i] = zero;
           return;
         }
-      // dF/dt from the nodal velocities
-      Number D[4];
-      times_inverse_basis(vx, vy, inverse_basis, D);
-      const Number D00 = D[0], D01 = D[1], D10 = D[2], D11 = D[3];
-      // F^-1 as Eigen forms it: 1 / det, then the cofactors times it
-      const Number invdet = 1. / r.det;
-      const Number G00 = F11 * invdet, G10 = -F10 * invdet;
-      const Number G01 = -F01 * invdet, G11 = F00 * invdet;
-      const Number L00 = D00 * G00 + D01 * G10, L01 = D00 * G01 + D01 * G11;
-      const Number L10 = D10 * G00 + D11 * G10, L11 = D10 * G01 + D11 * G11;
-      const auto   viscous = eta > 0.;
-      r.vxx                = viscous ? Number(2. * eta * L00) : zero;
-      r.vyy                = viscous ? Number(2. * eta * L11) : zero;
-      r.vxy                = viscous ? Number(eta * (L01 + L10)) : zero;
-      Number fvx[3], fvy[3];
-      nodal_forces(r.vxx, r.vyy, r.vxy, x, y, fvx, fvy);
-      for (unsigned int k = 0; k < 3; ++k)
+      // L = dF/dt F^-1 from the nodal velocities
+      Number D[dim][dim], G[dim][dim], L[dim][dim];
+      times_inverse_basis<dim>(v, inverse_basis, D);
+      inverse<dim>(F, r.det, G);
+      for (int i = 0; i < dim; ++i)
+        for (int j = 0; j < dim; ++j)
+          {
+            Number l = D[i][0] * G[0][j];
+            for (int k = 1; k < dim; ++k)
+              l = l + D[i][k] * G[k][j];
+            L[i][j] = l;
+          }
+      const auto viscous = eta > 0.;
+      for (int i = 0; i < dim; ++i)
         {
-          r.fvx[k] = viscous ? fvx[k] : zero;
-          r.fvy[k] = viscous ? fvy[k] : zero;
+          r.viscous[i][i] = viscous ? Number(2. * eta * L[i][i]) : zero;
+          for (int j = i + 1; j < dim; ++j)
+            {
+              r.viscous[i][j] =
+                viscous ? Number(eta * (L[i][j] + L[j][i])) : zero;
+              r.viscous[j][i] = r.viscous[i][j];
+            }
         }
+      Number fv[dim + 1][dim];
+      nodal_forces<dim>(r.viscous, x, fv);
+      for (int a = 0; a <= dim; ++a)
+        for (int i = 0; i < dim; ++i)
+          r.f_viscous[a][i] = viscous ? fv[a][i] : zero;
     }
 
     /**

@@ -195,6 +195,173 @@ namespace tmfdem
       f.frame_x           = half_M * g.nx;
       f.frame_y           = half_M * g.ny;
     }
+
+    /**
+     * Gauss points of a joint on a triangular face (tetrahedra, 3D): the
+     * barycentric coordinates of the three-point rule, exact for
+     * quadratics (the gap is linear over the face), each of weight 1/3 of
+     * the area.
+     */
+    constexpr double face_joint_gauss_points[3][3] = {
+      {2. / 3., 1. / 6., 1. / 6.},
+      {1. / 6., 2. / 3., 1. / 6.},
+      {1. / 6., 1. / 6., 2. / 3.}};
+
+    /**
+     * The frame of a joint on a triangular face at the current state: the
+     * gaps of its three node pairs (B - A) [m], the edges e1 = m1 - m0,
+     * e2 = m2 - m0 of the mean face m_k = (a_k + b_k) / 2 [m], its area
+     * [m^2] and unit normal n = e1 x e2 / |e1 x e2| (outward of element A
+     * when a0, a1, a2 run counter-clockwise seen from B).
+     */
+    template <typename Number>
+    struct FaceJointFrameT
+    {
+      Number d[3][3]; ///< d[k][i]: component i of the gap of node pair k
+      Number e1[3], e2[3];
+      Number area, inverse_twice_area, n[3];
+    };
+
+    /**
+     * The frame of a face joint with nodes a0, a1, a2 (element A) and b0,
+     * b1, b2 (element B, b_k facing a_k) at @p x (x[i][node], nodes in the
+     * order a0, a1, a2, b0, b1, b2) [m].
+     */
+    template <typename Number>
+    __attribute__((always_inline)) inline FaceJointFrameT<Number>
+    face_joint_frame(const Number *const (&x)[3])
+    {
+      FaceJointFrameT<Number> g;
+      for (int i = 0; i < 3; ++i)
+        {
+          for (int k = 0; k < 3; ++k)
+            g.d[k][i] = x[i][3 + k] - x[i][k];
+          g.e1[i] = 0.5 * (x[i][1] + x[i][4] - x[i][0] - x[i][3]);
+          g.e2[i] = 0.5 * (x[i][2] + x[i][5] - x[i][0] - x[i][3]);
+        }
+      const Number c[3] = {g.e1[1] * g.e2[2] - g.e1[2] * g.e2[1],
+                           g.e1[2] * g.e2[0] - g.e1[0] * g.e2[2],
+                           g.e1[0] * g.e2[1] - g.e1[1] * g.e2[0]};
+      const Number twice_area =
+        lane_sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+      g.area               = 0.5 * twice_area;
+      g.inverse_twice_area = 1. / twice_area;
+      for (int i = 0; i < 3; ++i)
+        g.n[i] = c[i] * g.inverse_twice_area;
+      return g;
+    }
+
+    /**
+     * What face_joint_response() computes for one face joint (or one per
+     * lane). The node forces [N] are
+     *
+     *   a_k: a[k] + frame[k],   b_k: -a[k] + frame[k].
+     */
+    template <typename Number>
+    struct FaceJointResponse
+    {
+      /** The tractions' forces on a_k [N], pulling A toward B; B's nodes
+       *  take them with the opposite sign. */
+      Number a[3][3];
+      /** The forces of the turning frame on a_k and b_k alike [N] (sum
+       *  zero; see face_joint_response()). */
+      Number frame[3][3];
+      /** The larger of the Gauss points' normalised softening opening and
+       *  slip (cohesive_traction()) [-]. */
+      Number d_opening, d_slip;
+      /** Past a peak at a Gauss point (bool, or a lane mask). */
+      decltype(Number() > 1.) beyond_peak;
+    };
+
+    /**
+     * The forces of a joint on a triangular face with frame @p g, constants
+     * @p k (JointConstants, or JointConstantLanes for a batch) and the
+     * damage of its three Gauss points @p damage (updated in place): at
+     * each Gauss point the gap d, its opening o = d.n and slip vector
+     * s = d - o n; the cohesive law of the 2D joints on o and |s|
+     * (cohesive_traction(): the same softening laws, mixed mode and
+     * Mohr-Coulomb shear strength) gives the normal traction sigma and the
+     * shear traction tau along s; the traction sigma n + tau s / |s|,
+     * weighted area / 3, goes to the node pairs by the linear shape
+     * functions.
+     *
+     * As in 2D the forces are the generalised forces of the tractions on o
+     * and |s| with the normal turning with the mean face (its area held):
+     * d|s| = s/|s| . (dd - o dn) and do = n . dd + d . dn give, besides
+     * the traction, the work V . dn with V = sum_q w_q (sigma - tau o / |s|)
+     * s. With dn = (I - n n)(de1 x e2 + e1 x de2) / |e1 x e2| and
+     * de1 = (da1 + db1 - da0 - db0) / 2 (e2 alike) that is the force
+     * -(e2 x V) / (2 |e1 x e2|) on a1 and b1, -(V x e1) / (2 |e1 x e2|) on
+     * a2 and b2, and minus their sum on a0 and b0: o and |s| being
+     * invariant under rigid motions, the joint keeps momentum and angular
+     * momentum. A face closed over part of its area takes its compression
+     * at the Gauss points.
+     */
+    template <SofteningLaw law,
+              bool         with_softening = true,
+              typename Number,
+              typename Constants>
+    __attribute__((always_inline)) inline void
+    face_joint_response(const FaceJointFrameT<Number> &g,
+                        const Constants               &k,
+                        Number                        *damage,
+                        FaceJointResponse<Number>     &f)
+    {
+      const Number zero{};
+      for (int a = 0; a < 3; ++a)
+        for (int i = 0; i < 3; ++i)
+          f.a[a][i] = f.frame[a][i] = zero;
+      f.d_opening = f.d_slip = zero;
+      f.beyond_peak          = decltype(f.beyond_peak){};
+      Number       V[3]      = {zero, zero, zero};
+      const Number w         = g.area * (1. / 3.);
+      for (int q = 0; q < 3; ++q)
+        {
+          const double *lambda = face_joint_gauss_points[q];
+          Number        d[3];
+          for (int i = 0; i < 3; ++i)
+            d[i] = lambda[0] * g.d[0][i] + lambda[1] * g.d[1][i] +
+                   lambda[2] * g.d[2][i];
+          const Number o = d[0] * g.n[0] + d[1] * g.n[1] + d[2] * g.n[2];
+          Number       s[3];
+          for (int i = 0; i < 3; ++i)
+            s[i] = d[i] - o * g.n[i];
+          const Number abs_s =
+            lane_sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+          const JointTractionT<Number> tr =
+            cohesive_traction<law, with_softening>(o, abs_s, k, damage[q]);
+          f.d_opening = lane_max(f.d_opening, tr.d_opening);
+          f.d_slip    = lane_max(f.d_slip, tr.d_slip);
+          f.beyond_peak |= tr.beyond_peak;
+          // tau / |s| (tau is 0 where |s| is)
+          const auto   slipping = abs_s > 0.;
+          const Number shear_per_slip =
+            slipping ? tr.shear / (slipping ? abs_s : zero + 1.) : zero;
+          const Number frame_factor = w * (tr.normal - shear_per_slip * o);
+          for (int i = 0; i < 3; ++i)
+            {
+              const Number p = w * (tr.normal * g.n[i] + shear_per_slip * s[i]);
+              for (int a = 0; a < 3; ++a)
+                f.a[a][i] += lambda[a] * p;
+              V[i] += frame_factor * s[i];
+            }
+        }
+      // the turning frame: -(e2 x V) / (2 |c|) on a1, b1; -(V x e1) / (2 |c|)
+      // on a2, b2; minus their sum on a0, b0
+      const Number h     = -0.5 * g.inverse_twice_area;
+      const Number f1[3] = {h * (g.e2[1] * V[2] - g.e2[2] * V[1]),
+                            h * (g.e2[2] * V[0] - g.e2[0] * V[2]),
+                            h * (g.e2[0] * V[1] - g.e2[1] * V[0])};
+      const Number f2[3] = {h * (V[1] * g.e1[2] - V[2] * g.e1[1]),
+                            h * (V[2] * g.e1[0] - V[0] * g.e1[2]),
+                            h * (V[0] * g.e1[1] - V[1] * g.e1[0])};
+      for (int i = 0; i < 3; ++i)
+        {
+          f.frame[1][i] = f1[i];
+          f.frame[2][i] = f2[i];
+          f.frame[0][i] = -(f1[i] + f2[i]);
+        }
+    }
   } // namespace discrete
 } // namespace tmfdem
 

@@ -192,11 +192,114 @@ namespace tmfdem
     }
 
     /**
-     * Nodal forces of a constant-stress triangle [N/m]: f_a = -A sigma
-     * grad N_a in the current configuration, which is -1/2 sigma n_a with
-     * n_a the opposite edge rotated outward. Stress @p sxx, @p syy, @p sxy
-     * [Pa], current node coordinates @p x, @p y [m]; written to @p fx,
-     * @p fy (node by node). @p Number: double or a vector of doubles.
+     * F times an element's inverse initial basis, or its rate: the matrix
+     * B = [x_1 - x_0, ..., x_dim - x_0] of the current node positions (or
+     * velocities) @p u (u[i][a]: component i of node a) times the inverse
+     * initial basis @p inverse_basis (row-major dim x dim) [1/m], written to
+     * @p G (paper Eq. 39 for a triangle; the same for a tetrahedron). The
+     * sums run in the order of Eigen's fixed-size product.
+     */
+    template <int dim, typename Number>
+    __attribute__((always_inline)) inline void
+    times_inverse_basis(const Number *const (&u)[dim],
+                        const Number *inverse_basis,
+                        Number (&G)[dim][dim])
+    {
+      for (int i = 0; i < dim; ++i)
+        {
+          Number b[dim];
+          for (int k = 0; k < dim; ++k)
+            b[k] = u[i][k + 1] - u[i][0];
+          for (int j = 0; j < dim; ++j)
+            {
+              Number g = b[0] * inverse_basis[j];
+              for (int k = 1; k < dim; ++k)
+                g = g + b[k] * inverse_basis[k * dim + j];
+              G[i][j] = g;
+            }
+        }
+    }
+
+    /**
+     * dim! V grad N_a of the linear shape functions of a simplex with the
+     * current nodes @p x (x[i][a]: component i of node a) [m^(dim-1)],
+     * written to @p g (g[a][i]): in 2D the opposite edge turned outward
+     * (node 0: (y1 - y2, x2 - x1)), in 3D the cross product of two edges of
+     * the opposite face, oriented as grad N_a for a positively oriented
+     * tetrahedron (node 3: (x1 - x0) x (x2 - x0)).
+     */
+    template <int dim, typename Number>
+    __attribute__((always_inline)) inline void
+    scaled_shape_gradients(const Number *const (&x)[dim],
+                           Number (&g)[dim + 1][dim])
+    {
+      static_assert(dim == 2 || dim == 3, "2D or 3D");
+      if constexpr (dim == 2)
+        {
+          const Number *X = x[0], *Y = x[1];
+          g[0][0] = Y[1] - Y[2];
+          g[1][0] = Y[2] - Y[0];
+          g[2][0] = Y[0] - Y[1];
+          g[0][1] = X[2] - X[1];
+          g[1][1] = X[0] - X[2];
+          g[2][1] = X[1] - X[0];
+        }
+      else
+        {
+          // node a: (x_p - x_o) x (x_q - x_o) over the opposite face (o, p, q)
+          constexpr int face[4][3] = {{1, 3, 2},
+                                      {0, 2, 3},
+                                      {0, 3, 1},
+                                      {0, 1, 2}};
+          for (int a = 0; a < 4; ++a)
+            {
+              const int o = face[a][0], p = face[a][1], q = face[a][2];
+              Number    e[3], f[3];
+              for (int i = 0; i < 3; ++i)
+                {
+                  e[i] = x[i][p] - x[i][o];
+                  f[i] = x[i][q] - x[i][o];
+                }
+              g[a][0] = e[1] * f[2] - e[2] * f[1];
+              g[a][1] = e[2] * f[0] - e[0] * f[2];
+              g[a][2] = e[0] * f[1] - e[1] * f[0];
+            }
+        }
+    }
+
+    /**
+     * Nodal forces of a constant-stress simplex [N/m in 2D, N in 3D]:
+     * f_a = -V sigma grad N_a in the current configuration, with the
+     * symmetric stress @p sigma [Pa] and the current nodes @p x (x[i][a])
+     * [m]; written to @p f (f[a][i]). In 2D, -1/2 sigma n_a with n_a the
+     * opposite edge turned outward; in 3D, -1/6 sigma n_a with n_a twice
+     * the opposite face's area vector, pointing inward.
+     * @p Number: double or a vector of doubles.
+     */
+    template <int dim, typename Number>
+    __attribute__((always_inline)) inline void
+    nodal_forces(const Number (&sigma)[dim][dim],
+                 const Number *const (&x)[dim],
+                 Number (&f)[dim + 1][dim])
+    {
+      // -V grad N_a = -(1 / dim!) scaled_shape_gradients()
+      constexpr double minus_inverse_factorial = dim == 2 ? -0.5 : -1. / 6.;
+      Number           g[dim + 1][dim];
+      scaled_shape_gradients<dim>(x, g);
+      for (int a = 0; a <= dim; ++a)
+        for (int i = 0; i < dim; ++i)
+          {
+            Number sum = sigma[i][0] * g[a][0];
+            for (int j = 1; j < dim; ++j)
+              sum = sum + sigma[i][j] * g[a][j];
+            f[a][i] = minus_inverse_factorial * sum;
+          }
+    }
+
+    /**
+     * The 2D nodal_forces() on the stress components @p sxx, @p syy, @p sxy
+     * [Pa] and node coordinates @p x, @p y [m] (three each), written to
+     * @p fx, @p fy (node by node) [N/m].
      */
     template <typename Number>
     __attribute__((always_inline)) inline void
@@ -208,14 +311,14 @@ namespace tmfdem
                  Number       *fx,
                  Number       *fy)
     {
-      // grad N_a * 2A: node 0: (y1 - y2, x2 - x1), node 1: (y2 - y0, x0 - x2),
-      // node 2: (y0 - y1, x1 - x0)
-      const Number gx[3] = {y[1] - y[2], y[2] - y[0], y[0] - y[1]};
-      const Number gy[3] = {x[2] - x[1], x[0] - x[2], x[1] - x[0]};
+      const Number  sigma[2][2] = {{sxx, sxy}, {sxy, syy}};
+      const Number *nodes[2]    = {x, y};
+      Number        f[3][2];
+      nodal_forces<2>(sigma, nodes, f);
       for (unsigned int k = 0; k < 3; ++k)
         {
-          fx[k] = -0.5 * (sxx * gx[k] + sxy * gy[k]);
-          fy[k] = -0.5 * (sxy * gx[k] + syy * gy[k]);
+          fx[k] = f[k][0];
+          fy[k] = f[k][1];
         }
     }
 

@@ -1,0 +1,190 @@
+/**
+ * @file
+ * The explicit dynamics of the discrete layer in 3D (model `discrete
+ * mechanics` with Mesh/Dimension = 3): central differences (paper Eq. 2)
+ * over the exploded tetrahedral mesh (DiscreteModel with dim = 3) with the
+ * finite-strain tetrahedra of element_response<3>() and the cohesive joints
+ * on every interior triangular face of face_joint_response(); damping as in
+ * 2D (Damping ratio of the highest element mode, mass damping), the stable
+ * step of stable_step.h for tetrahedra, fixed, driven and free bodies,
+ * boundary conditions (fixed, rollers, velocity), energy bookkeeping, and the
+ * outputs solution.pvd (tetrahedra), cracks.pvd (broken faces as
+ * triangles), history.csv and summary.json. Contact between tetrahedra,
+ * heat, gravity and MPI ranks beyond one are refused with a message naming
+ * the entry.
+ */
+#ifndef tmfdem_discrete_tetrahedral_solver_h
+#define tmfdem_discrete_tetrahedral_solver_h
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/grid/tria.h>
+
+#include <array>
+#include <memory>
+#include <tmfdem/base/parameters.h>
+#include <tmfdem/base/simulation.h>
+#include <tmfdem/discrete/cohesive_law.h>
+#include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/solid.h>
+#include <tmfdem/io/validation_report.h>
+#include <vector>
+
+namespace tmfdem
+{
+  class CsvSeries;
+
+  namespace discrete
+  {
+    class VtuSeries;
+
+    /** Explicit FDEM mechanics of tetrahedra and face joints (3D). */
+    class TetrahedralSolver : public Simulation, public ValidationReporter
+    {
+    public:
+      TetrahedralSolver(const Parameters &parameters, MPI_Comm communicator);
+      ~TetrahedralSolver() override;
+
+      void
+      check_input() override;
+      void
+      run() override;
+      void
+      report_validation(std::ostream     &out,
+                        const Parameters &parameters,
+                        MPI_Comm          communicator) const override;
+
+    private:
+      /** The energy terms of the run so far [J]. */
+      struct Energies
+      {
+        double kinetic = 0.; ///< 1/2 m |v|^2 at the last half step
+        double strain  = 0.; ///< elastic energy of the tetrahedra
+        /** Work done on the joints by the nodes (stored + dissipated). */
+        double joint_work = 0.;
+        /** Work of the imposed motions (reactions of conditions and driven
+         *  or fixed bodies). */
+        double external_work = 0.;
+        /** Viscous and mass-damping dissipation. */
+        double damping = 0.;
+      };
+
+      /** A node's imposed velocity components. */
+      struct NodeConstraint
+      {
+        unsigned int node          = 0;
+        bool         prescribed[3] = {false, false, false};
+        /** Index into velocity_functions per component, or -1: zero. */
+        int function[3] = {-1, -1, -1};
+        /** The imposed velocity now [m/s]. */
+        double velocity[3] = {0., 0., 0.};
+        /** Body or condition it belongs to (reactions are summed per
+         *  owner: history.csv). */
+        unsigned int owner = 0;
+      };
+
+      /** Refuses what the 3D discrete layer does not model (naming the
+       *  entry). */
+      void
+      check_supported() const;
+      void
+      setup_mesh();
+      void
+      setup_materials();
+      void
+      setup_constraints();
+      void
+      setup_time_step();
+      /** The imposed velocities at @p time [s] (conditions and bodies). */
+      void
+      evaluate_imposed_velocities(const double time);
+      /** The joint forces into DiscreteModel::node_joint_force; true if a
+       *  joint broke. */
+      bool
+      compute_joint_forces();
+      /** Element forces, node update over the step @p dt [s] and the
+       *  step's works. */
+      void
+      update_nodes(const double dt);
+      /** One explicit step of @p dt [s] (the time step, or shorter to land
+       *  on an output time). */
+      void
+      step(const double dt);
+      /** Kinetic and strain energy of the current state [J]. */
+      void
+      compute_state_energies();
+      void
+      write_output();
+      void
+      write_history_row();
+      void
+      write_summary(const bool finished) const;
+
+      const Parameters &parameters;
+      MPI_Comm          communicator;
+      bool              input_checked = false;
+
+      Triangulation<3> triangulation;
+      FE_SimplexDGP<3> fe;
+      DoFHandler<3>    dof_handler;
+      DiscreteModel    model;
+      SofteningLaw     softening_law = SofteningLaw::munjiza;
+      /** Lame constants per element [Pa] and viscosity eta [Pa s]. */
+      std::vector<LameConstants> element_lame;
+      std::vector<double>        viscosity;
+      /** Per joint and side: the face of its element (deal.II's face
+       *  index, 0-3). */
+      std::vector<unsigned char> joint_face;
+
+      // imposed motions
+      std::vector<NodeConstraint> constraints;
+      /** Per node: index into constraints, or -1. */
+      std::vector<int> node_constraint;
+      /** The functions of the imposed velocity components, of x, y, z
+       *  (the node's reference position) and t. */
+      std::vector<std::unique_ptr<FunctionParser<3>>> velocity_functions;
+      /** Names of the owners of constraints (bodies and conditions), and
+       *  their reaction forces of the last step [N]. */
+      std::vector<std::string>           owner_names;
+      std::vector<std::array<double, 3>> owner_reaction;
+      bool                               imposed_depend_on_time = false;
+
+      // time
+      double time             = 0.;
+      double time_step        = 0.;
+      double stable_time_step = 0.;
+      /** Mass damping c of -c m v [1/s]. */
+      double        mass_damping      = 0.;
+      unsigned long step_number       = 0;
+      unsigned int  n_threads         = 1;
+      unsigned int  threads_requested = 0; ///< Discrete mechanics/Threads
+      unsigned int  threads_available = 1; ///< cores this process may use
+      unsigned int  threads_used = 1; ///< measured concurrency of the arena
+      static constexpr unsigned int chunk_size = 512;
+      /** Per chunk of elements: the works of the step (elastic, viscous,
+       *  joint, external, damping). */
+      std::vector<std::array<double, 5>> chunk_works;
+      /** Per chunk and owner: the reactions of the step [N]. */
+      std::vector<std::array<double, 3>> chunk_reaction;
+      /** Per chunk of joints: one broke in the step. */
+      std::vector<char> chunk_broke;
+      Energies          energies;
+      double            loop_wall_time = 0.; ///< wall time of the time loop [s]
+      double loop_cpu_time = 0.; ///< process CPU time of the loop [s]
+      /** CPU time of each thread in the loop, largest first [s]. */
+      std::vector<double> loop_thread_cpu_times;
+      double              element_steps = 0.;
+
+      // output
+      std::unique_ptr<VtuSeries> solution_series, crack_series;
+      std::unique_ptr<CsvSeries> history_csv;
+      std::vector<double>        output_times;
+      unsigned int               next_output      = 0;
+      double                     history_interval = 0.;
+      double                     next_history     = 0.;
+    };
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif

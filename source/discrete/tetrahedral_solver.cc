@@ -1,0 +1,849 @@
+/**
+ * @file
+ * The discrete layer in 3D: set-up, the explicit step (joint forces on the
+ * faces, element forces and the node update, fused per element as in 2D,
+ * in fixed chunks so that the result does not depend on the thread count),
+ * and the outputs.
+ */
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <set>
+#include <sstream>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/base/function_expression.h>
+#include <tmfdem/base/threads.h>
+#include <tmfdem/discrete/discrete_output.h>
+#include <tmfdem/discrete/discrete_parameters.h>
+#include <tmfdem/discrete/element_kernel.h>
+#include <tmfdem/discrete/joint_kernel.h>
+#include <tmfdem/discrete/joints.h>
+#include <tmfdem/discrete/stable_step.h>
+#include <tmfdem/discrete/tetrahedral_solver.h>
+#include <tmfdem/io/output_files.h>
+#include <tmfdem/io/output_schedule.h>
+#include <tmfdem/mesh/mesh_checks.h>
+#include <tmfdem/mesh/mesh_generator.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    namespace
+    {
+      /** The slot of face @p f among the three faces of a tetrahedron that
+       *  hold its vertex @p k (face f holds every vertex but 3 - f). */
+      inline unsigned int
+      face_slot(const unsigned int f, const unsigned int k)
+      {
+        return f < 3 - k ? f : f - 1;
+      }
+    } // namespace
+
+    TetrahedralSolver::TetrahedralSolver(const Parameters &parameters,
+                                         MPI_Comm          communicator)
+      : parameters(parameters)
+      , communicator(communicator)
+      , fe(1)
+    {}
+
+    TetrahedralSolver::~TetrahedralSolver() = default;
+
+    void
+    TetrahedralSolver::check_supported() const
+    {
+      parameters.mechanics.check_dimension(3);
+      const auto       &dm = parameters.get<DiscreteMechanicsParameters>();
+      const std::string in_3d =
+        " is not modelled in 3D yet (Mesh/Dimension = 3: tetrahedra with "
+        "cohesive joints, bodies and boundary conditions, no contact, heat or "
+        "gravity); ";
+      if (dm.contact)
+        throw InputError("Discrete mechanics/Contact = true: contact between "
+                         "tetrahedra" +
+                         in_3d + "allowed is Contact = false.");
+      for (const double g : dm.gravity)
+        if (g != 0.)
+          throw InputError("Discrete mechanics/Gravity: gravity" + in_3d +
+                           "allowed is 0, 0.");
+      if (!dm.initial_cracks.empty())
+        throw InputError("Discrete mechanics/Initial cracks: segments are 2D "
+                         "cracks; allowed in 3D is none.");
+      if (parameters.checkpoint.interval_steps > 0 ||
+          parameters.checkpoint.interval_minutes > 0.)
+        throw InputError("Checkpoint/Interval (steps), Interval (wall "
+                         "minutes): checkpoints" +
+                         in_3d + "allowed is 0 for both.");
+      if (parameters.resume)
+        throw InputError("--resume: checkpoints" + in_3d +
+                         "allowed is a run without --resume.");
+      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+        throw InputError("Mesh/Dimension = 3: the discrete layer in 3D runs "
+                         "on one MPI process; allowed is mpirun -np 1 (or "
+                         "no mpirun), with Discrete mechanics/Threads for "
+                         "the cores.");
+      for (const auto &condition :
+           parameters.mechanical_boundary.conditions)
+        if (condition.type == MechanicalBoundaryCondition::Type::displacement ||
+            condition.type == MechanicalBoundaryCondition::Type::traction)
+          throw InputError(
+            condition.name + "/Type = " +
+            (condition.type == MechanicalBoundaryCondition::Type::traction ?
+               "traction" :
+               "displacement") +
+            ": the discrete layer in 3D imposes fixed, roller x, roller y, "
+            "roller z and velocity conditions; allowed are those.");
+    }
+
+    void
+    TetrahedralSolver::setup_mesh()
+    {
+      create_output_folder(parameters.output.directory, communicator);
+      create_coarse_mesh(parameters.mesh,
+                         parameters.output.directory,
+                         triangulation,
+                         communicator);
+      const std::string source =
+        parameters.mesh.source == MeshParameters::Source::file ?
+          "mesh file '" + parameters.mesh.file_name + "'" :
+          "generated mesh";
+      const bool curved =
+        parameters.mesh.source == MeshParameters::Source::ball ||
+        parameters.mesh.source == MeshParameters::Source::spherical_shell ||
+        parameters.mesh.source == MeshParameters::Source::cylinder ||
+        parameters.mesh.source == MeshParameters::Source::hollow_cylinder;
+      const MeshReport report = check_mesh(triangulation,
+                                           source,
+                                           domain_volume(parameters.mesh),
+                                           curved);
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->reference_cell() != ReferenceCells::Tetrahedron)
+          throw InputError(source +
+                           " has hexahedra; the discrete layer needs "
+                           "tetrahedra (Mesh/Element type = triangles, "
+                           "which splits generated boxes into "
+                           "tetrahedra in 3D).");
+      for (const auto id : report.material_ids)
+        parameters.materials.require_given(id, "cells of the " + source);
+      triangulation.refine_global(parameters.mesh.global_refinements);
+      dof_handler.reinit(triangulation);
+      dof_handler.distribute_dofs(fe);
+      model.build(dof_handler);
+
+      // the face of each joint side
+      joint_face.assign(2 * model.n_joints, 0);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        for (unsigned int f = 0; f < 4; ++f)
+          {
+            const int code = model.edge_joint[4 * e + f];
+            if (code >= 0)
+              joint_face[code] = f;
+          }
+    }
+
+    void
+    TetrahedralSolver::setup_materials()
+    {
+      const auto &dm = parameters.get<DiscreteMechanicsParameters>();
+      softening_law  = dm.softening_law;
+      element_lame.resize(model.n_elements);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          const MaterialProperties &m = parameters.materials[model.material[e]];
+          element_lame[e]             = lame_constants(m.youngs_modulus,
+                                           m.poisson_ratio,
+                                           Idealisation::solid_3d);
+          const double node_mass =
+            m.density * dm.mass_scaling_factor * model.reference_area[e] / 4.;
+          for (unsigned int k = 0; k < 4; ++k)
+            model.mass[4 * e + k] = node_mass;
+        }
+      setup_joint_constants(parameters, softening_law, model);
+    }
+
+    void
+    TetrahedralSolver::setup_constraints()
+    {
+      node_constraint.assign(model.n_nodes, -1);
+      constraints.clear();
+      velocity_functions.clear();
+      owner_names.clear();
+      const auto constraint_of = [&](const unsigned int node,
+                                     const unsigned int owner) {
+        if (node_constraint[node] < 0)
+          {
+            node_constraint[node] = constraints.size();
+            NodeConstraint c;
+            c.node  = node;
+            c.owner = owner;
+            constraints.push_back(c);
+          }
+        return &constraints[node_constraint[node]];
+      };
+      const auto add_function = [&](const std::string &expression,
+                                    const std::string &entry) -> int {
+        if (expression == "0")
+          return -1;
+        velocity_functions.push_back(
+          make_expression_function<3>(expression, entry));
+        imposed_depend_on_time |= expression.find('t') != std::string::npos;
+        return velocity_functions.size() - 1;
+      };
+
+      // bodies: their cells (DiscreteModel::body), every node of the fixed
+      // and driven ones constrained
+      const auto &bodies = parameters.get<DiscreteBodyParameters>().bodies;
+      model.body_number.clear();
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          model.body_number.push_back(bodies[b].number);
+          for (unsigned int e = 0; e < model.n_elements; ++e)
+            if (std::find(bodies[b].material_ids.begin(),
+                          bodies[b].material_ids.end(),
+                          model.material[e]) != bodies[b].material_ids.end())
+              model.body[e] = b;
+        }
+      for (const auto &body : bodies)
+        {
+          if (body.motion == DiscreteBody::Motion::free)
+            continue;
+          const unsigned int owner = owner_names.size();
+          owner_names.push_back("body" + std::to_string(body.number));
+          int functions[3] = {-1, -1, -1};
+          if (body.motion == DiscreteBody::Motion::velocity)
+            {
+              functions[0] =
+                add_function(body.velocity_x, body.name + "/Velocity x");
+              functions[1] =
+                add_function(body.velocity_y, body.name + "/Velocity y");
+              functions[2] =
+                add_function(body.velocity_z, body.name + "/Velocity z");
+            }
+          for (unsigned int e = 0; e < model.n_elements; ++e)
+            if (std::find(body.material_ids.begin(),
+                          body.material_ids.end(),
+                          model.material[e]) != body.material_ids.end())
+              {
+                for (unsigned int k = 0; k < 4; ++k)
+                  {
+                    NodeConstraint *c = constraint_of(4 * e + k, owner);
+                    for (unsigned int i = 0; i < 3; ++i)
+                      {
+                        c->prescribed[i] = true;
+                        c->function[i]   = functions[i];
+                      }
+                  }
+              }
+        }
+      // the initial velocity of free bodies' nodes
+      for (const auto &body : bodies)
+        if (body.motion == DiscreteBody::Motion::free)
+          {
+            const std::string *expressions[3] = {&body.initial_velocity_x,
+                                                 &body.initial_velocity_y,
+                                                 &body.initial_velocity_z};
+            const char        *axes[3]        = {"x", "y", "z"};
+            for (unsigned int i = 0; i < 3; ++i)
+              {
+                if (*expressions[i] == "0")
+                  continue;
+                const auto function =
+                  make_expression_function<3>(*expressions[i],
+                                              body.name + "/Initial velocity " +
+                                                axes[i]);
+                std::vector<double> &v =
+                  i == 0 ? model.vx : (i == 1 ? model.vy : model.vz);
+                for (unsigned int e = 0; e < model.n_elements; ++e)
+                  if (std::find(body.material_ids.begin(),
+                                body.material_ids.end(),
+                                model.material[e]) != body.material_ids.end())
+                    for (unsigned int k = 0; k < 4; ++k)
+                      {
+                        const unsigned int n = 4 * e + k;
+                        v[n] = function->value(Point<3>(model.x_ref[n],
+                                                        model.y_ref[n],
+                                                        model.z_ref[n]));
+                      }
+              }
+          }
+
+      // boundary conditions: the nodes of the faces with their ids
+      const auto &conditions =
+        parameters.mechanical_boundary.conditions;
+      for (const auto &condition : conditions)
+        model.check_boundary_ids(condition.name + "/Boundary ids",
+                                 condition.boundary_ids);
+      for (unsigned int n = 0; n < conditions.size(); ++n)
+        {
+          const auto        &condition = conditions[n];
+          const unsigned int owner     = owner_names.size();
+          owner_names.push_back("condition" + std::to_string(n + 1));
+          using Type         = MechanicalBoundaryCondition::Type;
+          bool prescribed[3] = {false, false, false};
+          int  functions[3]  = {-1, -1, -1};
+          switch (condition.type)
+            {
+              case Type::fixed:
+                prescribed[0] = prescribed[1] = prescribed[2] = true;
+                break;
+              case Type::roller_x:
+                prescribed[0] = true;
+                break;
+              case Type::roller_y:
+                prescribed[1] = true;
+                break;
+              case Type::roller_z:
+                prescribed[2] = true;
+                break;
+              default: // velocity
+                {
+                  const char *axes[3] = {"x", "y", "z"};
+                  for (unsigned int i = 0; i < 3; ++i)
+                    {
+                      prescribed[i] = true;
+                      functions[i] =
+                        add_function(condition.velocity[i],
+                                     condition.name + "/Velocity " + axes[i]);
+                    }
+                }
+            }
+          for (unsigned int e = 0; e < model.n_elements; ++e)
+            for (unsigned int f = 0; f < 4; ++f)
+              {
+                const types::boundary_id id = model.edge_boundary[4 * e + f];
+                if (id == numbers::internal_face_boundary_id ||
+                    std::find(condition.boundary_ids.begin(),
+                              condition.boundary_ids.end(),
+                              id) == condition.boundary_ids.end())
+                  continue;
+                for (unsigned int k = 0; k < 4; ++k)
+                  if (k != 3 - f) // the face's vertices
+                    {
+                      NodeConstraint *c = constraint_of(4 * e + k, owner);
+                      for (unsigned int i = 0; i < 3; ++i)
+                        if (prescribed[i])
+                          {
+                            // a body's motion takes precedence
+                            if (c->owner != owner && c->prescribed[i])
+                              continue;
+                            c->prescribed[i] = true;
+                            c->function[i]   = functions[i];
+                          }
+                    }
+              }
+        }
+      owner_reaction.assign(owner_names.size(), {{0., 0., 0.}});
+      evaluate_imposed_velocities(parameters.time.start_time);
+    }
+
+    void
+    TetrahedralSolver::evaluate_imposed_velocities(const double t)
+    {
+      for (auto &function : velocity_functions)
+        function->set_time(t);
+      for (NodeConstraint &c : constraints)
+        for (unsigned int i = 0; i < 3; ++i)
+          c.velocity[i] = c.function[i] < 0 ?
+                            0. :
+                            velocity_functions[c.function[i]]->value(
+                              Point<3>(model.x_ref[c.node],
+                                       model.y_ref[c.node],
+                                       model.z_ref[c.node]));
+    }
+
+    void
+    TetrahedralSolver::setup_time_step()
+    {
+      const auto &dm = parameters.get<DiscreteMechanicsParameters>();
+      viscosity.assign(model.n_elements, 0.);
+      stable_time_step = std::numeric_limits<double>::infinity();
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          ElementStepInputT<3> in;
+          for (unsigned int k = 0; k < 4; ++k)
+            {
+              in.x[k] = model.x_ref[4 * e + k];
+              in.y[k] = model.y_ref[4 * e + k];
+              in.z[k] = model.z_ref[4 * e + k];
+            }
+          in.lame      = element_lame[e];
+          in.node_mass = model.mass[4 * e];
+          if (dm.damping_ratio > 0.)
+            viscosity[e] = dm.damping_ratio /
+                           highest_mode_damping_per_viscosity(in.x,
+                                                              in.y,
+                                                              in.z,
+                                                              in.lame,
+                                                              in.node_mass);
+          in.viscosity = viscosity[e];
+          for (unsigned int f = 0; f < 4; ++f)
+            {
+              const int code = model.edge_joint[4 * e + f];
+              if (code < 0)
+                continue;
+              // deal.II's face f is the one opposite vertex 3 - f
+              const JointConstants &k = model.joint_constants[code / 2];
+              in.face_joint_normal_stiffness[3 - f] = k.normal_stiffness;
+              in.face_joint_tangential_stiffness[3 - f] =
+                k.tangential_stiffness;
+            }
+          stable_time_step = std::min(stable_time_step, critical_time_step(in));
+        }
+      mass_damping = dm.mass_damping;
+      if (dm.time_step > 0.)
+        {
+          time_step = dm.time_step;
+          if (time_step > stable_time_step)
+            throw InputError(
+              "Discrete mechanics/Time step = " +
+              Utilities::to_string(time_step) +
+              " s exceeds the stable step of the tetrahedra, joints and "
+              "damping, " +
+              Utilities::to_string(stable_time_step) +
+              " s; allowed is at most that (or 0: Safety factor times it).");
+        }
+      else
+        time_step = dm.safety_factor * stable_time_step;
+    }
+
+    void
+    TetrahedralSolver::check_input()
+    {
+      check_supported();
+      setup_mesh();
+      setup_materials();
+      setup_constraints();
+      setup_time_step();
+      const auto &dm    = parameters.get<DiscreteMechanicsParameters>();
+      threads_available = core_share(communicator).cores_per_rank;
+      threads_requested = dm.threads;
+      n_threads         = dm.threads > 0 ? dm.threads : threads_available;
+      if (n_threads > threads_available && !dm.allow_oversubscription)
+        {
+          std::cerr << "note: Discrete mechanics/Threads = " << dm.threads
+                    << " exceeds the " << threads_available
+                    << " core(s) this process may use; running on "
+                    << threads_available
+                    << " (Allow oversubscription = true runs more)\n";
+          n_threads = threads_available;
+        }
+      if (n_threads > thread_limit())
+        set_thread_limit(n_threads);
+      threads_used = measure_concurrency(arena_for(n_threads));
+      if (dm.joint_compliance_compensation)
+        std::cerr << "note: Mesh/Dimension = 3: Discrete mechanics/Joint "
+                     "compliance compensation is not applied to tetrahedra; "
+                     "the joints' compliance (penalty p over the face size "
+                     "h) adds to the elements'\n";
+      input_checked = true;
+    }
+
+    void
+    TetrahedralSolver::report_validation(std::ostream &out,
+                                         const Parameters &,
+                                         MPI_Comm) const
+    {
+      double smallest = std::numeric_limits<double>::infinity();
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        smallest = std::min(smallest, model.joint_length[j]);
+      out << "  discrete layer in 3D: " << model.n_elements << " tetrahedra, "
+          << model.n_nodes << " nodes, " << model.n_joints
+          << " face joints (smallest mean edge " << smallest << " m)\n"
+          << "  time step " << time_step << " s (stable step "
+          << stable_time_step << " s), " << n_threads << " thread(s)\n";
+    }
+
+    bool
+    TetrahedralSolver::compute_joint_forces()
+    {
+      DiscreteModel &m = model;
+      // per chunk: a joint broke (no allocation after the first step)
+      std::vector<char> &broke = chunk_broke;
+      broke.assign((m.n_joints + chunk_size - 1) / chunk_size, 0);
+      const double       t   = time;
+      const SofteningLaw law = softening_law;
+      for_each_chunk(
+        arena_for(n_threads),
+        m.n_joints,
+        chunk_size,
+        [&](const std::size_t begin,
+            const std::size_t end,
+            const std::size_t c) {
+          for (std::size_t j = begin; j < end; ++j)
+            {
+              const unsigned int *p = &m.joint_nodes[6 * j];
+              double              f[2][3][3]; // side, node, component
+              if (m.joint_status[j] != JointStatus::intact)
+                {
+                  for (auto &side : f)
+                    for (auto &node : side)
+                      node[0] = node[1] = node[2] = 0.;
+                }
+              else
+                {
+                  double x[3][6];
+                  for (unsigned int k = 0; k < 6; ++k)
+                    {
+                      x[0][k] = m.x[p[k]];
+                      x[1][k] = m.y[p[k]];
+                      x[2][k] = m.z[p[k]];
+                    }
+                  const double *const           nodes[3] = {x[0], x[1], x[2]};
+                  const FaceJointFrameT<double> g =
+                    face_joint_frame<double>(nodes);
+                  FaceJointResponse<double> r;
+                  double                   *damage = &m.joint_damage[3 * j];
+                  if (law == SofteningLaw::linear)
+                    face_joint_response<SofteningLaw::linear>(
+                      g,
+                      m.joint_constants[j],
+                      damage,
+                      r);
+                  else
+                    face_joint_response<SofteningLaw::munjiza>(
+                      g,
+                      m.joint_constants[j],
+                      damage,
+                      r);
+                  if (damage[0] >= 1. && damage[1] >= 1. && damage[2] >= 1.)
+                    {
+                      const double d_o = r.d_opening, d_s = r.d_slip;
+                      const double ratio =
+                        d_o * d_o / std::max(1e-300, d_o * d_o + d_s * d_s);
+                      m.joint_status[j] = ratio > 0.9 ? JointStatus::mode_I :
+                                          ratio < 0.1 ? JointStatus::mode_II :
+                                                        JointStatus::mixed;
+                      m.joint_break_time[j] = t;
+                      broke[c]              = 1;
+                      for (auto &side : f)
+                        for (auto &node : side)
+                          node[0] = node[1] = node[2] = 0.;
+                    }
+                  else
+                    for (unsigned int k = 0; k < 3; ++k)
+                      for (unsigned int i = 0; i < 3; ++i)
+                        {
+                          f[0][k][i] = r.a[k][i] + r.frame[k][i];
+                          f[1][k][i] = -r.a[k][i] + r.frame[k][i];
+                        }
+                }
+              // each node's slot of this face
+              for (unsigned int side = 0; side < 2; ++side)
+                {
+                  const unsigned int face = joint_face[2 * j + side];
+                  for (unsigned int k = 0; k < 3; ++k)
+                    {
+                      const unsigned int node  = p[3 * side + k];
+                      const unsigned int local = node % 4;
+                      double            *slot =
+                        &m.node_joint_force[9 * node +
+                                            3 * face_slot(face, local)];
+                      for (unsigned int i = 0; i < 3; ++i)
+                        slot[i] = f[side][k][i];
+                    }
+                }
+            }
+        });
+      return std::find(broke.begin(), broke.end(), 1) != broke.end();
+    }
+
+    void
+    TetrahedralSolver::update_nodes(const double dt)
+    {
+      DiscreteModel &m = model;
+      // v_new = a v_old + b / m f, mass damping integrated exactly
+      const double a =
+        (1. - 0.5 * mass_damping * dt) / (1. + 0.5 * mass_damping * dt);
+      const double      damp_b_factor = dt / (1. + 0.5 * mass_damping * dt);
+      const double      c_m           = mass_damping;
+      const std::size_t n_chunks = (m.n_elements + chunk_size - 1) / chunk_size;
+      const std::size_t n_owners = owner_names.size();
+      // (no allocation after the first step)
+      chunk_works.assign(n_chunks, {{0., 0., 0., 0., 0.}});
+      chunk_reaction.assign(n_chunks * n_owners, {{0., 0., 0.}});
+      auto &reaction = chunk_reaction;
+      for_each_chunk(
+        arena_for(n_threads),
+        m.n_elements,
+        chunk_size,
+        [&](const std::size_t begin,
+            const std::size_t end,
+            const std::size_t c) {
+          std::array<double, 5> &w = chunk_works[c];
+          for (std::size_t e = begin; e < end; ++e)
+            {
+              const std::size_t   n0       = 4 * e;
+              const double *const nodes[3] = {&m.x[n0], &m.y[n0], &m.z[n0]};
+              const double *const velocities[3] = {&m.vx[n0],
+                                                   &m.vy[n0],
+                                                   &m.vz[n0]};
+              const double        s             = m.thermal_stretch[e];
+              ElementResponse<3, double> r;
+              element_response<3, double>(nodes,
+                                          velocities,
+                                          &m.inverse_basis[9 * e],
+                                          s == 1. ? 1. : 1. / s,
+                                          element_lame[e].mu,
+                                          element_lame[e].lambda,
+                                          nullptr,
+                                          viscosity[e],
+                                          r);
+              // xx, yy, zz, xy, yz, xz
+              double *stress = &m.stress[6 * e];
+              stress[0]      = r.stress[0][0] + r.viscous[0][0];
+              stress[1]      = r.stress[1][1] + r.viscous[1][1];
+              stress[2]      = r.stress[2][2] + r.viscous[2][2];
+              stress[3]      = r.stress[0][1] + r.viscous[0][1];
+              stress[4]      = r.stress[1][2] + r.viscous[1][2];
+              stress[5]      = r.stress[0][2] + r.viscous[0][2];
+              for (unsigned int k = 0; k < 4; ++k)
+                {
+                  const std::size_t node = n0 + k;
+                  const double     *jf   = &m.node_joint_force[9 * node];
+                  const double      mass = m.mass[node];
+                  const double      b_m  = damp_b_factor / mass;
+                  double   *v[3] = {&m.vx[node], &m.vy[node], &m.vz[node]};
+                  double   *x[3] = {&m.x[node], &m.y[node], &m.z[node]};
+                  const int ci   = node_constraint[node];
+                  for (unsigned int i = 0; i < 3; ++i)
+                    {
+                      const double f_joint = jf[i] + jf[3 + i] + jf[6 + i];
+                      const double f =
+                        r.f_elastic[k][i] + r.f_viscous[k][i] + f_joint;
+                      const double v_old      = *v[i];
+                      double       v_new      = a * v_old + b_m * f;
+                      double       f_reaction = 0.;
+                      if (ci >= 0 && constraints[ci].prescribed[i])
+                        {
+                          const NodeConstraint &nc = constraints[ci];
+                          v_new                    = nc.velocity[i];
+                          f_reaction = (v_new - a * v_old) / b_m - f;
+                          reaction[c * n_owners + nc.owner][i] += f_reaction;
+                        }
+                      const double travel = 0.5 * dt * (v_old + v_new);
+                      w[0] += r.f_elastic[k][i] * travel;
+                      w[1] += r.f_viscous[k][i] * travel;
+                      w[2] += f_joint * travel;
+                      w[3] += f_reaction * travel;
+                      w[4] += c_m * mass / dt * travel * travel;
+                      *v[i] = v_new;
+                      *x[i] += dt * v_new;
+                    }
+                }
+            }
+        });
+      // in chunk order: independent of the thread count
+      for (auto &r : owner_reaction)
+        r = {{0., 0., 0.}};
+      for (std::size_t c = 0; c < n_chunks; ++c)
+        {
+          energies.joint_work -= chunk_works[c][2];
+          energies.external_work += chunk_works[c][3];
+          energies.damping += -chunk_works[c][1] + chunk_works[c][4];
+          for (std::size_t o = 0; o < n_owners; ++o)
+            for (unsigned int i = 0; i < 3; ++i)
+              owner_reaction[o][i] += reaction[c * n_owners + o][i];
+        }
+      element_steps += m.n_elements;
+    }
+
+    void
+    TetrahedralSolver::step(const double dt)
+    {
+      if (imposed_depend_on_time)
+        evaluate_imposed_velocities(time + 0.5 * dt);
+      compute_joint_forces();
+      update_nodes(dt);
+      time += dt;
+      ++step_number;
+    }
+
+    void
+    TetrahedralSolver::compute_state_energies()
+    {
+      const DiscreteModel &m       = model;
+      double               kinetic = 0., strain = 0.;
+      for (unsigned int n = 0; n < m.n_nodes; ++n)
+        kinetic += 0.5 * m.mass[n] *
+                   (m.vx[n] * m.vx[n] + m.vy[n] * m.vy[n] + m.vz[n] * m.vz[n]);
+      for (unsigned int e = 0; e < m.n_elements; ++e)
+        {
+          const double *const nodes[3] = {&m.x[4 * e],
+                                          &m.y[4 * e],
+                                          &m.z[4 * e]};
+          double              F[3][3];
+          times_inverse_basis<3>(nodes, &m.inverse_basis[9 * e], F);
+          const double s = m.thermal_stretch[e];
+          for (auto &row : F)
+            for (double &f : row)
+              f /= s;
+          strain += m.reference_area[e] * s * s * s *
+                    constitutive::strain_energy_density<3>(F, element_lame[e]);
+        }
+      energies.kinetic = kinetic;
+      energies.strain  = strain;
+    }
+
+    void
+    TetrahedralSolver::write_output()
+    {
+      if (!parameters.output.write_vtu)
+        return;
+      const VtuEncoding encoding = vtu_encoding(parameters.output);
+      solution_series->write(time, discrete_solution_vtu(model, encoding));
+      crack_series->write(time, crack_vtu(model, encoding));
+    }
+
+    void
+    TetrahedralSolver::write_history_row()
+    {
+      compute_state_energies();
+      const double balance =
+        energies.external_work - (energies.kinetic + energies.strain +
+                                  energies.joint_work + energies.damping);
+      std::ostringstream row;
+      row << std::setprecision(10) << time << "," << step_number << ","
+          << energies.kinetic << "," << energies.strain << ","
+          << energies.joint_work << "," << energies.damping << ","
+          << energies.external_work << "," << balance << ","
+          << model.n_damaged_joints() << "," << model.n_broken_joints();
+      for (const auto &r : owner_reaction)
+        row << "," << r[0] << "," << r[1] << "," << r[2];
+      row << "\n";
+      history_csv->append(row.str());
+    }
+
+    void
+    TetrahedralSolver::write_summary(const bool finished) const
+    {
+      JsonObject summary;
+      summary.add("model", std::string("discrete mechanics"));
+      summary.add("dimension", 3u);
+      summary.add("finished", finished);
+      summary.add("time", time);
+      summary.add("steps", static_cast<long long>(step_number));
+      summary.add("time_step", time_step);
+      summary.add("stable_time_step", stable_time_step);
+      summary.add("elements", model.n_elements);
+      summary.add("nodes", model.n_nodes);
+      summary.add("joints", model.n_joints);
+      summary.add("broken_joints", model.n_broken_joints());
+      summary.add("damaged_joints", model.n_damaged_joints());
+      unsigned int modes[4]   = {0, 0, 0, 0};
+      double       crack_area = 0.;
+      for (unsigned int j = 0; j < model.n_joints; ++j)
+        {
+          ++modes[static_cast<int>(model.joint_status[j])];
+          if (model.joint_status[j] != JointStatus::intact)
+            crack_area += model.joint_area[j];
+        }
+      summary.add("broken_mode_I", modes[1]);
+      summary.add("broken_mode_II", modes[2]);
+      summary.add("broken_mixed", modes[3]);
+      summary.add("cracks", model.n_cracks());
+      summary.add("joint_compliance_compensation", false);
+      summary.add("crack_area", crack_area);
+      JsonObject energy;
+      energy.add("kinetic", energies.kinetic);
+      energy.add("strain", energies.strain);
+      energy.add("joint_work", energies.joint_work);
+      energy.add("damping", energies.damping);
+      energy.add("external_work", energies.external_work);
+      energy.add("balance_error",
+                 energies.external_work -
+                   (energies.kinetic + energies.strain + energies.joint_work +
+                    energies.damping));
+      summary.add("energy", energy);
+      summary.add("threads", n_threads);
+      summary.add("threads_requested", threads_requested);
+      summary.add("threads_available", threads_available);
+      summary.add("threads_used", threads_used);
+      summary.add("wall_time_s", loop_wall_time);
+      summary.add("cpu_time_s", loop_cpu_time);
+      summary.add("cpu_time_busiest_thread_s",
+                  loop_thread_cpu_times.empty() ? 0. :
+                                                  loop_thread_cpu_times[0]);
+      double others = 0.;
+      for (std::size_t i = 1; i < loop_thread_cpu_times.size(); ++i)
+        others += loop_thread_cpu_times[i];
+      summary.add("cpu_time_other_threads_s", others);
+      summary.add("element_steps_per_second",
+                  loop_wall_time > 0. ? element_steps / loop_wall_time : 0.);
+      write_file_atomically(parameters.output.directory + "/summary.json",
+                            summary.str());
+    }
+
+    void
+    TetrahedralSolver::run()
+    {
+      if (!input_checked)
+        check_input();
+      const double start = parameters.time.start_time;
+      const double end   = parameters.time.end_time;
+      time               = start;
+      const OutputSchedule schedule(parameters.output, start, end);
+      output_times = schedule.times();
+      solution_series =
+        std::make_unique<VtuSeries>(parameters.output.directory, "solution");
+      crack_series =
+        std::make_unique<VtuSeries>(parameters.output.directory, "cracks");
+      std::string header =
+        "time,step,kinetic,strain,joint_work,damping,external_work,"
+        "balance_error,damaged_joints,broken_joints";
+      for (const auto &name : owner_names)
+        header += "," + name + "_fx," + name + "_fy," + name + "_fz";
+      history_csv = std::make_unique<CsvSeries>(parameters.output.directory +
+                                                  "/history.csv",
+                                                header,
+                                                communicator);
+      const auto         &dm = parameters.get<DiscreteMechanicsParameters>();
+      const unsigned long max_steps = dm.max_steps;
+      history_interval              = (end - start) / 1000.;
+      next_history                  = start;
+      write_output();
+      write_history_row();
+      next_history += history_interval;
+      ProgressReporter progress(parameters.output.progress_interval,
+                                start,
+                                end,
+                                true);
+      const auto       wall_start     = std::chrono::steady_clock::now();
+      const double     cpu_start      = process_cpu_time();
+      const auto       threads_before = thread_cpu_times();
+      // the steps land on the output times (OutputSchedule::step_towards())
+      while (next_output < output_times.size())
+        {
+          if (max_steps > 0 && step_number >= max_steps)
+            break;
+          step(OutputSchedule::step_towards(time,
+                                            output_times[next_output],
+                                            time_step));
+          if (time >= next_history - 0.5 * time_step)
+            {
+              write_history_row();
+              next_history += history_interval;
+            }
+          while (next_output < output_times.size() &&
+                 schedule.reached(time, output_times[next_output]))
+            {
+              time = output_times[next_output];
+              write_output();
+              ++next_output;
+            }
+          progress.update(step_number, time);
+        }
+      loop_wall_time = std::chrono::duration<double>(
+                         std::chrono::steady_clock::now() - wall_start)
+                         .count();
+      loop_cpu_time = process_cpu_time() - cpu_start;
+      loop_thread_cpu_times =
+        thread_cpu_time_differences(threads_before, thread_cpu_times());
+      write_history_row();
+      write_summary(true);
+    }
+  } // namespace discrete
+} // namespace tmfdem

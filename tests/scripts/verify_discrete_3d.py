@@ -1,0 +1,84 @@
+#!/usr/bin/env python3
+"""The discrete layer in 3D (tetrahedra, cohesive joints on their faces).
+
+1. One face joint between two tetrahedra (prm/joint_pull-3d.prm, face area
+   0.5 m^2) pulled apart (Mode I, along x) and slid (Mode II, along y and
+   along z), Munjiza and linear softening: the work done on the joint until
+   it breaks equals G times the face area within 1 % (the bound of the 2D
+   joint_pull test), and the joint breaks in that mode.
+2. A 0.1 m cube of tetrahedra pulled apart (face x = 0 fixed, face x = 0.1
+   driven at 1 m/s along x) for 0.6 ms, joints breaking: the energy balance (external
+   work = kinetic + strain + joint work + damping) closes to 1 % of the
+   external work (central differences: an O(dt^2) error), momentum-free
+   rigid motions aside; and the run on two threads gives bitwise the
+   summary of the run on one (the chunks do not depend on the thread
+   count), with the two threads shown to have run (common.check_parallel).
+
+usage: verify_discrete_3d.py TMFDEM OUT
+"""
+import os
+import sys
+
+from common import run, summary, check, check_parallel, SKIP
+
+binary, out = sys.argv[1], sys.argv[2]
+prm_dir = os.path.join(os.path.dirname(__file__), "..", "..", "prm")
+ok = True
+
+# 1. joint pull
+prm = os.path.join(prm_dir, "joint_pull-3d.prm")
+area = 0.5
+G = {"I": 1000.0, "II": 5000.0}
+for law in ("Munjiza", "linear"):
+    for mode, axis in (("I", "x"), ("II", "y"), ("II", "z")):
+        folder = os.path.join(out, f"pull_{law}_{mode}_{axis}")
+        velocity = {a: ("0.01" if a == axis else "0") for a in "xyz"}
+        run(binary, prm, folder,
+            f"Discrete mechanics/Softening law={law}",
+            *[f"Discrete bodies/Body 2/Velocity {a}={velocity[a]}" for a in "xyz"],
+            f"Time stepping/End time={'0.3' if mode == 'I' else '0.7'}")
+        s = summary(folder)
+        work = s["energy"]["joint_work"]
+        error = abs(work / (G[mode] * area) - 1.0)
+        ok &= check(s["broken_joints"] == 1 and s[f"broken_mode_{mode}"] == 1,
+                    f"{law}, Mode {mode} along {axis}: the joint broke in "
+                    f"Mode {mode}")
+        ok &= check(error < 0.01,
+                    f"{law}, Mode {mode} along {axis}: work to break "
+                    f"{work:.3f} J vs G A = {G[mode] * area:.0f} J, error "
+                    f"{100 * error:.4f} % (< 1 %)")
+
+# 2. a cube pulled apart: energy balance, 1 vs 2 threads
+cube_prm = os.path.join(os.path.dirname(__file__), "..", "data", "discrete",
+                        "cube_pull-3d.prm")
+load_before = os.getloadavg()[0]
+runs = {}
+for threads in (1, 2):
+    folder = os.path.join(out, f"cube_{threads}_threads")
+    run(binary, cube_prm, folder, f"Discrete mechanics/Threads={threads}")
+    runs[threads] = summary(folder)
+s = runs[1]
+e = s["energy"]
+ok &= check(s["elements"] > 2 * 512 and s["broken_joints"] > 0,
+            f"the cube: {s['elements']} tetrahedra (more than two chunks of "
+            f"512), {s['broken_joints']} joints broke")
+ok &= check(abs(e["balance_error"]) < 0.01 * e["external_work"],
+            f"energy balance: external work {e['external_work']:.6g} J = "
+            f"kinetic {e['kinetic']:.6g} + strain {e['strain']:.6g} + joints "
+            f"{e['joint_work']:.6g} + damping {e['damping']:.6g} J, error "
+            f"{e['balance_error']:.3g} J "
+            f"({100 * abs(e['balance_error']) / e['external_work']:.4f} %, "
+            "< 1 %)")
+keys = ["broken_joints", "damaged_joints", "cracks", "crack_area", "steps"]
+same = all(runs[1][k] == runs[2][k] for k in keys) and \
+    runs[1]["energy"] == runs[2]["energy"]
+ok &= check(same, "1 and 2 threads: the same broken joints, cracks and "
+            "energies, bit for bit")
+parallel = check_parallel(runs[2], threads=2, load_before=load_before)
+if parallel == "fail":
+    ok = False
+if not ok:
+    sys.exit(1)
+if parallel == "skip":
+    sys.exit(SKIP)
+sys.exit(0)
