@@ -39,7 +39,7 @@ namespace tmfdem
             throw InputError(body.name + "/" + entry + " = " + value +
                              ": Mesh/Dimension = 2 has no z component; "
                              "allowed is 0.");
-      idealisation = parameters.mechanics.idealisation; // one enum
+      idealisation  = parameters.mechanics.idealisation; // one enum
       softening_law = dm.softening_law;
 
       build_discrete_mesh(parameters,

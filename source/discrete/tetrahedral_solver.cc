@@ -86,8 +86,7 @@ namespace tmfdem
                          "on one MPI process; allowed is mpirun -np 1 (or "
                          "no mpirun), with Discrete mechanics/Threads for "
                          "the cores.");
-      for (const auto &condition :
-           parameters.mechanical_boundary.conditions)
+      for (const auto &condition : parameters.mechanical_boundary.conditions)
         if (condition.type == MechanicalBoundaryCondition::Type::displacement ||
             condition.type == MechanicalBoundaryCondition::Type::traction)
           throw InputError(
@@ -272,8 +271,7 @@ namespace tmfdem
           }
 
       // boundary conditions: the nodes of the faces with their ids
-      const auto &conditions =
-        parameters.mechanical_boundary.conditions;
+      const auto &conditions = parameters.mechanical_boundary.conditions;
       for (const auto &condition : conditions)
         model.check_boundary_ids(condition.name + "/Boundary ids",
                                  condition.boundary_ids);
