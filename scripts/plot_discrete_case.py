@@ -139,7 +139,7 @@ def joint_pull_panels(png, k, area, columns, title, unit):
                       label=f"{law}: exact law (int z = {integral:.4f})")
             keep = ~broken
             ax_t.plot(1e3 * d[keep][::6], 1e-6 * tm[keep][::6], "o", color=c, ms=2.5,
-                      mfc="none", label=f"{law}: tmfdem, dW/d{m['name'][-1]}")
+                      mfc="none", label=f"{law}: tmfdem, dW/d{m.get('symbol', m['name'][-1])}")
             ax_w.plot(1e3 * d_ex, area * W_ex, "-", color=c, lw=1.2)
             ax_w.plot(1e3 * d[::6], W[::6], "o", color=c, ms=2.5, mfc="none",
                       label=f"{law}: {work:.3f} {unit} at break (error {err:.4f} %)")
@@ -186,7 +186,8 @@ def plot_joint_pull_3d(folder, png):
                                         ("II", "y", 2e6, 5000.0, "0.7", "slip |s|"),
                                         ("II", "z", 2e6, 5000.0, "0.7", "slip |s|")):
         columns.append(dict(
-            mode=mode, f=f, G=G, name=name, along=f" along {axis}", prm="joint_pull-3d.prm",
+            mode=mode, f=f, G=G, name=name, symbol=name.split()[-1], along=f" along {axis}",
+            prm="joint_pull-3d.prm",
             run=lambda law, mode=mode, axis=axis: os.path.join(folder,
                                                                f"pull_{law}_{mode}_{axis}"),
             settings=lambda law, axis=axis, end=end: (
