@@ -17,39 +17,45 @@ namespace tmfdem
   namespace discrete
   {
     void
-    DiscreteModel::build(const DoFHandler<2> &dof_handler)
+    DiscreteModel::allocate(const unsigned int dimension,
+                            const unsigned int elements)
     {
-      const auto &triangulation = dof_handler.get_triangulation();
-      dim                       = 2;
-      n_elements                = triangulation.n_active_cells();
-      n_nodes                   = 3 * n_elements;
-      z.clear();
-      z_ref.clear();
-      vz.clear();
-      joint_area.clear();
-      if (dof_handler.n_dofs() != n_nodes)
-        throw RunError("discrete layer: the DoFHandler has " +
-                       std::to_string(dof_handler.n_dofs()) +
-                       " DoFs, expected 3 per triangle (FE_SimplexDGP(1)).");
-
+      dim                      = dimension;
+      n_elements               = elements;
+      n_nodes                  = nodes_per_element() * n_elements;
+      const unsigned int faces = nodes_per_element();
       x_ref.assign(n_nodes, 0.);
       y_ref.assign(n_nodes, 0.);
+      z_ref.assign(dim == 3 ? n_nodes : 0, 0.);
       node_vertex.assign(n_nodes, 0);
       mesh_index.resize(n_elements);
       std::iota(mesh_index.begin(), mesh_index.end(), 0u);
       mass.assign(n_nodes, 0.);
       vx.assign(n_nodes, 0.);
       vy.assign(n_nodes, 0.);
-      inverse_basis.assign(4 * n_elements, 0.);
+      vz.assign(dim == 3 ? n_nodes : 0, 0.);
+      inverse_basis.assign(dim * dim * n_elements, 0.);
       reference_area.assign(n_elements, 0.);
       material.assign(n_elements, 0);
       body.assign(n_elements, no_body);
       thermal_stretch.assign(n_elements, 1.);
-      stress.assign(3 * n_elements, 0.);
-      edge_joint.assign(3 * n_elements, -1);
-      edge_boundary.assign(3 * n_elements, numbers::internal_face_boundary_id);
+      stress.assign((dim == 3 ? 6 : 3) * n_elements, 0.);
+      edge_joint.assign(faces * n_elements, -1);
+      edge_boundary.assign(faces * n_elements,
+                           numbers::internal_face_boundary_id);
       joint_nodes.clear();
       joint_elements.clear();
+      joint_area.clear();
+    }
+
+    void
+    DiscreteModel::build(const DoFHandler<2> &dof_handler)
+    {
+      allocate(2, dof_handler.get_triangulation().n_active_cells());
+      if (dof_handler.n_dofs() != n_nodes)
+        throw RunError("discrete layer: the DoFHandler has " +
+                       std::to_string(dof_handler.n_dofs()) +
+                       " DoFs, expected 3 per triangle (FE_SimplexDGP(1)).");
 
       std::vector<types::global_dof_index> dofs(3);
       auto                                 local_edge =
@@ -174,35 +180,11 @@ namespace tmfdem
     void
     DiscreteModel::build(const DoFHandler<3> &dof_handler)
     {
-      const auto &triangulation = dof_handler.get_triangulation();
-      dim                       = 3;
-      n_elements                = triangulation.n_active_cells();
-      n_nodes                   = 4 * n_elements;
+      allocate(3, dof_handler.get_triangulation().n_active_cells());
       if (dof_handler.n_dofs() != n_nodes)
         throw RunError("discrete layer: the DoFHandler has " +
                        std::to_string(dof_handler.n_dofs()) +
                        " DoFs, expected 4 per tetrahedron (FE_SimplexDGP(1)).");
-
-      x_ref.assign(n_nodes, 0.);
-      y_ref.assign(n_nodes, 0.);
-      z_ref.assign(n_nodes, 0.);
-      node_vertex.assign(n_nodes, 0);
-      mesh_index.resize(n_elements);
-      std::iota(mesh_index.begin(), mesh_index.end(), 0u);
-      mass.assign(n_nodes, 0.);
-      vx.assign(n_nodes, 0.);
-      vy.assign(n_nodes, 0.);
-      vz.assign(n_nodes, 0.);
-      inverse_basis.assign(9 * n_elements, 0.);
-      reference_area.assign(n_elements, 0.);
-      material.assign(n_elements, 0);
-      body.assign(n_elements, no_body);
-      thermal_stretch.assign(n_elements, 1.);
-      stress.assign(6 * n_elements, 0.);
-      edge_joint.assign(4 * n_elements, -1);
-      edge_boundary.assign(4 * n_elements, numbers::internal_face_boundary_id);
-      joint_nodes.clear();
-      joint_elements.clear();
 
       // the local vertex of @p cell at the global vertex @p v (4: none)
       const auto local_vertex = [](const auto &cell, const unsigned int v) {

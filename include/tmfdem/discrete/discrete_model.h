@@ -174,6 +174,12 @@ namespace tmfdem
       void
       build(const DoFHandler<3> &dof_handler);
 
+      /** Sets @p dimension and @p elements, sizes every per-node and
+       *  per-element array for them (zero, no joints; thermal stretch 1,
+       *  no body): the first step of build(). */
+      void
+      allocate(const unsigned int dimension, const unsigned int elements);
+
       /** Elements joined across edge k of element e by an intact joint, or
        *  -1. */
       int
