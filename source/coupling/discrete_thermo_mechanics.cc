@@ -13,7 +13,10 @@
  *   time per call, then the mechanics relaxes at these temperatures without
  *   advancing the clock (damped explicit steps until kinetic/strain energy
  *   and out-of-balance force are below their tolerances), optionally from
- *   an extrapolated start: quasi_static_step().
+ *   an extrapolated start: quasi_static_step(). The state of the
+ *   relaxations and of the thermal step control, and the decisions that
+ *   read only it (the next step, a re-run, the ramp of imposed motion), are
+ *   coupling::QuasiStaticRelaxation (ExplicitSolver::relaxation).
  *
  * The mechanical step itself is ExplicitSolver::mechanical_step()
  * (source/discrete/explicit_solver.cc); the temperature source is a
@@ -24,6 +27,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <tmfdem/discrete/explicit_solver.h>
 #include <tmfdem/discrete/joints.h>
 #include <tmfdem/discrete/temperature_source.h>
@@ -69,7 +73,13 @@ namespace tmfdem
     {
       const DiscreteHeatParameters &dh =
         parameters.get<DiscreteHeatParameters>();
-      double dt = quasi_static_thermal_step();
+      double dt =
+        relaxation.next_thermal_step(time,
+                                     n_thermal_steps,
+                                     next_output < output_times.size() ?
+                                       std::optional<double>(
+                                         output_times[next_output]) :
+                                       std::nullopt);
       // the whole state (on several ranks): the relaxation predictor
       // extrapolates every node from it; the heat reads its own part
       synchronise();
@@ -87,7 +97,7 @@ namespace tmfdem
           joint_damages(model, damage_start);
           keep_thermal_step_start();
         }
-      const double        minimum_step = minimum_thermal_step();
+      const double        minimum_step = relaxation.minimum_thermal_step();
       const double        allowed      = dh.maximum_broken_joints_per_step;
       bool                unstable     = false;
       std::vector<double> damage_end;
@@ -111,9 +121,7 @@ namespace tmfdem
           // the step (a crack that runs): without fracture, a shorter step
           // does not help a cap that is too low for the load, which the
           // count of relaxations at the cap reports
-          const bool resolved = broke_in_step <= 2. * allowed &&
-                                (last_relaxation_converged || !damage_grew);
-          if (resolved)
+          if (relaxation.resolves_thermal_step(broke_in_step, damage_grew))
             break;
           if (dt <= minimum_step * (1. + 1e-12))
             {
@@ -121,19 +129,14 @@ namespace tmfdem
               // (unstable propagation, with inertia where Fracture event
               // duration says so)
               unstable = true;
-              ++unstable_thermal_steps;
+              ++relaxation.unstable_thermal_steps;
               break;
             }
-          // re-run from the start of the step, shorter: by the factor that
-          // brings the breaks to half the allowed number, were they
-          // proportional to the step (at least 4 x shorter: breaks that do
-          // not become fewer with the step are an instability, whose load
-          // a few cuts then find)
+          // re-run from the start of the step, shorter
           restore_thermal_step_start();
-          ++rejected_thermal_steps;
-          const double factor =
-            broke_in_step > 2. * allowed ? 0.5 * allowed / broke_in_step : 0.25;
-          dt = std::max(minimum_step, factor * dt);
+          ++relaxation.rejected_thermal_steps;
+          dt =
+            std::max(minimum_step, relaxation.rerun_factor(broke_in_step) * dt);
           if (writes_files())
             std::cerr << "[tmfdem] t = " << time << " s: thermal step re-run "
                       << (broke_in_step > 2. * allowed ?
@@ -142,12 +145,9 @@ namespace tmfdem
                             std::string("(the relaxation did not converge)"))
                       << " with " << dt << " s\n";
         }
-      last_thermal_step = dt;
       // the next step shrinks by allowed / broke_in_step where more broke than
-      // allowed (a single break in a short step says nothing of a rate)
-      if (control_breaks)
-        break_rate =
-          unstable || broke_in_step <= allowed ? 0. : broke_in_step / dt;
+      // allowed
+      relaxation.accept_thermal_step(dt, unstable, broke_in_step);
       if (dh.maximum_utilisation_change > 0.)
         {
           // the fastest rise of one joint's utilisation, over the joints
@@ -165,20 +165,20 @@ namespace tmfdem
                   rise =
                     std::max(rise, utilisation_end[j] - utilisation_start[j]);
               }
-          joint_utilisation_rate = unstable ? 0. : rise / dt;
-          joint_utilisation      = highest;
+          relaxation.joint_utilisation_rate = unstable ? 0. : rise / dt;
+          relaxation.joint_utilisation      = highest;
         }
-      if (!last_relaxation_converged)
+      if (!relaxation.last_relaxation_converged)
         {
-          ++relaxations_at_cap;
-          if (relaxations_at_cap == 1)
+          ++relaxation.relaxations_at_cap;
+          if (relaxation.relaxations_at_cap == 1)
             std::cerr
               << "[tmfdem] warning: at t = " << time
               << " s the relaxation reached its cap of "
               << steps_per_thermal_step
               << " mechanical steps (Discrete heat/Mechanical steps per "
                  "thermal step) with kinetic / strain energy "
-              << last_kinetic_to_strain
+              << relaxation.last_kinetic_to_strain
               << " above Relaxation tolerance = " << dh.relaxation_tolerance
               << ": the state is not in equilibrium"
               << (control_breaks ? ", also with Minimum thermal step" : "")
@@ -197,15 +197,6 @@ namespace tmfdem
         }
     }
 
-    double
-    ExplicitSolver::minimum_thermal_step() const
-    {
-      const DiscreteHeatParameters &dh =
-        parameters.get<DiscreteHeatParameters>();
-      return dh.minimum_thermal_step > 0. ? dh.minimum_thermal_step :
-                                            1e-3 * parameters.time.time_step;
-    }
-
     void
     ExplicitSolver::advance_thermal_step(const double dt)
     {
@@ -221,9 +212,9 @@ namespace tmfdem
       if (parameters.get<DiscreteHeatParameters>().relaxation_predictor ==
           DiscreteHeatParameters::RelaxationPredictor::extrapolate)
         predict_relaxation(dt);
-      current_thermal_step = dt;
-      unsigned int i       = 0;
-      bool         relaxed = false;
+      relaxation.current_thermal_step = dt;
+      unsigned int i                  = 0;
+      bool         relaxed            = false;
       // kinetic damping: the kinetic energy of the last step and the
       // largest one since the last check (a reset just before a check
       // must not pass for convergence)
@@ -245,7 +236,7 @@ namespace tmfdem
       bool         had_event = false;
       while (i < steps_per_thermal_step)
         {
-          relaxation_step = i;
+          relaxation.relaxation_step = i;
           mechanical_step();
           ++i;
           if (event_length > 0 && joints_broke_anywhere)
@@ -256,7 +247,7 @@ namespace tmfdem
           const bool in_event = i < event_end;
           if (in_event)
             {
-              ++fracture_event_steps;
+              ++relaxation.fracture_event_steps;
               window_kinetic   = std::max(window_kinetic, step_kinetic);
               previous_kinetic = step_kinetic;
             }
@@ -285,23 +276,24 @@ namespace tmfdem
           if (i % 50 == 0 && !in_event)
             {
               energy();
-              last_kinetic_to_strain =
+              relaxation.last_kinetic_to_strain =
                 (kinetic_damping ? window_kinetic : balance.kinetic) /
                 std::max(balance.strain, 1e-300);
               // an unloaded body: energies at round-off level, where the
               // ratios measure noise and could never pass
               const bool unloaded =
-                balance.strain + balance.joint_stored < unloaded_energy &&
+                balance.strain + balance.joint_stored <
+                  relaxation.unloaded_energy &&
                 (kinetic_damping ? window_kinetic : balance.kinetic) <
-                  unloaded_energy;
+                  relaxation.unloaded_energy;
               window_kinetic = 0.;
-              if (i > quasi_static_ramp_steps && unloaded)
+              if (i > relaxation.quasi_static_ramp_steps && unloaded)
                 {
                   relaxed = true;
                   break;
                 }
-              if (i > quasi_static_ramp_steps &&
-                  last_kinetic_to_strain <
+              if (i > relaxation.quasi_static_ramp_steps &&
+                  relaxation.last_kinetic_to_strain <
                     parameters.get<DiscreteHeatParameters>()
                       .relaxation_tolerance &&
                   relative_unbalanced_force <=
@@ -313,70 +305,13 @@ namespace tmfdem
                 }
             }
         }
-      relaxation_step               = quasi_static_ramp_steps + 1;
-      last_relaxation_steps         = i;
-      previous_relaxation_converged = last_relaxation_converged;
-      last_relaxation_converged     = relaxed;
+      relaxation.finish_relaxation(i, relaxed);
       if (had_event)
-        ++fracture_events;
+        ++relaxation.fracture_events;
       synchronise(); // joint counts and utilisation of the whole state
       if (parameters.get<DiscreteHeatParameters>().relaxation_predictor ==
           DiscreteHeatParameters::RelaxationPredictor::extrapolate)
-        damaged_after_relaxation = n_damaged_or_broken_joints(model);
-    }
-
-    double
-    ExplicitSolver::quasi_static_thermal_step() const
-    {
-      const DiscreteHeatParameters &dh =
-        parameters.get<DiscreteHeatParameters>();
-      double dt =
-        parameters.time.time_step *
-        std::pow(dh.thermal_step_growth, static_cast<double>(n_thermal_steps));
-      if (dh.maximum_thermal_step > 0.)
-        dt = std::min(dt, dh.maximum_thermal_step);
-      dt = std::max(dt, parameters.time.time_step);
-      // after a step cut short (by the controls below or a re-run), the
-      // step grows back by at most 2 per step, not to the schedule at once
-      if (last_thermal_step > 0.)
-        dt = std::min(dt, 2. * last_thermal_step);
-      const double minimum_step = minimum_thermal_step();
-      // joints approaching their strength: at most the allowed rise of the
-      // utilisation per step, predicted from its last rate
-      if (dh.maximum_utilisation_change > 0.)
-        {
-          double limit = dt;
-          if (joint_utilisation_rate > 0.)
-            limit = dh.maximum_utilisation_change / joint_utilisation_rate;
-          // near the peak the rate may flatten while U creeps to 1: steps of
-          // at most this fraction of the elapsed time bracket the onset
-          if (joint_utilisation > 1. - 10. * dh.maximum_utilisation_change)
-            limit = std::min(limit,
-                             dh.maximum_utilisation_change *
-                               (time - parameters.time.start_time));
-          dt = std::min(dt, std::max(minimum_step, limit));
-        }
-      // joints breaking: at most the allowed number per step, from their
-      // rate over the last step where it had more
-      if (dh.maximum_broken_joints_per_step > 0 && break_rate > 0.)
-        dt = std::min(dt,
-                      std::max(minimum_step,
-                               dh.maximum_broken_joints_per_step / break_rate));
-      // land on the end time instead of stepping past it
-      const double to_end = parameters.time.end_time - time;
-      if (to_end < 1.5 * dt)
-        dt = to_end;
-      // and on the next requested output time (two equal steps where one
-      // would come within half a step of it)
-      if (next_output < output_times.size())
-        {
-          const double left = output_times[next_output] - time;
-          if (left > 0. && left <= dt * (1. + 1e-9))
-            dt = left;
-          else if (left > 0. && left < 1.5 * dt)
-            dt = 0.5 * left;
-        }
-      return dt;
+        relaxation.damaged_after_relaxation = n_damaged_or_broken_joints(model);
     }
 
     void
@@ -490,7 +425,7 @@ namespace tmfdem
           model.vy[n] = py ? model.vy[n] : 0.;
         }
       balance.viscous_dissipation += removed;
-      ++velocity_resets;
+      ++relaxation.velocity_resets;
     }
 
     void
@@ -498,24 +433,17 @@ namespace tmfdem
     {
       // the last relaxation took the state from relaxed_x to x over the
       // thermal step relaxed_thermal_step; a response linear in time goes on
-      // by the same increment per unit time. Not across a relaxation that
-      // damaged or broke joints (its increment holds the crack's jump), nor
-      // from one that did not converge or did not start from a converged
-      // state (its increment holds motion still under way, e.g. free pieces
-      // drifting or settling after a fracture event: pushed on, they
-      // overlap and the contact and the joints push them apart again)
-      const unsigned int damaged = n_damaged_or_broken_joints(model);
-      const bool         extrapolate =
-        relaxed_thermal_step > 0. && relaxed_x.size() == model.n_nodes &&
-        last_relaxation_converged && previous_relaxation_converged &&
-        damaged_before_relaxation == damaged_after_relaxation &&
-        damaged == damaged_after_relaxation;
-      if (extrapolate)
+      // by the same increment per unit time (where
+      // QuasiStaticRelaxation::extrapolates() says it does)
+      std::vector<double> &relaxed_x = relaxation.relaxed_x;
+      std::vector<double> &relaxed_y = relaxation.relaxed_y;
+      const unsigned int   damaged   = n_damaged_or_broken_joints(model);
+      if (relaxation.extrapolates(model.n_nodes, damaged))
         {
           const EnergyBalance before = energy();
           const double        contact_before =
             contact.enabled() ? contact.stored_energy(model, partition) : 0.;
-          const double ratio = dt / relaxed_thermal_step;
+          const double ratio = dt / relaxation.relaxed_thermal_step;
           for (unsigned int n = 0; n < model.n_nodes; ++n)
             {
               const double dx = model.x[n] - relaxed_x[n];
@@ -544,15 +472,15 @@ namespace tmfdem
           balance.contact_work += contact_jump;
           if (contact.enabled())
             contact.request_search();
-          ++predicted_relaxations;
+          ++relaxation.predicted_relaxations;
         }
       else
         {
           relaxed_x = model.x;
           relaxed_y = model.y;
         }
-      relaxed_thermal_step      = dt;
-      damaged_before_relaxation = damaged;
+      relaxation.relaxed_thermal_step      = dt;
+      relaxation.damaged_before_relaxation = damaged;
     }
 
   } // namespace discrete

@@ -107,6 +107,7 @@ namespace tmfdem
       , communicator(communicator)
       , fe(1)
       , with_heat(with_heat)
+      , relaxation(parameters)
     {}
 
     ExplicitSolver::~ExplicitSolver() = default;
@@ -135,7 +136,7 @@ namespace tmfdem
       const ImposedMotionClock clock = imposed_motion_clock();
       drivers.evaluate_body_velocities(clock);
       if (drivers.conditions_change() ||
-          (quasi_static && relaxation_step <= quasi_static_ramp_steps))
+          (quasi_static && relaxation.imposed_motion_changes()))
         drivers.evaluate_boundary_conditions(model, clock);
       if (contact.enabled())
         {
@@ -437,8 +438,9 @@ namespace tmfdem
       const auto   loop_wall_start = std::chrono::steady_clock::now();
       // explicit steps are all of one length: stop within half of one;
       // thermal steps shrink near failure and land on the end time
-      // (quasi_static_thermal_step()): stop only there, else a run whose steps
-      // were shortened would end up to half a Time step early
+      // (QuasiStaticRelaxation::next_thermal_step()): stop only there, else
+      // a run whose steps were shortened would end up to half a Time step
+      // early
       const double end_tolerance =
         quasi_static ? 1e-9 * std::max(std::abs(end), advance) : 0.5 * advance;
       while (time < end - end_tolerance &&
@@ -455,10 +457,11 @@ namespace tmfdem
             0.5 * (quasi_static ? time - time_before : advance);
           if (quasi_static && writes_files())
             std::cerr << "[tmfdem] t = " << time << " s: relaxed in "
-                      << last_relaxation_steps
+                      << relaxation.last_relaxation_steps
                       << " mechanical steps, kinetic / strain energy "
-                      << last_kinetic_to_strain << ", out-of-balance force "
-                      << relative_unbalanced_force << "\n";
+                      << relaxation.last_kinetic_to_strain
+                      << ", out-of-balance force " << relative_unbalanced_force
+                      << "\n";
           // quasi-static: a row after every thermal step (steps may be
           // shorter than Time step near failure, and each is costly anyway)
           if (quasi_static || time >= next_history - 0.5 * advance)
@@ -494,16 +497,16 @@ namespace tmfdem
           if ((step_number & 255) == 0)
             {
               wall_time = progress.elapsed() + resumed_wall_time;
-              progress.update(step_number,
-                              time,
-                              (quasi_static ?
-                                 "  thermal step " +
-                                   std::to_string(n_thermal_steps) +
-                                   " (last relaxed in " +
-                                   std::to_string(last_relaxation_steps) +
-                                   " steps)  broken joints " :
-                                 std::string("  broken joints ")) +
-                                std::to_string(n_broken_joints()));
+              progress.update(
+                step_number,
+                time,
+                (quasi_static ?
+                   "  thermal step " + std::to_string(n_thermal_steps) +
+                     " (last relaxed in " +
+                     std::to_string(relaxation.last_relaxation_steps) +
+                     " steps)  broken joints " :
+                   std::string("  broken joints ")) +
+                  std::to_string(n_broken_joints()));
             }
           after_step(checkpoints);
         }

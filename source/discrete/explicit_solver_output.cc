@@ -478,19 +478,22 @@ namespace tmfdem
                   parameters.get<DiscreteHeatParameters>().contact_heat_model))
               .add("continuum_heat_across_cracks", heat_across_cracks)
               .add("thermal_steps", static_cast<long long>(n_thermal_steps))
-              .add("last_relaxation_steps", last_relaxation_steps)
-              .add("relaxations_at_cap", relaxations_at_cap)
+              .add("last_relaxation_steps", relaxation.last_relaxation_steps)
+              .add("relaxations_at_cap", relaxation.relaxations_at_cap)
               .add("rejected_thermal_steps",
-                   static_cast<long long>(rejected_thermal_steps))
+                   static_cast<long long>(relaxation.rejected_thermal_steps))
               .add("unstable_thermal_steps",
-                   static_cast<long long>(unstable_thermal_steps))
-              .add("predicted_relaxations", predicted_relaxations)
-              .add("velocity_resets", static_cast<long long>(velocity_resets))
-              .add("fracture_events", static_cast<long long>(fracture_events))
+                   static_cast<long long>(relaxation.unstable_thermal_steps))
+              .add("predicted_relaxations", relaxation.predicted_relaxations)
+              .add("velocity_resets",
+                   static_cast<long long>(relaxation.velocity_resets))
+              .add("fracture_events",
+                   static_cast<long long>(relaxation.fracture_events))
               .add("fracture_event_steps",
-                   static_cast<long long>(fracture_event_steps))
+                   static_cast<long long>(relaxation.fracture_event_steps))
               .add("last_relative_unbalanced_force", relative_unbalanced_force)
-              .add("last_kinetic_to_strain_energy", last_kinetic_to_strain)
+              .add("last_kinetic_to_strain_energy",
+                   relaxation.last_kinetic_to_strain)
               .add("mechanical_steps_per_thermal_step", steps_per_thermal_step)
               .add("thermal_time_step",
                    quasi_static ? parameters.time.time_step :

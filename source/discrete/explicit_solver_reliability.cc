@@ -160,15 +160,7 @@ namespace tmfdem
       out.put<std::uint64_t>(step_number);
       out.put(thermal_time);
       out.put<std::uint64_t>(n_thermal_steps);
-      out.put(last_relaxation_steps);
-      out.put(last_kinetic_to_strain);
-      out.put<std::uint64_t>(relaxations_at_cap);
-      out.put(joint_utilisation);
-      out.put(joint_utilisation_rate);
-      out.put(break_rate);
-      out.put(last_thermal_step);
-      out.put<std::uint64_t>(rejected_thermal_steps);
-      out.put<std::uint64_t>(unstable_thermal_steps);
+      relaxation.save_step_control(out);
       // state of the nodes, elements and joints
       out.put(model.x);
       out.put(model.y);
@@ -184,18 +176,8 @@ namespace tmfdem
       out.put(drivers.body_reaction);
       out.put(drivers.condition_reaction);
       out.put(drivers.body_velocity_now);
-      // relaxation predictor
-      out.put(relaxed_x);
-      out.put(relaxed_y);
-      out.put(relaxed_thermal_step);
-      out.put(damaged_before_relaxation);
-      out.put(damaged_after_relaxation);
-      out.put<std::uint32_t>((last_relaxation_converged ? 1 : 0) |
-                             (previous_relaxation_converged ? 2 : 0));
-      out.put(predicted_relaxations);
-      out.put(velocity_resets);
-      out.put(fracture_events);
-      out.put(fracture_event_steps);
+      // relaxation predictor and counters
+      relaxation.save_relaxation(out);
       // contact candidates with their friction history
       contact.save(out);
       out.put<std::uint8_t>(with_heat);
@@ -213,18 +195,7 @@ namespace tmfdem
       in.get(thermal_time);
       in.get(count);
       n_thermal_steps = count;
-      in.get(last_relaxation_steps);
-      in.get(last_kinetic_to_strain);
-      in.get(count);
-      relaxations_at_cap = count;
-      in.get(joint_utilisation);
-      in.get(joint_utilisation_rate);
-      in.get(break_rate);
-      in.get(last_thermal_step);
-      in.get(count);
-      rejected_thermal_steps = count;
-      in.get(count);
-      unstable_thermal_steps = count;
+      relaxation.load_step_control(in);
       const std::size_t n = model.n_nodes, e = model.n_elements,
                         j = model.n_joints;
       in.get(model.x, n);
@@ -240,21 +211,7 @@ namespace tmfdem
       in.get(drivers.body_reaction, drivers.body_reaction.size());
       in.get(drivers.condition_reaction);
       in.get(drivers.body_velocity_now, drivers.body_velocity_now.size());
-      in.get(relaxed_x);
-      in.get(relaxed_y);
-      in.get(relaxed_thermal_step);
-      in.get(damaged_before_relaxation);
-      in.get(damaged_after_relaxation);
-      {
-        std::uint32_t converged = 1;
-        in.get(converged);
-        last_relaxation_converged     = (converged & 1) != 0;
-        previous_relaxation_converged = (converged & 2) != 0;
-      }
-      in.get(predicted_relaxations);
-      in.get(velocity_resets);
-      in.get(fracture_events);
-      in.get(fracture_event_steps);
+      relaxation.load_relaxation(in);
       contact.load(in, e);
       std::uint8_t flag = 0;
       in.get(flag);
@@ -271,15 +228,16 @@ namespace tmfdem
       // this rank's whole state, synchronised by the caller, and its own
       // contact pairs with their friction history: every rank returns to
       // the same state without a message
-      thermal_step_start =
+      relaxation.thermal_step_start =
         std::make_unique<CheckpointWriter>("thermal step", "");
-      put_state(*thermal_step_start);
+      put_state(*relaxation.thermal_step_start);
     }
 
     void
     ExplicitSolver::restore_thermal_step_start()
     {
-      CheckpointReader in(*thermal_step_start, "start of the thermal step");
+      CheckpointReader in(*relaxation.thermal_step_start,
+                          "start of the thermal step");
       get_state(in);
       in.finish();
       synchronised_step      = step_number;

@@ -146,21 +146,22 @@ namespace tmfdem
               for (unsigned int e = 0; e < model.n_elements; ++e)
                 EA += parameters.materials[model.material[e]].youngs_modulus *
                       model.reference_area[e];
-              unloaded_energy = 1e-20 * EA;
+              relaxation.unloaded_energy = 1e-20 * EA;
               // motions imposed in thermal time are ramped in over the
               // first relaxation steps of each thermal step
-              const bool imposed      = drivers.imposes_motion();
-              quasi_static_ramp_steps = imposed ? ramp_steps : 0;
-              if (imposed &&
-                  steps_per_thermal_step <= 2 * quasi_static_ramp_steps)
+              const bool imposed = drivers.imposes_motion();
+              relaxation.quasi_static_ramp_steps =
+                imposed ? coupling::QuasiStaticRelaxation::ramp_steps : 0;
+              if (imposed && steps_per_thermal_step <=
+                               2 * relaxation.quasi_static_ramp_steps)
                 throw InputError(
                   "Discrete heat/Mechanical steps per thermal step = " +
                   std::to_string(steps_per_thermal_step) +
                   " is too few for quasi-static coupling with imposed "
                   "velocities or displacements, which are ramped in over " +
-                  std::to_string(quasi_static_ramp_steps) +
+                  std::to_string(relaxation.quasi_static_ramp_steps) +
                   " relaxation steps; allowed is more than " +
-                  std::to_string(2 * quasi_static_ramp_steps) +
+                  std::to_string(2 * relaxation.quasi_static_ramp_steps) +
                   " (or 0: automatic).");
             }
           // the stress-free temperature of each element
@@ -428,15 +429,15 @@ namespace tmfdem
       // thermal step (scaled to spread v dt_thermal over the ramp),
       // displacements reached at the end of the ramp
       ImposedMotionClock clock;
-      clock.velocity_time = quasi_static ? time - 0.5 * current_thermal_step :
-                                           time + 0.5 * time_step;
+      clock.velocity_time     = quasi_static ?
+                                  time - 0.5 * relaxation.current_thermal_step :
+                                  time + 0.5 * time_step;
       clock.displacement_time = quasi_static ? time : time + time_step;
       clock.traction_time     = time;
-      clock.velocity_scale    = imposed_velocity_scale();
+      clock.velocity_scale =
+        quasi_static ? relaxation.imposed_velocity_scale(time_step) : 1.;
       clock.steps_to_target =
-        quasi_static && relaxation_step < quasi_static_ramp_steps ?
-          quasi_static_ramp_steps - relaxation_step :
-          1.;
+        quasi_static ? relaxation.steps_to_ramp_end() : 1.;
       clock.time_step = time_step;
       return clock;
     }

@@ -21,6 +21,7 @@
 #include <memory>
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/base/simulation.h>
+#include <tmfdem/coupling/quasi_static_relaxation.h>
 #include <tmfdem/discrete/cohesive_law.h>
 #include <tmfdem/discrete/contact_system.h>
 #include <tmfdem/discrete/discrete_mesh.h>
@@ -235,15 +236,14 @@ namespace tmfdem
       /** Before a thermal step: stop (or warn once) if joints are broken and
        *  the temperature source does not see cracks. */
       void
-                   check_cracks_seen_by_heat();
+      check_cracks_seen_by_heat();
+      /** Multi-rate coupling: mechanical steps per thermal step;
+       *  quasi-static coupling: the cap of each relaxation (Discrete
+       *  heat/Mechanical steps per thermal step, or automatic). */
       unsigned int steps_per_thermal_step = 1;
-      bool         quasi_static           = false;
-      unsigned int last_relaxation_steps  = 0;
-      /** Quasi-static coupling: strength utilisation of the most loaded
-       *  undamaged joint after the last relaxation [-]. */
-      double joint_utilisation = 0.;
-      /** Quasi-static coupling: its rate over the last thermal step [1/s]. */
-      double joint_utilisation_rate = 0.;
+      /** Discrete heat/Coupling = quasi-static: each step() is a thermal
+       *  step and a relaxation (coupling/quasi_static_relaxation.h). */
+      bool quasi_static = false;
       /** |out-of-balance force| / |internal element forces| over the free
        *  node components after the last step (viscous force left out) [-]. */
       double relative_unbalanced_force = 0.;
@@ -256,60 +256,11 @@ namespace tmfdem
        */
       void
       reset_velocities();
-      /** Quasi-static coupling: relaxations that ended at the step cap. */
-      unsigned int relaxations_at_cap = 0;
-      /** Quasi-static coupling, Relaxation predictor = extrapolate: node
-       *  positions at the end of the last relaxation [m]. */
-      std::vector<double> relaxed_x, relaxed_y;
-      /** The thermal step of the last relaxation [s]; 0 before the first. */
-      double relaxed_thermal_step = 0.;
-      /** Joints damaged or broken at the start of the last relaxation and
-       *  at its end [-]: the predictor extrapolates only where they agree. */
-      unsigned int damaged_before_relaxation = 0, damaged_after_relaxation = 0;
-      /** Whether the last relaxation converged (did not reach its cap):
-       *  the predictor extrapolates only from one that did, not from one
-       *  whose increment holds motion still under way (free pieces
-       *  drifting after a fracture event). */
-      bool last_relaxation_converged = true;
-      /** Whether the relaxation before the last one converged: the last
-       *  relaxation's increment then runs from one equilibrium to the next.
-       *  After a relaxation cut off at its cap (typically by a fracture
-       *  event) the next one converges, but its increment holds the pieces
-       *  settling after the event: extrapolated, they are pushed into each
-       *  other (on a mesh of 1.75 mm this put 78 J/m, half the thermal
-       *  work, into a stress-free cracked ring). */
-      bool previous_relaxation_converged = true;
-      /** Relaxations started from an extrapolated state. */
-      unsigned int predicted_relaxations = 0;
-      /** Relaxation damping = kinetic: velocity resets so far. */
-      unsigned long velocity_resets = 0;
-      /** Fracture event duration > 0: relaxations in which a fracture
-       *  event paused the velocity resets, and their mechanical steps. */
-      unsigned long fracture_events = 0, fracture_event_steps = 0;
-      /**
-       * Quasi-static coupling, thermal step control through the fracture
-       * process (Discrete heat/Maximum broken joints per step): the joints
-       * that broke per unit time over the last accepted thermal step, where
-       * more broke than allowed and the step was resolved (not an unstable
-       * event); 0 otherwise [1/s].
-       */
-      double break_rate = 0.;
-      /** The last accepted thermal step [s]; 0 before the first. */
-      double last_thermal_step = 0.;
-      /** Thermal steps re-run shorter: more than twice Maximum broken
-       *  joints per step broke in them, or their relaxation did not
-       *  converge. */
-      unsigned long rejected_thermal_steps = 0;
-      /** Thermal steps accepted at Minimum thermal step although too many
-       *  joints failed in them or the relaxation reached its cap: crack
-       *  growth that no shorter step resolves (unstable propagation, run as
-       *  a fracture event). */
-      unsigned long unstable_thermal_steps = 0;
-      /** The state at the start of the thermal step under way (a step that
-       *  is re-run starts from it again); null when not kept. */
-      std::unique_ptr<CheckpointWriter> thermal_step_start;
+      /** Quasi-static coupling: the relaxation, its predictor's start and
+       *  the thermal step control (coupling/quasi_static_relaxation.h). */
+      coupling::QuasiStaticRelaxation relaxation;
       /** Keeps the whole state of this rank (synchronised) in
-       *  thermal_step_start. */
+       *  relaxation.thermal_step_start. */
       void
       keep_thermal_step_start();
       /** Returns to the state of keep_thermal_step_start(). */
@@ -333,42 +284,10 @@ namespace tmfdem
        */
       void
       predict_relaxation(const double dt);
-      /** Quasi-static coupling: length of the current thermal step [s]. */
-      double current_thermal_step = 0.;
-      /** Quasi-static coupling: index of the relaxation step under way. */
-      unsigned int relaxation_step = 0;
-      /**
-       * Quasi-static coupling: the motion imposed over one thermal step
-       * (velocity conditions and driven bodies: v dt_thermal; displacement
-       * conditions: u(t) - u(t - dt_thermal)) is spread evenly over the
-       * first this many relaxation steps; 0 where nothing is imposed.
-       */
-      unsigned int quasi_static_ramp_steps = 0;
-      /** Factor from a physical velocity to the velocity of a relaxation
-       *  step: 1 in dynamic runs, dt_thermal / (ramp dt) during the ramp
-       *  of a quasi-static relaxation, 0 after it. */
-      double
-      imposed_velocity_scale() const
-      {
-        if (!quasi_static)
-          return 1.;
-        return relaxation_step < quasi_static_ramp_steps ?
-                 current_thermal_step / (quasi_static_ramp_steps * time_step) :
-                 0.;
-      }
-      double        last_kinetic_to_strain = 0.;
-      unsigned long n_thermal_steps        = 0;
+      /** Thermal steps taken (multi-rate and quasi-static coupling). */
+      unsigned long n_thermal_steps = 0;
       /** Stress-free temperature per element [C]. */
       std::vector<double> reference_temperature;
-      /** Quasi-static coupling: the next thermal step [s], growing from
-       * Time stepping/Time step by Discrete heat/Thermal step growth factor
-       * and landing on the end time. */
-      double
-      quasi_static_thermal_step() const;
-      /** Quasi-static coupling: the shortest thermal step the step control
-       *  takes (Discrete heat/Minimum thermal step) [s]. */
-      double
-      minimum_thermal_step() const;
       /** One explicit mechanical step without advancing the clock. */
       void
       mechanical_step();
@@ -386,14 +305,8 @@ namespace tmfdem
        *  (source/coupling/discrete_thermo_mechanics.cc). */
       void
       quasi_static_step();
-      /** Quasi-static coupling: energy below which the body counts as
-       *  unloaded and relaxed: that of a uniform strain of 1e-10 at the
-       *  materials' E, 1e-20 sum E A [J/m]. */
-      double unloaded_energy = 0.;
-      /** Relaxation steps over which the motion imposed in one thermal step
-       *  is ramped in (quasi-static coupling). */
-      static constexpr unsigned int ramp_steps   = 100;
-      double                        thermal_time = 0.;
+      /** Time the temperature source has reached [s]. */
+      double thermal_time = 0.;
 
       /** Bodies, gravity and boundary conditions, and their reactions. */
       Drivers drivers;

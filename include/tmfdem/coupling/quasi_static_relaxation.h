@@ -1,0 +1,253 @@
+/**
+ * @file
+ * The state of the quasi-static coupling of the discrete thermo-mechanics
+ * (Discrete heat/Coupling = quasi-static; theory manual, "Coupling"): the
+ * relaxation under way (its step, the ramp of the imposed motion), the last
+ * relaxation (its length, convergence, energy ratio), the start of the
+ * relaxation predictor, the thermal step control through the fracture
+ * process (utilisation, break rate, last step, the state kept to re-run a
+ * step) and the counters that summary.json reports. discrete::ExplicitSolver
+ * holds one; its coupling loop (source/coupling/discrete_thermo_mechanics.cc)
+ * runs the relaxations and steps, and the checkpoint writes this state with
+ * save_step_control() and save_relaxation().
+ */
+#ifndef tmfdem_coupling_quasi_static_relaxation_h
+#define tmfdem_coupling_quasi_static_relaxation_h
+
+#include <memory>
+#include <optional>
+#include <tmfdem/base/parameters.h>
+#include <vector>
+
+namespace tmfdem
+{
+  class CheckpointWriter;
+  class CheckpointReader;
+
+  namespace coupling
+  {
+    /** Quasi-static relaxation and thermal step control of the discrete
+     *  thermo-mechanics: its state and the decisions that read only it. */
+    class QuasiStaticRelaxation
+    {
+    public:
+      /** @p parameters: the run's (Time stepping, Discrete heat), read when
+       *  a step is chosen; they must outlive this object. */
+      explicit QuasiStaticRelaxation(const Parameters &parameters);
+      ~QuasiStaticRelaxation();
+
+      // ------------------------------------------------------- the ramp
+
+      /** Relaxation steps over which the motion imposed in one thermal step
+       *  is ramped in where the drivers impose motion. */
+      static constexpr unsigned int ramp_steps = 100;
+      /**
+       * The motion imposed over one thermal step (velocity conditions and
+       * driven bodies: v dt_thermal; displacement conditions:
+       * u(t) - u(t - dt_thermal)) is spread evenly over the first this many
+       * relaxation steps; 0 where nothing is imposed (set by
+       * ExplicitSolver::check_input()).
+       */
+      unsigned int quasi_static_ramp_steps = 0;
+      /** Length of the current thermal step [s]. */
+      double current_thermal_step = 0.;
+      /** Index of the relaxation step under way; quasi_static_ramp_steps + 1
+       *  once a relaxation has ended. */
+      unsigned int relaxation_step = 0;
+
+      /** Factor from a physical velocity to the velocity of the relaxation
+       *  step under way: dt_thermal / (ramp dt) during the ramp, 0 after
+       *  it; @p time_step: the mechanical step dt [s]. */
+      double
+      imposed_velocity_scale(const double time_step) const
+      {
+        return relaxation_step < quasi_static_ramp_steps ?
+                 current_thermal_step / (quasi_static_ramp_steps * time_step) :
+                 0.;
+      }
+      /** Relaxation steps until the imposed displacements reach their target
+       *  (the end of the ramp); 1 after it. */
+      double
+      steps_to_ramp_end() const
+      {
+        return relaxation_step < quasi_static_ramp_steps ?
+                 quasi_static_ramp_steps - relaxation_step :
+                 1.;
+      }
+      /** The imposed motion of the relaxation step under way differs from
+       *  that of the step before: during the ramp and in the first step
+       *  after it (where it drops to zero). */
+      bool
+      imposed_motion_changes() const
+      {
+        return relaxation_step <= quasi_static_ramp_steps;
+      }
+
+      // -------------------------------------------------- the relaxation
+
+      /** Energy below which the body counts as unloaded and relaxed: that
+       *  of a uniform strain of 1e-10 at the materials' E, 1e-20 sum E A
+       *  [J/m] (set by ExplicitSolver::check_input()). */
+      double unloaded_energy = 0.;
+      /** Mechanical steps of the last relaxation. */
+      unsigned int last_relaxation_steps = 0;
+      /** Kinetic / strain energy at the last convergence check [-]. */
+      double last_kinetic_to_strain = 0.;
+      /** Whether the last relaxation converged (did not reach its cap):
+       *  the predictor extrapolates only from one that did, not from one
+       *  whose increment holds motion still under way (free pieces
+       *  drifting after a fracture event). */
+      bool last_relaxation_converged = true;
+      /** Whether the relaxation before the last one converged: the last
+       *  relaxation's increment then runs from one equilibrium to the next.
+       *  After a relaxation cut off at its cap (typically by a fracture
+       *  event) the next one converges, but its increment holds the pieces
+       *  settling after the event: extrapolated, they are pushed into each
+       *  other (on a mesh of 1.75 mm this put 78 J/m, half the thermal
+       *  work, into a stress-free cracked ring). */
+      bool previous_relaxation_converged = true;
+      /** Relaxations that ended at the step cap. */
+      unsigned int relaxations_at_cap = 0;
+      /** Relaxation damping = kinetic: velocity resets so far. */
+      unsigned long velocity_resets = 0;
+      /** Fracture event duration > 0: relaxations in which a fracture
+       *  event paused the velocity resets, and their mechanical steps. */
+      unsigned long fracture_events = 0, fracture_event_steps = 0;
+
+      /** At the end of a relaxation of @p steps mechanical steps that
+       *  @p converged (or reached its cap): its record, and the ramp over. */
+      void
+      finish_relaxation(const unsigned int steps, const bool converged)
+      {
+        relaxation_step               = quasi_static_ramp_steps + 1;
+        last_relaxation_steps         = steps;
+        previous_relaxation_converged = last_relaxation_converged;
+        last_relaxation_converged     = converged;
+      }
+
+      // -------------------- the predictor (Relaxation predictor = extrapolate)
+
+      /** Node positions at the end of the last relaxation [m]. */
+      std::vector<double> relaxed_x, relaxed_y;
+      /** The thermal step of the last relaxation [s]; 0 before the first. */
+      double relaxed_thermal_step = 0.;
+      /** Joints damaged or broken at the start of the last relaxation and
+       *  at its end: the predictor extrapolates only where they agree. */
+      unsigned int damaged_before_relaxation = 0, damaged_after_relaxation = 0;
+      /** Relaxations started from an extrapolated state. */
+      unsigned int predicted_relaxations = 0;
+
+      /**
+       * Whether the next relaxation starts from the last one's increment
+       * extrapolated: there is a last relaxation of a model of @p n_nodes
+       * nodes, it and the one before it converged, and it neither damaged
+       * nor broke joints, nor did any since (@p damaged: the joints damaged
+       * or broken now). Else the increment holds a crack's jump or motion
+       * still under way (free pieces drifting or settling after a fracture
+       * event: pushed on, they overlap and the contact and the joints push
+       * them apart again).
+       */
+      bool
+      extrapolates(const std::size_t n_nodes, const unsigned int damaged) const
+      {
+        return relaxed_thermal_step > 0. && relaxed_x.size() == n_nodes &&
+               last_relaxation_converged && previous_relaxation_converged &&
+               damaged_before_relaxation == damaged_after_relaxation &&
+               damaged == damaged_after_relaxation;
+      }
+
+      // ------------------------------------------- the thermal step control
+
+      /** Strength utilisation of the most loaded undamaged joint after the
+       *  last relaxation [-]. */
+      double joint_utilisation = 0.;
+      /** Its rate over the last thermal step [1/s]. */
+      double joint_utilisation_rate = 0.;
+      /**
+       * Thermal step control through the fracture process (Discrete
+       * heat/Maximum broken joints per step): the joints that broke per unit
+       * time over the last accepted thermal step, where more broke than
+       * allowed and the step was resolved (not an unstable event); 0
+       * otherwise [1/s].
+       */
+      double break_rate = 0.;
+      /** The last accepted thermal step [s]; 0 before the first. */
+      double last_thermal_step = 0.;
+      /** Thermal steps re-run shorter: more than twice Maximum broken
+       *  joints per step broke in them, or their relaxation did not
+       *  converge. */
+      unsigned long rejected_thermal_steps = 0;
+      /** Thermal steps accepted at Minimum thermal step although too many
+       *  joints failed in them or the relaxation reached its cap: crack
+       *  growth that no shorter step resolves (unstable propagation, run as
+       *  a fracture event). */
+      unsigned long unstable_thermal_steps = 0;
+      /** The solver's state at the start of the thermal step under way (a
+       *  step that is re-run starts from it again); null when not kept. */
+      std::unique_ptr<CheckpointWriter> thermal_step_start;
+
+      /**
+       * The next thermal step [s]: Time stepping/Time step grown by Discrete
+       * heat/Thermal step growth factor per step taken
+       * (@p n_thermal_steps), at most twice the last accepted step, limited
+       * by the predicted rise of the joints' utilisation and by their break
+       * rate, landing on the end time and on @p next_output_time [s] (the
+       * next requested output time, if any); @p time: now [s].
+       */
+      double
+      next_thermal_step(const double                time,
+                        const unsigned long         n_thermal_steps,
+                        const std::optional<double> next_output_time) const;
+      /** The shortest thermal step the step control takes (Discrete
+       *  heat/Minimum thermal step, or 1e-3 Time step) [s]. */
+      double
+      minimum_thermal_step() const;
+      /** Whether a thermal step in which @p joints_broken joints broke is
+       *  accepted: at most twice the allowed number broke in it and its
+       *  relaxation converged, or it did not, but no damage grew in the step
+       *  (@p damage_grew; a shorter step does not help a cap that is too low
+       *  for the load). */
+      bool
+      resolves_thermal_step(const unsigned int joints_broken,
+                            const bool         damage_grew) const;
+      /** The factor by which a thermal step in which @p joints_broken joints
+       *  broke is re-run shorter: the one that brings the breaks to half the
+       *  allowed number, were they proportional to the step (at most 0.25:
+       *  breaks that do not become fewer with the step are an instability,
+       *  whose load a few cuts then find) [-]. */
+      double
+      rerun_factor(const unsigned int joints_broken) const;
+      /** Records the accepted thermal step @p dt [s] and, where the breaks
+       *  are controlled, the break rate from the @p joints_broken joints
+       *  that broke in it (none where it was @p unstable or at most the
+       *  allowed number broke: a single break in a short step says nothing
+       *  of a rate). */
+      void
+      accept_thermal_step(const double       dt,
+                          const bool         unstable,
+                          const unsigned int joints_broken);
+
+      // ------------------------------------------------------ checkpoints
+
+      /** Writes the relaxation's record and the step control's state (the
+       *  checkpoint's clocks, after the thermal clock). */
+      void
+      save_step_control(CheckpointWriter &out) const;
+      /** Reads what save_step_control() wrote. */
+      void
+      load_step_control(CheckpointReader &in);
+      /** Writes the predictor's start and the relaxation counters (the
+       *  checkpoint's part after the reactions). */
+      void
+      save_relaxation(CheckpointWriter &out) const;
+      /** Reads what save_relaxation() wrote. */
+      void
+      load_relaxation(CheckpointReader &in);
+
+    private:
+      const Parameters &parameters;
+    };
+  } // namespace coupling
+} // namespace tmfdem
+
+#endif

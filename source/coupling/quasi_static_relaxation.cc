@@ -1,0 +1,186 @@
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <tmfdem/coupling/quasi_static_relaxation.h>
+#include <tmfdem/discrete/discrete_parameters.h>
+#include <tmfdem/io/checkpoint.h>
+
+namespace tmfdem
+{
+  namespace coupling
+  {
+    QuasiStaticRelaxation::QuasiStaticRelaxation(const Parameters &parameters)
+      : parameters(parameters)
+    {}
+
+    QuasiStaticRelaxation::~QuasiStaticRelaxation() = default;
+
+    double
+    QuasiStaticRelaxation::next_thermal_step(
+      const double                time,
+      const unsigned long         n_thermal_steps,
+      const std::optional<double> next_output_time) const
+    {
+      const DiscreteHeatParameters &dh =
+        parameters.get<DiscreteHeatParameters>();
+      double dt =
+        parameters.time.time_step *
+        std::pow(dh.thermal_step_growth, static_cast<double>(n_thermal_steps));
+      if (dh.maximum_thermal_step > 0.)
+        dt = std::min(dt, dh.maximum_thermal_step);
+      dt = std::max(dt, parameters.time.time_step);
+      // after a step cut short (by the controls below or a re-run), the
+      // step grows back by at most 2 per step, not to the schedule at once
+      if (last_thermal_step > 0.)
+        dt = std::min(dt, 2. * last_thermal_step);
+      const double minimum_step = minimum_thermal_step();
+      // joints approaching their strength: at most the allowed rise of the
+      // utilisation per step, predicted from its last rate
+      if (dh.maximum_utilisation_change > 0.)
+        {
+          double limit = dt;
+          if (joint_utilisation_rate > 0.)
+            limit = dh.maximum_utilisation_change / joint_utilisation_rate;
+          // near the peak the rate may flatten while U creeps to 1: steps of
+          // at most this fraction of the elapsed time bracket the onset
+          if (joint_utilisation > 1. - 10. * dh.maximum_utilisation_change)
+            limit = std::min(limit,
+                             dh.maximum_utilisation_change *
+                               (time - parameters.time.start_time));
+          dt = std::min(dt, std::max(minimum_step, limit));
+        }
+      // joints breaking: at most the allowed number per step, from their
+      // rate over the last step where it had more
+      if (dh.maximum_broken_joints_per_step > 0 && break_rate > 0.)
+        dt = std::min(dt,
+                      std::max(minimum_step,
+                               dh.maximum_broken_joints_per_step / break_rate));
+      // land on the end time instead of stepping past it
+      const double to_end = parameters.time.end_time - time;
+      if (to_end < 1.5 * dt)
+        dt = to_end;
+      // and on the next requested output time (two equal steps where one
+      // would come within half a step of it)
+      if (next_output_time)
+        {
+          const double left = *next_output_time - time;
+          if (left > 0. && left <= dt * (1. + 1e-9))
+            dt = left;
+          else if (left > 0. && left < 1.5 * dt)
+            dt = 0.5 * left;
+        }
+      return dt;
+    }
+
+    double
+    QuasiStaticRelaxation::minimum_thermal_step() const
+    {
+      const DiscreteHeatParameters &dh =
+        parameters.get<DiscreteHeatParameters>();
+      return dh.minimum_thermal_step > 0. ? dh.minimum_thermal_step :
+                                            1e-3 * parameters.time.time_step;
+    }
+
+    bool
+    QuasiStaticRelaxation::resolves_thermal_step(
+      const unsigned int joints_broken,
+      const bool         damage_grew) const
+    {
+      const double allowed =
+        parameters.get<DiscreteHeatParameters>().maximum_broken_joints_per_step;
+      return joints_broken <= 2. * allowed &&
+             (last_relaxation_converged || !damage_grew);
+    }
+
+    double
+    QuasiStaticRelaxation::rerun_factor(const unsigned int joints_broken) const
+    {
+      const double allowed =
+        parameters.get<DiscreteHeatParameters>().maximum_broken_joints_per_step;
+      return joints_broken > 2. * allowed ? 0.5 * allowed / joints_broken :
+                                            0.25;
+    }
+
+    void
+    QuasiStaticRelaxation::accept_thermal_step(const double       dt,
+                                               const bool         unstable,
+                                               const unsigned int joints_broken)
+    {
+      const DiscreteHeatParameters &dh =
+        parameters.get<DiscreteHeatParameters>();
+      const double allowed = dh.maximum_broken_joints_per_step;
+      last_thermal_step    = dt;
+      if (dh.maximum_broken_joints_per_step > 0)
+        break_rate =
+          unstable || joints_broken <= allowed ? 0. : joints_broken / dt;
+    }
+
+    void
+    QuasiStaticRelaxation::save_step_control(CheckpointWriter &out) const
+    {
+      out.put(last_relaxation_steps);
+      out.put(last_kinetic_to_strain);
+      out.put<std::uint64_t>(relaxations_at_cap);
+      out.put(joint_utilisation);
+      out.put(joint_utilisation_rate);
+      out.put(break_rate);
+      out.put(last_thermal_step);
+      out.put<std::uint64_t>(rejected_thermal_steps);
+      out.put<std::uint64_t>(unstable_thermal_steps);
+    }
+
+    void
+    QuasiStaticRelaxation::load_step_control(CheckpointReader &in)
+    {
+      std::uint64_t count = 0;
+      in.get(last_relaxation_steps);
+      in.get(last_kinetic_to_strain);
+      in.get(count);
+      relaxations_at_cap = count;
+      in.get(joint_utilisation);
+      in.get(joint_utilisation_rate);
+      in.get(break_rate);
+      in.get(last_thermal_step);
+      in.get(count);
+      rejected_thermal_steps = count;
+      in.get(count);
+      unstable_thermal_steps = count;
+    }
+
+    void
+    QuasiStaticRelaxation::save_relaxation(CheckpointWriter &out) const
+    {
+      out.put(relaxed_x);
+      out.put(relaxed_y);
+      out.put(relaxed_thermal_step);
+      out.put(damaged_before_relaxation);
+      out.put(damaged_after_relaxation);
+      out.put<std::uint32_t>((last_relaxation_converged ? 1 : 0) |
+                             (previous_relaxation_converged ? 2 : 0));
+      out.put(predicted_relaxations);
+      out.put(velocity_resets);
+      out.put(fracture_events);
+      out.put(fracture_event_steps);
+    }
+
+    void
+    QuasiStaticRelaxation::load_relaxation(CheckpointReader &in)
+    {
+      in.get(relaxed_x);
+      in.get(relaxed_y);
+      in.get(relaxed_thermal_step);
+      in.get(damaged_before_relaxation);
+      in.get(damaged_after_relaxation);
+      {
+        std::uint32_t converged = 1;
+        in.get(converged);
+        last_relaxation_converged     = (converged & 1) != 0;
+        previous_relaxation_converged = (converged & 2) != 0;
+      }
+      in.get(predicted_relaxations);
+      in.get(velocity_resets);
+      in.get(fracture_events);
+      in.get(fracture_event_steps);
+    }
+  } // namespace coupling
+} // namespace tmfdem
