@@ -164,5 +164,81 @@ namespace tmfdem
                                  result);
       return result;
     }
+
+    CompensatedElement
+    compensate_joint_compliance(const std::array<double, 4> &x,
+                                const std::array<double, 4> &y,
+                                const std::array<double, 4> &z,
+                                const LameConstants         &lame,
+                                const std::array<double, 4> &normal_penalty,
+                                const std::array<double, 4> &tangential_penalty,
+                                const double                 max_share)
+    {
+      CompensatedElement result;
+      result.lame          = lame;
+      const double p[4][3] = {{x[0], y[0], z[0]},
+                              {x[1], y[1], z[1]},
+                              {x[2], y[2], z[2]},
+                              {x[3], y[3], z[3]}};
+      const auto   edge    = [&](const int a, const int b, double *e) {
+        for (int i = 0; i < 3; ++i)
+          e[i] = p[b][i] - p[a][i];
+      };
+      const auto cross = [](const double *a, const double *b, double *c) {
+        c[0] = a[1] * b[2] - a[2] * b[1];
+        c[1] = a[2] * b[0] - a[0] * b[2];
+        c[2] = a[0] * b[1] - a[1] * b[0];
+      };
+      double e1[3], e2[3], e3[3], c[3];
+      edge(0, 1, e1);
+      edge(0, 2, e2);
+      edge(0, 3, e3);
+      cross(e1, e2, c);
+      const double volume =
+        std::abs(c[0] * e3[0] + c[1] * e3[1] + c[2] * e3[2]) / 6.;
+      if (!(volume > 0.))
+        return result;
+      // the joints' bulk (1/K) and shear (1/mu) compliances [1/Pa]
+      double bulk = 0., shear = 0.;
+      for (int k = 0; k < 4; ++k)
+        {
+          const double pn = normal_penalty[k], pt = tangential_penalty[k];
+          if (!(pn > 0.) || !(pt > 0.))
+            continue;
+          // face k: the three nodes other than k
+          const int a = (k + 1) % 4, b = (k + 2) % 4, d = (k + 3) % 4;
+          double    f1[3], f2[3], f3[3], n[3];
+          edge(a, b, f1);
+          edge(a, d, f2);
+          edge(b, d, f3);
+          cross(f1, f2, n);
+          const double area =
+            0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+          const auto length = [](const double *e) {
+            return std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+          };
+          // the face's size h (the mean edge: joint penalties k = p / h)
+          const double h = (length(f1) + length(f2) + length(f3)) / 3.;
+          const double w = area * h / (2. * volume);
+          result.weight += w;
+          bulk += w / pn;
+          shear += w * (4. / pn + 6. / pt) / 15.;
+        }
+      if (result.weight == 0.)
+        return result;
+      const double K = lame.lambda + 2. * lame.mu / 3., mu = lame.mu;
+      double       share_bulk = bulk * K, share_shear = shear * mu;
+      result.share = std::max(share_bulk, share_shear);
+      if (result.share > max_share)
+        {
+          result.capped = true;
+          share_bulk    = std::min(share_bulk, max_share);
+          share_shear   = std::min(share_shear, max_share);
+        }
+      const double K_e = K / (1. - share_bulk), mu_e = mu / (1. - share_shear);
+      result.lame.mu     = mu_e;
+      result.lame.lambda = K_e - 2. * mu_e / 3.;
+      return result;
+    }
   } // namespace discrete
 } // namespace tmfdem

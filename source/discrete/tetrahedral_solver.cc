@@ -20,6 +20,7 @@
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/discrete/element_kernel.h>
+#include <tmfdem/discrete/joint_compliance.h>
 #include <tmfdem/discrete/joint_kernel.h>
 #include <tmfdem/discrete/joints.h>
 #include <tmfdem/discrete/stable_step.h>
@@ -162,6 +163,58 @@ namespace tmfdem
             model.mass[4 * e + k] = node_mass;
         }
       setup_joint_constants(parameters, softening_law, model);
+
+      // joint compliance compensation (isotropic): each tetrahedron in
+      // series with half of its joints has the material's stiffness
+      compensation_capped = 0;
+      compensation_share  = 0.;
+      if (!dm.joint_compliance_compensation)
+        return;
+      if (dm.anisotropic_joint_compliance_compensation)
+        std::cerr << "note: Mesh/Dimension = 3: Discrete mechanics/"
+                     "Anisotropic joint compliance compensation is 2D only; "
+                     "tetrahedra get the isotropic compensation\n";
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        {
+          std::array<double, 4> x, y, z, p_n{}, p_t{};
+          for (unsigned int k = 0; k < 4; ++k)
+            {
+              x[k] = model.x_ref[4 * e + k];
+              y[k] = model.y_ref[4 * e + k];
+              z[k] = model.z_ref[4 * e + k];
+            }
+          for (unsigned int f = 0; f < 4; ++f)
+            {
+              const int code = model.edge_joint[4 * e + f];
+              if (code < 0)
+                continue;
+              // the penalty p = k h of the joint; deal.II's face f is the
+              // one opposite vertex 3 - f
+              const unsigned int    j = code / 2;
+              const JointConstants &k = model.joint_constants[j];
+              p_n[3 - f] = k.normal_stiffness * model.joint_length[j];
+              p_t[3 - f] = k.tangential_stiffness * model.joint_length[j];
+            }
+          const CompensatedElement c =
+            compensate_joint_compliance(x,
+                                        y,
+                                        z,
+                                        element_lame[e],
+                                        p_n,
+                                        p_t,
+                                        max_compensated_share);
+          element_lame[e] = c.lame;
+          compensation_capped += c.capped;
+          compensation_share = std::max(compensation_share, c.share);
+        }
+      if (compensation_capped > 0)
+        std::cerr << "note: joint compliance compensation capped in "
+                  << compensation_capped
+                  << " tetrahedra (their joints take more than "
+                  << 100. * max_compensated_share
+                  << " % of the material's compliance; at most "
+                  << 100. * compensation_share
+                  << " %): those stay softer than the material\n";
     }
 
     void
@@ -431,12 +484,7 @@ namespace tmfdem
         }
       if (n_threads > thread_limit())
         set_thread_limit(n_threads);
-      threads_used = measure_concurrency(arena_for(n_threads));
-      if (dm.joint_compliance_compensation)
-        std::cerr << "note: Mesh/Dimension = 3: Discrete mechanics/Joint "
-                     "compliance compensation is not applied to tetrahedra; "
-                     "the joints' compliance (penalty p over the face size "
-                     "h) adds to the elements'\n";
+      threads_used  = measure_concurrency(arena_for(n_threads));
       input_checked = true;
     }
 
@@ -743,7 +791,11 @@ namespace tmfdem
       summary.add("broken_mode_II", modes[2]);
       summary.add("broken_mixed", modes[3]);
       summary.add("cracks", model.n_cracks());
-      summary.add("joint_compliance_compensation", false);
+      summary.add("joint_compliance_compensation",
+                  parameters.get<DiscreteMechanicsParameters>()
+                    .joint_compliance_compensation);
+      summary.add("compensation_capped_elements", compensation_capped);
+      summary.add("compensation_largest_share", compensation_share);
       summary.add("crack_area", crack_area);
       JsonObject energy;
       energy.add("kinetic", energies.kinetic);

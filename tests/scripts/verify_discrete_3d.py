@@ -13,9 +13,14 @@
    rigid motions aside; and the run on two threads gives bitwise the
    summary of the run on one (the chunks do not depend on the thread
    count), with the two threads shown to have run (common.check_parallel).
+3. The jointed cube under uniaxial stress (rollers on three faces, the
+   fourth pulled slowly, 25 wave transits): with Joint compliance
+   compensation the effective modulus (reaction / area) / (u / L) within 3 %
+   of E; without it more than 3 % off (the test can fail).
 
 usage: verify_discrete_3d.py TMFDEM OUT
 """
+import csv
 import os
 import sys
 
@@ -74,6 +79,52 @@ same = all(runs[1][k] == runs[2][k] for k in keys) and \
     runs[1]["energy"] == runs[2]["energy"]
 ok &= check(same, "1 and 2 threads: the same broken joints, cracks and "
             "energies, bit for bit")
+
+# 3. the jointed cube's stiffness: uniaxial stress (rollers on x = 0, y = 0,
+# z = 0; the face x = 0.1 m pulled along x with a smooth ramp to 0.01 m/s
+# over 1 ms, then steadily, to 4 ms: 25 wave transits, nothing breaks);
+# E_eff = (reaction / area) / (u / L) at the end against E
+ramp = "(t < 1e-3 ? 0.01 * sin(pi * t / 2e-3)^2 : 0.01)"
+uniaxial = [
+    "Mesh/Element size=0.025",
+    "Materials/Material 0/Tensile strength=1e8", "Materials/Material 0/Cohesion=2e8",
+    "Materials/Material 0/Mode I fracture energy=1e6",
+    "Materials/Material 0/Mode II fracture energy=5e6",
+    "Mechanical boundary conditions/Condition 1/Boundary ids=0",
+    "Mechanical boundary conditions/Condition 1/Type=roller x",
+    "Mechanical boundary conditions/Condition 2/Boundary ids=1",
+    f"Mechanical boundary conditions/Condition 2/Velocity x={ramp}",
+    "Mechanical boundary conditions/Condition 3/Boundary ids=2",
+    "Mechanical boundary conditions/Condition 3/Type=roller y",
+    "Mechanical boundary conditions/Condition 4/Boundary ids=4",
+    "Mechanical boundary conditions/Condition 4/Type=roller z",
+    "Time stepping/End time=4e-3",
+]
+# u(t) of the ramp: 0.01 (t - 1e-3 / 2) after it
+u_end, L, area, E = 0.01 * (4e-3 - 0.5e-3), 0.1, 0.01, 1e9
+moduli = {}
+for compensation in ("true", "false"):
+    folder = os.path.join(out, f"uniaxial_compensation_{compensation}")
+    run(binary, cube_prm, folder, *uniaxial,
+        f"Discrete mechanics/Joint compliance compensation={compensation}")
+
+    with open(os.path.join(folder, "history.csv")) as f:
+        last = list(csv.DictReader(f))[-1]
+    sigma = float(last["condition2_fx"]) / area
+    moduli[compensation] = sigma / (u_end / L)
+    su = summary(folder)
+    print(f"compensation {compensation}: {su['elements']} tetrahedra, reaction "
+          f"{float(last['condition2_fx']):.6g} N, E_eff = {moduli[compensation]:.6g} Pa "
+          f"({moduli[compensation] / E:.4f} E), broken {su['broken_joints']}, damaged "
+          f"{su['damaged_joints']}, capped {su['compensation_capped_elements']}, largest "
+          f"share {su['compensation_largest_share']:.3f}", flush=True)
+ok &= check(abs(moduli["true"] / E - 1) < 0.03,
+            f"uniaxial stress with joint compliance compensation: E_eff / E = "
+            f"{moduli['true'] / E:.4f} (within 3 %)")
+ok &= check(abs(moduli["false"] / E - 1) > 0.03,
+            f"without it the joints soften the cube: E_eff / E = "
+            f"{moduli['false'] / E:.4f} (more than 3 % off: the test can fail)")
+
 parallel = check_parallel(runs[2], threads=2, load_before=load_before)
 if parallel == "fail":
     ok = False

@@ -100,6 +100,35 @@ namespace tmfdem
                                 const std::array<double, 3> &tangential_penalty,
                                 const double                 max_share,
                                 const bool anisotropic = false);
+
+    /**
+     * The isotropic compensation of a tetrahedron with nodes (@p x, @p y,
+     * @p z) [m] and, on face k (the face opposite node k), a joint of
+     * penalties @p normal_penalty [k], @p tangential_penalty [k] [Pa] (0: no
+     * joint) with k = p / h, h the face's mean edge. Under a uniform stress
+     * a face joint of area a opens by [u] = h / p (sigma_nn n + ...), so the
+     * element that owns half of each of its joints gains the compliance of
+     * weight w_k = a_k h_k / (2 V). Its isotropic part, with W = sum w_k:
+     * bulk tr eps_J = W sigma_m / p_n (exact for any shape), shear
+     * eps_J,xy = W (2 / p_n + 3 / p_t) / 15 tau (the average over all
+     * directions of n n n n / p_n and the tangential compliance
+     * (sym(n (x) I (x) n) - n n n n) / p_t); so
+     *
+     *   1 / K_e = 1 / K - W / p_n,  1 / mu_e = 1 / mu - 2 W (2 / p_n + 3 / p_t)
+     * / 15,
+     *
+     * K = lambda + 2 mu / 3 the 3D bulk modulus, the joints' share capped at
+     * @p max_share as in 2D. No anisotropic part (the fields of
+     * CompensatedElement for it stay at their defaults).
+     */
+    CompensatedElement
+    compensate_joint_compliance(const std::array<double, 4> &x,
+                                const std::array<double, 4> &y,
+                                const std::array<double, 4> &z,
+                                const LameConstants         &lame,
+                                const std::array<double, 4> &normal_penalty,
+                                const std::array<double, 4> &tangential_penalty,
+                                const double                 max_share);
   } // namespace discrete
 } // namespace tmfdem
 

@@ -130,7 +130,16 @@ namespace tmfdem
       DoFHandler<3>    dof_handler;
       DiscreteModel    model;
       SofteningLaw     softening_law = SofteningLaw::munjiza;
-      /** Lame constants per element [Pa] and viscosity eta [Pa s]. */
+      /** Joints' share of an element's compliance above which the
+       *  compensation is capped (as in 2D) [-]. */
+      static constexpr double max_compensated_share = 0.75;
+      /** Tetrahedra whose compensation was capped, and the largest share
+       *  of the material's compliance their joints take [-]. */
+      unsigned int compensation_capped = 0;
+      double       compensation_share  = 0.;
+      /** Lame constants per element (compensated for the joints'
+       *  compliance, Joint compliance compensation) [Pa] and viscosity eta
+       *  [Pa s]. */
       std::vector<LameConstants> element_lame;
       std::vector<double>        viscosity;
       /** Per joint and side: the face of its element (deal.II's face
