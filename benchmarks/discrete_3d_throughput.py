@@ -3,7 +3,7 @@
 measured in the same run on the same machine.
 
   3D: an intact 1 m cube of N x N x N hexahedra split into 24 tetrahedra
-      each (N = 17: 117 912 tetrahedra, 232 152 face joints), bottom face
+      each (N = 17: 117 912 tetrahedra, 232 356 face joints), bottom face
       fixed, top face pulled at 0.01 m/s, strong joints (nothing breaks),
       STEPS explicit steps, on 1 and 2 threads;
   2D: prm/plate_traction.prm refined twice (7744 triangles, intact, vector
