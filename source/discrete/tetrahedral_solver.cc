@@ -79,6 +79,13 @@ namespace tmfdem
         throw InputError("Checkpoint/Interval (steps), Interval (wall "
                          "minutes): checkpoints" +
                          in_3d + "allowed is 0 for both.");
+      if (!parameters.monitors.probes.empty() ||
+          !parameters.monitors.lines.empty())
+        throw InputError("Monitors/Probes, Lines: probes and lines of the "
+                         "discrete layer" +
+                         in_3d +
+                         "allowed in 3D is none (solution.pvd holds "
+                         "the fields).");
       if (parameters.resume)
         throw InputError("--resume: checkpoints" + in_3d +
                          "allowed is a run without --resume.");
@@ -611,6 +618,7 @@ namespace tmfdem
       // (no allocation after the first step)
       chunk_works.assign(n_chunks, {{0., 0., 0., 0., 0.}});
       chunk_reaction.assign(n_chunks * n_owners, {{0., 0., 0.}});
+      chunk_guard.assign(n_chunks, {{-1, -1}});
       auto &reaction = chunk_reaction;
       for_each_chunk(
         arena_for(n_threads),
@@ -638,6 +646,9 @@ namespace tmfdem
                                           nullptr,
                                           viscosity[e],
                                           r);
+              // guards: the first inverted element of the chunk
+              if (!(r.det > 0.) && chunk_guard[c][0] < 0)
+                chunk_guard[c][0] = e;
               // xx, yy, zz, xy, yz, xz
               double *stress = &m.stress[6 * e];
               stress[0]      = r.stress[0][0] + r.viscous[0][0];
@@ -678,6 +689,9 @@ namespace tmfdem
                       w[4] += c_m * mass / dt * travel * travel;
                       *v[i] = v_new;
                       *x[i] += dt * v_new;
+                      // guards: the first non-finite velocity of the chunk
+                      if (!(std::abs(v_new) < 1e300) && chunk_guard[c][1] < 0)
+                        chunk_guard[c][1] = node;
                     }
                 }
             }
@@ -695,6 +709,31 @@ namespace tmfdem
               owner_reaction[o][i] += reaction[c * n_owners + o][i];
         }
       element_steps += m.n_elements;
+      for (std::size_t c = 0; c < n_chunks; ++c)
+        {
+          if (chunk_guard[c][0] >= 0)
+            guard_failure(
+              "tetrahedron " + std::to_string(chunk_guard[c][0]) +
+              " inverted (det F <= 0); the time step or a penalty is too "
+              "large for the loading, or the material too soft");
+          if (chunk_guard[c][1] >= 0)
+            guard_failure("node " + std::to_string(chunk_guard[c][1]) +
+                          " (tetrahedron " +
+                          std::to_string(chunk_guard[c][1] / 4) +
+                          ") has a non-finite velocity");
+        }
+    }
+
+    void
+    TetrahedralSolver::guard_failure(const std::string &what)
+    {
+      stop_reason = what;
+      write_summary(false);
+      throw RunError(
+        "discrete mechanics (3D), at t = " + Utilities::to_string(time) +
+        " s, step " + std::to_string(step_number + 1) + ": " + what +
+        ". The outputs written before are kept; summary.json "
+        "says where the run stopped.");
     }
 
     void
@@ -748,6 +787,14 @@ namespace tmfdem
     TetrahedralSolver::write_history_row()
     {
       compute_state_energies();
+      const double factor = parameters.guards.kinetic_energy_factor;
+      if (factor > 0. &&
+          energies.kinetic > factor * std::max(energy_put_in(), 1e-300))
+        guard_failure("the kinetic energy " +
+                      Utilities::to_string(energies.kinetic) + " J exceeds " +
+                      Utilities::to_string(factor) +
+                      " times the energy put in (Guards/Kinetic energy "
+                      "factor): the run is unstable");
       const double balance =
         energies.external_work - (energies.kinetic + energies.strain +
                                   energies.joint_work + energies.damping);
@@ -770,6 +817,8 @@ namespace tmfdem
       summary.add("model", std::string("discrete mechanics"));
       summary.add("dimension", 3u);
       summary.add("finished", finished);
+      if (!stop_reason.empty())
+        summary.add("stop_reason", stop_reason);
       summary.add("time", time);
       summary.add("steps", static_cast<long long>(step_number));
       summary.add("time_step", time_step);
@@ -854,6 +903,8 @@ namespace tmfdem
       const unsigned long max_steps = dm.max_steps;
       history_interval              = (end - start) / 1000.;
       next_history                  = start;
+      compute_state_energies();
+      initial_kinetic = energies.kinetic;
       write_output();
       write_history_row();
       next_history += history_interval;

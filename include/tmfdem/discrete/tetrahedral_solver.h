@@ -114,6 +114,18 @@ namespace tmfdem
       /** Kinetic and strain energy of the current state [J]. */
       void
       compute_state_energies();
+      /** The energy put in so far: the initial kinetic energy and the
+       *  work of the imposed motions [J]. */
+      double
+      energy_put_in() const
+      {
+        return initial_kinetic + energies.external_work;
+      }
+      /** Writes summary.json with @p what as the stop reason, then throws
+       *  RunError naming the time, the step and @p what (the outputs
+       *  written before stay). */
+      [[noreturn]] void
+      guard_failure(const std::string &what);
       void
       write_output();
       void
@@ -178,9 +190,16 @@ namespace tmfdem
       std::vector<std::array<double, 3>> chunk_reaction;
       /** Per chunk of joints: one broke in the step. */
       std::vector<char> chunk_broke;
-      Energies          energies;
-      double            loop_wall_time = 0.; ///< wall time of the time loop [s]
-      double loop_cpu_time = 0.; ///< process CPU time of the loop [s]
+      /** Per chunk of elements: the first inverted element and the first
+       *  node with a non-finite velocity of the step, or -1 (guards). */
+      std::vector<std::array<long long, 2>> chunk_guard;
+      /** Kinetic energy at the start [J]. */
+      double initial_kinetic = 0.;
+      /** Why the run stopped early (summary.json); empty otherwise. */
+      std::string stop_reason;
+      Energies    energies;
+      double      loop_wall_time = 0.; ///< wall time of the time loop [s]
+      double      loop_cpu_time  = 0.; ///< process CPU time of the loop [s]
       /** CPU time of each thread in the loop, largest first [s]. */
       std::vector<double> loop_thread_cpu_times;
       double              element_steps = 0.;
