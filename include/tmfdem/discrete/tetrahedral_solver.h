@@ -6,12 +6,13 @@
  * finite-strain tetrahedra of element_response<3>() and the cohesive joints
  * on every interior triangular face of face_joint_response(); damping as in
  * 2D (Damping ratio of the highest element mode, mass damping), the stable
- * step of stable_step.h for tetrahedra, fixed, driven and free bodies,
- * boundary conditions (fixed, rollers, velocity), energy bookkeeping, and the
- * outputs solution.pvd (tetrahedra), cracks.pvd (broken faces as
- * triangles), history.csv and summary.json. Contact between tetrahedra,
- * heat, gravity and MPI ranks beyond one are refused with a message naming
- * the entry.
+ * step of stable_step.h for tetrahedra, joint compliance compensation (its
+ * isotropic part), fixed, driven and free bodies, boundary conditions
+ * (fixed, rollers, velocity), energy bookkeeping, guards, and the outputs
+ * solution.pvd (tetrahedra), cracks.pvd (broken faces as triangles),
+ * history.csv and summary.json. Contact between tetrahedra, heat, gravity,
+ * monitors, checkpoints and MPI ranks beyond one are refused with a message
+ * naming the entry (doc/theory.md 5.12).
  */
 #ifndef tmfdem_discrete_tetrahedral_solver_h
 #define tmfdem_discrete_tetrahedral_solver_h
