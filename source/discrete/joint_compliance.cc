@@ -106,6 +106,39 @@ namespace tmfdem
         result.stiffness_bound_factor =
           std::max(1., largest_eigenvalue(inverse_root * Ce * inverse_root));
       }
+
+      /**
+       * The isotropic compensation of an element in @p dim dimensions whose
+       * joints add the bulk compliance @p bulk (to 1/K) and the shear
+       * compliance @p shear (to 1/mu) [1/Pa]: the joints' shares of the
+       * material's compliance (K = lambda + 2 mu / dim), capped at
+       * @p max_share, into @p result (share, capped, lame).
+       */
+      void
+      compensate_isotropic(const unsigned int   dim,
+                           const double         bulk,
+                           const double         shear,
+                           const LameConstants &lame,
+                           const double         max_share,
+                           CompensatedElement  &result)
+      {
+        const double K =
+          dim == 2 ? lame.lambda + lame.mu : lame.lambda + 2. * lame.mu / 3.;
+        const double mu = lame.mu;
+        // shares of the target compliance 1/K and 1/mu taken by the joints
+        double share_bulk = bulk * K, share_shear = shear * mu;
+        result.share = std::max(share_bulk, share_shear);
+        if (result.share > max_share)
+          {
+            result.capped = true;
+            share_bulk    = std::min(share_bulk, max_share);
+            share_shear   = std::min(share_shear, max_share);
+          }
+        const double K_e   = K / (1. - share_bulk),
+                     mu_e  = mu / (1. - share_shear);
+        result.lame.mu     = mu_e;
+        result.lame.lambda = dim == 2 ? K_e - mu_e : K_e - 2. * mu_e / 3.;
+      }
     } // namespace
 
     CompensatedElement
@@ -140,19 +173,7 @@ namespace tmfdem
         }
       if (result.weight == 0.)
         return result;
-      const double K = lame.lambda + lame.mu, mu = lame.mu;
-      // shares of the target compliance 1/K and 1/mu taken by the joints
-      double share_bulk = bulk * K, share_shear = shear * mu;
-      result.share = std::max(share_bulk, share_shear);
-      if (result.share > max_share)
-        {
-          result.capped = true;
-          share_bulk    = std::min(share_bulk, max_share);
-          share_shear   = std::min(share_shear, max_share);
-        }
-      const double K_e = K / (1. - share_bulk), mu_e = mu / (1. - share_shear);
-      result.lame.mu     = mu_e;
-      result.lame.lambda = K_e - mu_e;
+      compensate_isotropic(2, bulk, shear, lame, max_share, result);
       if (anisotropic)
         anisotropic_compensation(x,
                                  y,
@@ -226,18 +247,7 @@ namespace tmfdem
         }
       if (result.weight == 0.)
         return result;
-      const double K = lame.lambda + 2. * lame.mu / 3., mu = lame.mu;
-      double       share_bulk = bulk * K, share_shear = shear * mu;
-      result.share = std::max(share_bulk, share_shear);
-      if (result.share > max_share)
-        {
-          result.capped = true;
-          share_bulk    = std::min(share_bulk, max_share);
-          share_shear   = std::min(share_shear, max_share);
-        }
-      const double K_e = K / (1. - share_bulk), mu_e = mu / (1. - share_shear);
-      result.lame.mu     = mu_e;
-      result.lame.lambda = K_e - 2. * mu_e / 3.;
+      compensate_isotropic(3, bulk, shear, lame, max_share, result);
       return result;
     }
   } // namespace discrete

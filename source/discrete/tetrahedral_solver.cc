@@ -750,24 +750,45 @@ namespace tmfdem
     void
     TetrahedralSolver::compute_state_energies()
     {
-      const DiscreteModel &m       = model;
-      double               kinetic = 0., strain = 0.;
-      for (unsigned int n = 0; n < m.n_nodes; ++n)
-        kinetic += 0.5 * m.mass[n] *
-                   (m.vx[n] * m.vx[n] + m.vy[n] * m.vy[n] + m.vz[n] * m.vz[n]);
-      for (unsigned int e = 0; e < m.n_elements; ++e)
+      const DiscreteModel &m = model;
+      // per chunk of elements (their nodes), summed in chunk order: the
+      // same on any number of threads
+      const std::size_t n_chunks = (m.n_elements + chunk_size - 1) / chunk_size;
+      chunk_energies.assign(n_chunks, {{0., 0.}});
+      for_each_chunk(
+        arena_for(n_threads),
+        m.n_elements,
+        chunk_size,
+        [&](const std::size_t begin,
+            const std::size_t end,
+            const std::size_t c) {
+          double kinetic = 0., strain = 0.;
+          for (std::size_t e = begin; e < end; ++e)
+            {
+              for (std::size_t n = 4 * e; n < 4 * e + 4; ++n)
+                kinetic +=
+                  0.5 * m.mass[n] *
+                  (m.vx[n] * m.vx[n] + m.vy[n] * m.vy[n] + m.vz[n] * m.vz[n]);
+              const double *const nodes[3] = {&m.x[4 * e],
+                                              &m.y[4 * e],
+                                              &m.z[4 * e]};
+              double              F[3][3];
+              times_inverse_basis<3>(nodes, &m.inverse_basis[9 * e], F);
+              const double s = m.thermal_stretch[e];
+              for (auto &row : F)
+                for (double &f : row)
+                  f /= s;
+              strain +=
+                m.reference_area[e] * s * s * s *
+                constitutive::strain_energy_density<3>(F, element_lame[e]);
+            }
+          chunk_energies[c] = {{kinetic, strain}};
+        });
+      double kinetic = 0., strain = 0.;
+      for (const auto &c : chunk_energies)
         {
-          const double *const nodes[3] = {&m.x[4 * e],
-                                          &m.y[4 * e],
-                                          &m.z[4 * e]};
-          double              F[3][3];
-          times_inverse_basis<3>(nodes, &m.inverse_basis[9 * e], F);
-          const double s = m.thermal_stretch[e];
-          for (auto &row : F)
-            for (double &f : row)
-              f /= s;
-          strain += m.reference_area[e] * s * s * s *
-                    constitutive::strain_energy_density<3>(F, element_lame[e]);
+          kinetic += c[0];
+          strain += c[1];
         }
       energies.kinetic = kinetic;
       energies.strain  = strain;

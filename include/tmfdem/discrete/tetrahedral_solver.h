@@ -194,6 +194,8 @@ namespace tmfdem
       /** Per chunk of elements: the first inverted element and the first
        *  node with a non-finite velocity of the step, or -1 (guards). */
       std::vector<std::array<long long, 2>> chunk_guard;
+      /** Per chunk of elements: kinetic and strain energy [J]. */
+      std::vector<std::array<double, 2>> chunk_energies;
       /** Kinetic energy at the start [J]. */
       double initial_kinetic = 0.;
       /** Why the run stopped early (summary.json); empty otherwise. */
