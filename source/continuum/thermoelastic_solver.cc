@@ -46,9 +46,10 @@ namespace tmfdem
     if (dim != 2 && parameters.mechanics.temperature_source ==
                       MechanicsParameters::TemperatureSource::discrete_heat)
       throw InputError(
-        "Mechanics/Temperature source = discrete heat: the discrete layer "
-        "runs in 2D; with Mesh/Dimension = 3 allowed are function and heat "
-        "solver.");
+        "Mechanics/Temperature source = discrete heat: the continuum stress "
+        "takes the discrete layer's temperatures in 2D only; with "
+        "Mesh/Dimension = 3 allowed are function and heat solver (or Model = "
+        "discrete thermo-mechanics).");
     temperature_function =
       make_expression_function<dim>(parameters.mechanics.temperature,
                                     "Mechanics/Temperature");

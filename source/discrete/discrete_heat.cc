@@ -8,6 +8,7 @@
 #include <tmfdem/discrete/contact_heat.h>
 #include <tmfdem/discrete/discrete_heat.h>
 #include <tmfdem/discrete/discrete_parameters.h>
+#include <tmfdem/discrete/heat_kernel.h>
 #include <tmfdem/discrete/partition.h>
 #include <tmfdem/io/checkpoint.h>
 
@@ -38,30 +39,29 @@ namespace tmfdem
                       const unsigned int   e,
                       double               g[3][2])
       {
-        const double *x = &m.x[3 * e], *y = &m.y[3 * e];
-        g[0][0] = y[1] - y[2];
-        g[0][1] = x[2] - x[1];
-        g[1][0] = y[2] - y[0];
-        g[1][1] = x[0] - x[2];
-        g[2][0] = y[0] - y[1];
-        g[2][1] = x[1] - x[0];
-        return 0.5 *
-               ((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]));
+        const double *const nodes[2] = {&m.x[3 * e], &m.y[3 * e]};
+        double              G[3][2];
+        scaled_shape_gradients<2>(nodes, G);
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int i = 0; i < 2; ++i)
+            g[a][i] = G[a][i];
+        return simplex_measure<2>(nodes);
       }
 
-      /** Conductivity matrix K_ab = k A grad N_a . grad N_b of element e. */
+      /** Conductivity matrix K_ab = k A grad N_a . grad N_b of element e
+       *  (heat_kernel.h). */
       inline void
       conductivity_matrix(const DiscreteModel &m,
                           const unsigned int   e,
                           const double         k,
                           double               K[3][3])
       {
-        double       g[3][2];
-        const double area  = shape_gradients(m, e, g);
-        const double scale = k / (4. * area);
+        const double *const nodes[2] = {&m.x[3 * e], &m.y[3 * e]};
+        double              Ke[3][3];
+        discrete::conductivity_matrix<2, double>(nodes, k, Ke);
         for (unsigned int a = 0; a < 3; ++a)
           for (unsigned int b = 0; b < 3; ++b)
-            K[a][b] = scale * (g[a][0] * g[b][0] + g[a][1] * g[b][1]);
+            K[a][b] = Ke[a][b];
       }
 
       /**
@@ -168,7 +168,8 @@ namespace tmfdem
           const double ka = side_conductivity(model.joint_elements[2 * j]);
           const double kb = side_conductivity(model.joint_elements[2 * j + 1]);
           const double k  = 2. * ka * kb / (ka + kb);
-          joint_conductance[j] = 0.5 * beta * k;
+          joint_conductance[j] =
+            joint_pair_conductance<2>(beta, k, L, model.joint_length[j]);
         }
 
       // sources per material
@@ -574,9 +575,7 @@ namespace tmfdem
       const unsigned int n_slots = balance_slot.size();
       for (unsigned int e = first_element; e < end_element; ++e)
         {
-          double      *sums = &partials[chunk_of(e) * W];
-          const double c =
-            volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
+          double *sums = &partials[chunk_of(e) * W];
           for (unsigned int a = 0; a < 3; ++a)
             {
               const unsigned int n = 3 * e + a;
@@ -585,7 +584,11 @@ namespace tmfdem
               if (use_implicit)
                 for (unsigned int b = 0; b < 3; ++b)
                   stored_change +=
-                    c * (a == b ? 2. : 1.) * (T[3 * e + b] - T_old[3 * e + b]);
+                    consistent_capacity<2>(volumetric_heat_capacity[e],
+                                           model.reference_area[e],
+                                           a,
+                                           b) *
+                    (T[3 * e + b] - T_old[3 * e + b]);
               sums[0] += stored_change;
               if (dirichlet_node[n])
                 {

@@ -14,6 +14,7 @@
 #include <tmfdem/discrete/contact_heat.h>
 #include <tmfdem/discrete/discrete_heat.h>
 #include <tmfdem/discrete/discrete_parameters.h>
+#include <tmfdem/discrete/heat_kernel.h>
 #include <tmfdem/discrete/partition.h>
 
 namespace tmfdem
@@ -81,13 +82,16 @@ namespace tmfdem
         {
           double K[3][3];
           element_conductivity_matrix(e, K);
-          const double c =
-            volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
           for (unsigned int a = 0; a < 3; ++a)
             for (unsigned int b = 0; b < 3; ++b)
               rows.add(3 * e + a,
                        3 * e + b,
-                       K[a][b] + c * (a == b ? 2. : 1.) / time_step);
+                       K[a][b] +
+                         consistent_capacity<2>(volumetric_heat_capacity[e],
+                                                model.reference_area[e],
+                                                a,
+                                                b) /
+                           time_step);
         }
       for (const unsigned int j : local_joints)
         if (model.joint_status[j] == JointStatus::intact)
@@ -118,13 +122,16 @@ namespace tmfdem
       std::vector<double> rhs(model.n_nodes, 0.);
       for (unsigned int e = first_element; e < end_element; ++e)
         {
-          const double c =
-            volumetric_heat_capacity[e] * model.reference_area[e] / 12.;
           for (unsigned int a = 0; a < 3; ++a)
             {
               double capacity_T = 0.;
               for (unsigned int b = 0; b < 3; ++b)
-                capacity_T += c * (a == b ? 2. : 1.) * T_old[3 * e + b];
+                capacity_T +=
+                  consistent_capacity<2>(volumetric_heat_capacity[e],
+                                         model.reference_area[e],
+                                         a,
+                                         b) *
+                  T_old[3 * e + b];
               rhs[3 * e + a] += capacity_T / time_step;
             }
           const double *x = &model.x_ref[3 * e], *y = &model.y_ref[3 * e];

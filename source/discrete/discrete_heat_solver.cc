@@ -7,6 +7,7 @@
 #include <tmfdem/discrete/discrete_heat_solver.h>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/discrete_parameters.h>
+#include <tmfdem/discrete/tetrahedral_solver.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 #include <tmfdem/io/output_schedule.h>
@@ -33,9 +34,16 @@ namespace tmfdem
           "Monitors",
           "Checkpoint"},
          {}},
-        [](const Parameters &parameters, MPI_Comm communicator) {
+        [](const Parameters &parameters,
+           MPI_Comm          communicator) -> std::unique_ptr<Simulation> {
+          if (parameters.mesh.dimension == 3)
+            return std::make_unique<TetrahedralSolver>(
+              parameters,
+              communicator,
+              TetrahedralSolver::Physics::heat);
           return std::make_unique<DiscreteHeatSolver>(parameters, communicator);
-        });
+        },
+        {2, 3});
     } // namespace
 
     DiscreteHeatSolver::DiscreteHeatSolver(const Parameters &parameters,

@@ -374,8 +374,11 @@ namespace tmfdem
     {
       /** discrete_solution_vtu() of a tetrahedral model (dim = 3). */
       std::string
-      tetrahedra_solution_vtu(const DiscreteModel &model,
-                              const VtuEncoding   &encoding)
+      tetrahedra_solution_vtu(
+        const DiscreteModel &model,
+        const VtuEncoding   &encoding,
+        const std::vector<std::pair<std::string, const std::vector<double> *>>
+          &extra_point_fields)
       {
         const unsigned int  n_cells = model.n_elements, n_points = 4 * n_cells;
         std::vector<double> points(3 * n_points), displacement(3 * n_points),
@@ -397,6 +400,8 @@ namespace tmfdem
         const auto point_data = [&](VtuText &out) {
           out.real_array("displacement", 3, displacement);
           out.real_array("velocity", 3, velocity);
+          for (const auto &[name, values] : extra_point_fields)
+            out.real_array(name, 1, *values);
         };
         // the six stress components, the largest joint damage of the faces
         const char *names[6] = {"sxx", "syy", "szz", "sxy", "syz", "sxz"};
@@ -457,7 +462,7 @@ namespace tmfdem
       const std::array<double, 2> *polar_centre)
     {
       if (model.dim == 3)
-        return tetrahedra_solution_vtu(model, encoding);
+        return tetrahedra_solution_vtu(model, encoding, extra_point_fields);
       // triangles [first, end) own the nodes [3 first, 3 end)
       const unsigned int  first    = std::min(first_element, model.n_elements);
       const unsigned int  end      = std::min(end_element, model.n_elements);
@@ -685,12 +690,19 @@ namespace tmfdem
     JsonObject
     heat_balance_summary(const TemperatureSource &source)
     {
-      const HeatBalance &b = source.balance();
-      JsonObject         boundary;
+      return heat_balance_summary(source.balance(),
+                                  source.last_boundary_rate());
+    }
+
+    JsonObject
+    heat_balance_summary(const HeatBalance                          &b,
+                         const std::map<types::boundary_id, double> &last_rates)
+    {
+      JsonObject boundary;
       for (const auto &[id, q] : b.boundary_heat_in)
         boundary.add(std::to_string(id), q);
       JsonObject rates;
-      for (const auto &[id, q] : source.last_boundary_rate())
+      for (const auto &[id, q] : last_rates)
         rates.add(std::to_string(id), q);
       JsonObject balance;
       balance.add("boundary_heat_in", boundary)

@@ -89,7 +89,8 @@ namespace tmfdem
       "not spread evenly (on a free edge: no joint along it) is as stiff as "
       "the material in every direction; the triangles then take an "
       "anisotropic correction of Eq. 44 (doc/theory.md, 'Joint compliance "
-      "compensation'). false: isotropic compensation only.");
+      "compensation'). false: isotropic compensation only. Tetrahedra "
+      "(Mesh/Dimension = 3) take the isotropic compensation either way.");
     prm.declare_entry("Contact penalty factor",
                       "10",
                       Patterns::Double(0.),

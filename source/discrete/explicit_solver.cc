@@ -91,11 +91,18 @@ namespace tmfdem
         "heat drive F = F_T F_e; fracture and contact reshape the heat flow "
         "(multi-rate: one thermal step every n mechanical steps)",
         explicit_sections(true),
-        [](const Parameters &parameters, MPI_Comm communicator) {
+        [](const Parameters &parameters,
+           MPI_Comm          communicator) -> std::unique_ptr<Simulation> {
+          if (parameters.mesh.dimension == 3)
+            return std::make_unique<TetrahedralSolver>(
+              parameters,
+              communicator,
+              TetrahedralSolver::Physics::thermo_mechanics);
           return std::make_unique<ExplicitSolver>(parameters,
                                                   communicator,
                                                   true);
-        });
+        },
+        {2, 3});
     } // namespace
 
 

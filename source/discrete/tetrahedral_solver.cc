@@ -24,6 +24,7 @@
 #include <tmfdem/discrete/joint_kernel.h>
 #include <tmfdem/discrete/joints.h>
 #include <tmfdem/discrete/stable_step.h>
+#include <tmfdem/discrete/tetrahedral_heat.h>
 #include <tmfdem/discrete/tetrahedral_solver.h>
 #include <tmfdem/io/output_files.h>
 #include <tmfdem/io/output_schedule.h>
@@ -46,9 +47,11 @@ namespace tmfdem
     } // namespace
 
     TetrahedralSolver::TetrahedralSolver(const Parameters &parameters,
-                                         MPI_Comm          communicator)
+                                         MPI_Comm          communicator,
+                                         const Physics     physics)
       : parameters(parameters)
       , communicator(communicator)
+      , physics(physics)
       , fe(1)
     {}
 
@@ -57,12 +60,48 @@ namespace tmfdem
     void
     TetrahedralSolver::check_supported() const
     {
-      parameters.mechanics.check_dimension(3);
       const auto       &dm = parameters.get<DiscreteMechanicsParameters>();
       const std::string in_3d =
         " is not modelled in 3D yet (Mesh/Dimension = 3: tetrahedra with "
-        "cohesive joints, bodies and boundary conditions, no contact, heat or "
-        "gravity); ";
+        "cohesive joints, bodies and boundary conditions, heat with the "
+        "multi-rate coupling, no contact or gravity); ";
+      if (physics != Physics::mechanics)
+        {
+          const auto &dh = parameters.get<DiscreteHeatParameters>();
+          if (dh.temperature_source != "discrete heat")
+            throw InputError(
+              "Discrete heat/Temperature source = " + dh.temperature_source +
+              in_3d + "allowed is discrete heat.");
+          if (physics == Physics::thermo_mechanics &&
+              dh.coupling == DiscreteHeatParameters::Coupling::quasi_static)
+            throw InputError("Discrete heat/Coupling = quasi-static" + in_3d +
+                             "allowed is dynamic (the multi-rate coupling).");
+          if (parameters.time.mode != TimeSteppingParameters::Mode::transient)
+            throw InputError("Time stepping/Mode = steady: the discrete heat "
+                             "is transient only; allowed is transient.");
+        }
+      if (physics == Physics::heat)
+        {
+          if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+            throw InputError(
+              "Mesh/Dimension = 3: the discrete layer in 3D runs on one MPI "
+              "process; allowed is mpirun -np 1 (or no mpirun), with Discrete "
+              "mechanics/Threads for the cores.");
+          if (parameters.checkpoint.interval_steps > 0 ||
+              parameters.checkpoint.interval_minutes > 0. || parameters.resume)
+            throw InputError("Checkpoint/Interval (steps), Interval (wall "
+                             "minutes), --resume: checkpoints" +
+                             in_3d + "allowed is 0 for both, no --resume.");
+          if (!parameters.monitors.probes.empty() ||
+              !parameters.monitors.lines.empty())
+            throw InputError("Monitors/Probes, Lines: probes and lines of the "
+                             "discrete layer" +
+                             in_3d +
+                             "allowed in 3D is none (solution.pvd holds "
+                             "the fields).");
+          return;
+        }
+      parameters.mechanics.check_dimension(3);
       if (dm.contact)
         throw InputError("Discrete mechanics/Contact = true: contact between "
                          "tetrahedra" +
@@ -177,10 +216,8 @@ namespace tmfdem
       compensation_share  = 0.;
       if (!dm.joint_compliance_compensation)
         return;
-      if (dm.anisotropic_joint_compliance_compensation)
-        std::cerr << "note: Mesh/Dimension = 3: Discrete mechanics/"
-                     "Anisotropic joint compliance compensation is 2D only; "
-                     "tetrahedra get the isotropic compensation\n";
+      // tetrahedra: the isotropic compensation (Anisotropic joint
+      // compliance compensation is written for triangles)
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
           std::array<double, 4> x, y, z, p_n{}, p_t{};
@@ -473,9 +510,12 @@ namespace tmfdem
     {
       check_supported();
       setup_mesh();
-      setup_materials();
-      setup_constraints();
-      setup_time_step();
+      if (with_mechanics())
+        {
+          setup_materials();
+          setup_constraints();
+          setup_time_step();
+        }
       const auto &dm    = parameters.get<DiscreteMechanicsParameters>();
       threads_available = core_share(communicator).cores_per_rank;
       threads_requested = dm.threads;
@@ -491,7 +531,9 @@ namespace tmfdem
         }
       if (n_threads > thread_limit())
         set_thread_limit(n_threads);
-      threads_used  = measure_concurrency(arena_for(n_threads));
+      threads_used = measure_concurrency(arena_for(n_threads));
+      if (physics != Physics::mechanics)
+        setup_heat(); // coupling/tetrahedral_thermo_mechanics.cc
       input_checked = true;
     }
 
@@ -739,51 +781,69 @@ namespace tmfdem
     void
     TetrahedralSolver::step(const double dt)
     {
+      if (!with_mechanics())
+        {
+          heat->step(time, dt);
+          time += dt;
+          thermal_time = time;
+          ++step_number;
+          ++n_thermal_steps;
+          return;
+        }
       if (imposed_depend_on_time)
         evaluate_imposed_velocities(time + 0.5 * dt);
       compute_joint_forces();
       update_nodes(dt);
       time += dt;
       ++step_number;
+      if (heat && step_number % steps_per_thermal_step == 0)
+        thermal_step(); // coupling/tetrahedral_thermo_mechanics.cc
+    }
+
+    double
+    TetrahedralSolver::element_strain_energy(const unsigned int e,
+                                             const double       s) const
+    {
+      const double *const nodes[3] = {&model.x[4 * e],
+                                      &model.y[4 * e],
+                                      &model.z[4 * e]};
+      double              F[3][3];
+      times_inverse_basis<3>(nodes, &model.inverse_basis[9 * e], F);
+      for (auto &row : F)
+        for (double &f : row)
+          f /= s;
+      return model.reference_area[e] * s * s * s *
+             constitutive::strain_energy_density<3>(F, element_lame[e]);
     }
 
     void
     TetrahedralSolver::compute_state_energies()
     {
+      if (!with_mechanics())
+        return;
       const DiscreteModel &m = model;
       // per chunk of elements (their nodes), summed in chunk order: the
       // same on any number of threads
       const std::size_t n_chunks = (m.n_elements + chunk_size - 1) / chunk_size;
       chunk_energies.assign(n_chunks, {{0., 0.}});
-      for_each_chunk(
-        arena_for(n_threads),
-        m.n_elements,
-        chunk_size,
-        [&](const std::size_t begin,
-            const std::size_t end,
-            const std::size_t c) {
-          double kinetic = 0., strain = 0.;
-          for (std::size_t e = begin; e < end; ++e)
-            {
-              for (std::size_t n = 4 * e; n < 4 * e + 4; ++n)
-                kinetic +=
-                  0.5 * m.mass[n] *
-                  (m.vx[n] * m.vx[n] + m.vy[n] * m.vy[n] + m.vz[n] * m.vz[n]);
-              const double *const nodes[3] = {&m.x[4 * e],
-                                              &m.y[4 * e],
-                                              &m.z[4 * e]};
-              double              F[3][3];
-              times_inverse_basis<3>(nodes, &m.inverse_basis[9 * e], F);
-              const double s = m.thermal_stretch[e];
-              for (auto &row : F)
-                for (double &f : row)
-                  f /= s;
-              strain +=
-                m.reference_area[e] * s * s * s *
-                constitutive::strain_energy_density<3>(F, element_lame[e]);
-            }
-          chunk_energies[c] = {{kinetic, strain}};
-        });
+      for_each_chunk(arena_for(n_threads),
+                     m.n_elements,
+                     chunk_size,
+                     [&](const std::size_t begin,
+                         const std::size_t end,
+                         const std::size_t c) {
+                       double kinetic = 0., strain = 0.;
+                       for (std::size_t e = begin; e < end; ++e)
+                         {
+                           for (std::size_t n = 4 * e; n < 4 * e + 4; ++n)
+                             kinetic += 0.5 * m.mass[n] *
+                                        (m.vx[n] * m.vx[n] + m.vy[n] * m.vy[n] +
+                                         m.vz[n] * m.vz[n]);
+                           strain +=
+                             element_strain_energy(e, m.thermal_stretch[e]);
+                         }
+                       chunk_energies[c] = {{kinetic, strain}};
+                     });
       double kinetic = 0., strain = 0.;
       for (const auto &c : chunk_energies)
         {
@@ -800,8 +860,13 @@ namespace tmfdem
       if (!parameters.output.write_vtu)
         return;
       const VtuEncoding encoding = vtu_encoding(parameters.output);
-      solution_series->write(time, discrete_solution_vtu(model, encoding));
-      crack_series->write(time, crack_vtu(model, encoding));
+      std::vector<std::pair<std::string, const std::vector<double> *>> fields;
+      if (heat)
+        fields.emplace_back("temperature", &heat->temperature());
+      solution_series->write(time,
+                             discrete_solution_vtu(model, encoding, fields));
+      if (with_mechanics())
+        crack_series->write(time, crack_vtu(model, encoding));
     }
 
     void
@@ -816,17 +881,28 @@ namespace tmfdem
                       Utilities::to_string(factor) +
                       " times the energy put in (Guards/Kinetic energy "
                       "factor): the run is unstable");
-      const double balance =
-        energies.external_work - (energies.kinetic + energies.strain +
-                                  energies.joint_work + energies.damping);
       std::ostringstream row;
-      row << std::setprecision(10) << time << "," << step_number << ","
-          << energies.kinetic << "," << energies.strain << ","
-          << energies.joint_work << "," << energies.damping << ","
-          << energies.external_work << "," << balance << ","
-          << model.n_damaged_joints() << "," << model.n_broken_joints();
-      for (const auto &r : owner_reaction)
-        row << "," << r[0] << "," << r[1] << "," << r[2];
+      row << std::setprecision(10) << time << "," << step_number;
+      if (with_mechanics())
+        {
+          row << "," << energies.kinetic << "," << energies.strain << ","
+              << energies.joint_work << "," << energies.damping << ","
+              << energies.external_work << ",";
+          if (heat)
+            row << energies.thermal_work << ",";
+          row << energy_balance_error() << "," << model.n_damaged_joints()
+              << "," << model.n_broken_joints();
+          for (const auto &r : owner_reaction)
+            row << "," << r[0] << "," << r[1] << "," << r[2];
+        }
+      if (heat)
+        {
+          const std::vector<double> &T = heat->temperature();
+          const auto [T_min, T_max] = std::minmax_element(T.begin(), T.end());
+          row << "," << *T_min << "," << *T_max << ","
+              << heat->balance().stored_heat << ","
+              << heat->balance().imbalance();
+        }
       row << "\n";
       history_csv->append(row.str());
     }
@@ -835,7 +911,12 @@ namespace tmfdem
     TetrahedralSolver::write_summary(const bool finished) const
     {
       JsonObject summary;
-      summary.add("model", std::string("discrete mechanics"));
+      summary.add("model",
+                  std::string(physics == Physics::mechanics ?
+                                "discrete mechanics" :
+                                (physics == Physics::heat ?
+                                   "discrete heat" :
+                                   "discrete thermo-mechanics")));
       summary.add("dimension", 3u);
       summary.add("finished", finished);
       if (!stop_reason.empty())
@@ -873,11 +954,23 @@ namespace tmfdem
       energy.add("joint_work", energies.joint_work);
       energy.add("damping", energies.damping);
       energy.add("external_work", energies.external_work);
-      energy.add("balance_error",
-                 energies.external_work -
-                   (energies.kinetic + energies.strain + energies.joint_work +
-                    energies.damping));
+      energy.add("thermal_work", energies.thermal_work);
+      energy.add("balance_error", energy_balance_error());
       summary.add("energy", energy);
+      if (heat)
+        {
+          const auto &dh = parameters.get<DiscreteHeatParameters>();
+          summary.add("time_integration", dh.time_integration_name());
+          summary.add("thermal_time", thermal_time);
+          summary.add("thermal_steps", static_cast<long long>(n_thermal_steps));
+          summary.add("mechanical_steps_per_thermal_step",
+                      static_cast<long long>(steps_per_thermal_step));
+          summary.add("stable_explicit_thermal_step", heat->stable_time_step());
+          summary.add("cg_iterations_last_step", heat->last_iterations());
+          summary.add("heat_balance",
+                      heat_balance_summary(heat->balance(),
+                                           heat->last_boundary_rate()));
+        }
       summary.add("threads", n_threads);
       summary.add("threads_requested", threads_requested);
       summary.add("threads_available", threads_available);
@@ -911,11 +1004,18 @@ namespace tmfdem
         std::make_unique<VtuSeries>(parameters.output.directory, "solution");
       crack_series =
         std::make_unique<VtuSeries>(parameters.output.directory, "cracks");
-      std::string header =
-        "time,step,kinetic,strain,joint_work,damping,external_work,"
-        "balance_error,damaged_joints,broken_joints";
-      for (const auto &name : owner_names)
-        header += "," + name + "_fx," + name + "_fy," + name + "_fz";
+      std::string header = "time,step";
+      if (with_mechanics())
+        {
+          header += ",kinetic,strain,joint_work,damping,external_work,";
+          if (heat)
+            header += "thermal_work,";
+          header += "balance_error,damaged_joints,broken_joints";
+          for (const auto &name : owner_names)
+            header += "," + name + "_fx," + name + "_fy," + name + "_fz";
+        }
+      if (heat)
+        header += ",T_min,T_max,stored_heat,heat_imbalance";
       history_csv = std::make_unique<CsvSeries>(parameters.output.directory +
                                                   "/history.csv",
                                                 header,
@@ -953,6 +1053,9 @@ namespace tmfdem
                  schedule.reached(time, output_times[next_output]))
             {
               time = output_times[next_output];
+              // the temperatures at the output time too
+              if (heat)
+                thermal_step();
               write_output();
               ++next_output;
             }

@@ -10,6 +10,7 @@
 #define tmfdem_discrete_discrete_output_h
 
 #include <array>
+#include <map>
 #include <string>
 #include <tmfdem/discrete/discrete_model.h>
 #include <utility>
@@ -148,12 +149,19 @@ namespace tmfdem
     std::string
     deformed_mesh_msh(const DiscreteModel &model);
     class TemperatureSource;
+    struct HeatBalance;
 
     /** summary.json's heat balance of a discrete temperature source: heat
      *  in per boundary id, from sources, across contacts, stored [J/m], the
      *  boundary rates of the last step [W/m] and the imbalance. */
     JsonObject
     heat_balance_summary(const TemperatureSource &source);
+    /** The same of a @p balance and the boundary rates of the last step
+     *  @p last_rates (per boundary id). */
+    JsonObject
+    heat_balance_summary(
+      const HeatBalance                          &balance,
+      const std::map<types::boundary_id, double> &last_rates);
   } // namespace discrete
 } // namespace tmfdem
 

@@ -10,9 +10,14 @@
  * isotropic part), fixed, driven and free bodies, boundary conditions
  * (fixed, rollers, velocity), energy bookkeeping, guards, and the outputs
  * solution.pvd (tetrahedra), cracks.pvd (broken faces as triangles),
- * history.csv and summary.json. Contact between tetrahedra, heat, gravity,
- * monitors, checkpoints and MPI ranks beyond one are refused with a message
- * naming the entry (doc/theory.md 5.12).
+ * history.csv and summary.json. With heat (models `discrete heat` and
+ * `discrete thermo-mechanics` with Mesh/Dimension = 3) the temperatures of
+ * TetrahedralHeat drive the thermal stretch F_T = s I of every tetrahedron
+ * in the multi-rate coupling of 2D (one thermal step every n mechanical
+ * steps over the same time: source/coupling/tetrahedral_thermo_mechanics.cc).
+ * Contact between tetrahedra, gravity, quasi-static coupling, monitors,
+ * checkpoints and MPI ranks beyond one are refused with a message naming
+ * the entry (doc/theory.md 5.12, 5.13).
  */
 #ifndef tmfdem_discrete_tetrahedral_solver_h
 #define tmfdem_discrete_tetrahedral_solver_h
@@ -39,12 +44,23 @@ namespace tmfdem
   namespace discrete
   {
     class VtuSeries;
+    class TetrahedralHeat;
 
     /** Explicit FDEM mechanics of tetrahedra and face joints (3D). */
     class TetrahedralSolver : public Simulation, public ValidationReporter
     {
     public:
-      TetrahedralSolver(const Parameters &parameters, MPI_Comm communicator);
+      /** What a run models: the mechanics, the heat alone, or both. */
+      enum class Physics
+      {
+        mechanics,
+        heat,
+        thermo_mechanics
+      };
+
+      TetrahedralSolver(const Parameters &parameters,
+                        MPI_Comm          communicator,
+                        const Physics     physics = Physics::mechanics);
       ~TetrahedralSolver() override;
 
       void
@@ -69,6 +85,9 @@ namespace tmfdem
         double external_work = 0.;
         /** Viscous and mass-damping dissipation. */
         double damping = 0.;
+        /** Work of the thermal stretch: the change of the strain energy
+         *  each new stretch makes at fixed geometry. */
+        double thermal_work = 0.;
       };
 
       /** A node's imposed velocity components. */
@@ -112,16 +131,49 @@ namespace tmfdem
        *  on an output time). */
       void
       step(const double dt);
+      /** Strain energy of tetrahedron @p e at its current nodes with the
+       *  thermal stretch @p s [J]: V s^3 psi(F / s). */
+      double
+      element_strain_energy(const unsigned int e, const double s) const;
       /** Kinetic and strain energy of the current state [J]. */
       void
       compute_state_energies();
       /** The energy put in so far: the initial kinetic energy and the
-       *  work of the imposed motions [J]. */
+       *  works of the imposed motions and of the thermal stretch [J]. */
       double
       energy_put_in() const
       {
-        return initial_kinetic + energies.external_work;
+        return initial_kinetic + energies.external_work +
+               std::abs(energies.thermal_work);
       }
+      /** Energy put in minus the energy in the state and dissipated [J]:
+       *  external + thermal work - (kinetic + strain + joint work +
+       *  damping). */
+      double
+      energy_balance_error() const
+      {
+        return energies.external_work + energies.thermal_work -
+               (energies.kinetic + energies.strain + energies.joint_work +
+                energies.damping);
+      }
+      /** True if the run has mechanics (not the heat alone). */
+      bool
+      with_mechanics() const
+      {
+        return physics != Physics::heat;
+      }
+      /** The heat, its stress-free temperatures and the multi-rate
+       *  cadence (coupling/tetrahedral_thermo_mechanics.cc). */
+      void
+      setup_heat();
+      /** One thermal step from the last one to now, then the new thermal
+       *  stretches (multi-rate coupling). */
+      void
+      thermal_step();
+      /** F_T = s I of every tetrahedron from its mean temperature; the
+       *  change of strain energy at fixed geometry is thermal work. */
+      void
+      update_thermal_stretch();
       /** Writes summary.json with @p what as the stop reason, then throws
        *  RunError naming the time, the step and @p what (the outputs
        *  written before stay). */
@@ -136,6 +188,7 @@ namespace tmfdem
 
       const Parameters &parameters;
       MPI_Comm          communicator;
+      const Physics     physics;
       bool              input_checked = false;
 
       Triangulation<3> triangulation;
@@ -158,6 +211,16 @@ namespace tmfdem
       /** Per joint and side: the face of its element (deal.II's face
        *  index, 0-3). */
       std::vector<unsigned char> joint_face;
+
+      // heat
+      std::unique_ptr<TetrahedralHeat> heat;
+      /** Stress-free temperature per tetrahedron [C]. */
+      std::vector<double> reference_temperature;
+      /** Mechanical steps per thermal step (multi-rate). */
+      unsigned long steps_per_thermal_step = 1;
+      /** Time of the last thermal step [s]. */
+      double        thermal_time    = 0.;
+      unsigned long n_thermal_steps = 0;
 
       // imposed motions
       std::vector<NodeConstraint> constraints;
