@@ -4,7 +4,8 @@
     plot_discrete_case.py CASE OUTPUT_FOLDER PNG
 
 CASE is one of joint_pull, joint_pull-3d, block_on_incline, two_blocks_collision,
-brazilian_disc, plate_traction, plate_transient, contact_conduction,
+brazilian_disc, plate_traction, plate_transient, plate_transient-discrete-3d,
+contact_conduction,
 sheet_free_expansion, sheet_restrained_expansion. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
 probes.csv, summary.json, solution_*.vtu, cracks_*.vtu). Cases that compare
 several runs read one sub-folder per run, the layout the verification
@@ -16,6 +17,8 @@ scripts write:
     block_on_incline:  OUTPUT_FOLDER/theta_<deg>_mu_<mu>[_damping_0.2]/ (verify_discrete_dynamics.py incline)
     plate_transient:   OUTPUT_FOLDER/{h0.05,continuum_P1,beta100,beta1000,beta10000}/
                        (verify_discrete_plate.py)
+    plate_transient-discrete-3d: OUTPUT_FOLDER/{plate,plate_beta_{100,1000,10000}}/
+                       (verify_discrete_heat_3d.py)
     contact_conduction: OUTPUT_FOLDER/{steady,equilibrate}/  (verify_discrete_contact_heat.py)
     sheet_*_expansion: OUTPUT_FOLDER/free_{+100,-100}/,
                        OUTPUT_FOLDER/restrained_plane_{stress,strain}_{+100,-100}/
@@ -534,6 +537,67 @@ def plot_plate_transient(folder, png):
     print(f"wrote {png}")
 
 
+def plot_plate_transient_3d(folder, png):
+    """OUTPUT_FOLDER as written by verify_discrete_heat_3d.py: plate/ (the
+    shipped prm) and plate_beta_{100,1000,10000}/ (to t = 10 s)."""
+    an = _analytic()
+    prm = "plate_transient-discrete-3d.prm"
+    ensure_run(os.path.join(folder, "plate"), prm)
+    fig, (ax_t, ax_b) = plt.subplots(1, 2, figsize=(12.5, 5), dpi=150,
+                                     gridspec_kw=dict(width_ratios=[1.35, 1]))
+    xs = np.linspace(0, 1, 401)
+    print("plate_transient-discrete-3d (12 000 tetrahedra, beta = 1000): "
+          "max |T - series| over all nodes")
+    records = sorted(glob.glob(os.path.join(folder, "plate", "solution_*.vtu")))[1:]
+    times = (2.0, 10.0, 20.0)
+    for i, (t, path) in enumerate(zip(times, records)):
+        points, _, arrays = read_vtu(path)
+        X = points - arrays["displacement"].reshape(-1, 3)
+        T = arrays["temperature"]
+        err = np.abs(T - an.plate_transient(X[:, 0], t)).max()
+        print(f"  t = {t:4.0f} s: {err:.4f} C")
+        c = f"C{i}"
+        ax_t.plot(xs, an.plate_transient(xs, t), "-", color=c, lw=1.0)
+        ax_t.plot(X[::7, 0], T[::7], ".", color=c, ms=1.5, alpha=0.5,
+                  label=f"t = {t:g} s: max error {err:.3f} C (every node)")
+    ax_t.plot([], [], "k-", lw=1.0, label="corrected 1D series (lines)")
+    ax_t.set_xlabel("x [m] (nodes of the whole slab; every 7th drawn)")
+    ax_t.set_ylabel("T [C]")
+    ax_t.set_title("exploded tetrahedra + face joints, h = 0.05 m, beta = 1000, backward "
+                   "Euler dt = 0.05 s", fontsize=9)
+    ax_t.legend(fontsize=7, loc="upper left")
+    ax_t.grid(alpha=0.3)
+
+    betas = (100, 1000, 10000)
+    T10 = {}
+    for beta in betas:
+        run = os.path.join(folder, f"plate_beta_{beta}")
+        ensure_run(run, prm, f"Discrete heat/Joint conductance factor={beta}",
+                   "Time stepping/End time=10", "Output/Times=10")
+        last = sorted(glob.glob(os.path.join(run, "solution_*.vtu")))[-1]
+        T10[beta] = read_vtu(last)[2]["temperature"]
+    steps = [np.abs(T10[100] - T10[1000]).max(), np.abs(T10[1000] - T10[10000]).max()]
+    print(f"  t = 10 s: beta 100 -> 1000 changes T by {steps[0]:.4f} C, 1000 -> 10000 by "
+          f"{steps[1]:.5f} C (ratio {steps[0] / steps[1]:.3f})")
+    ax_b.loglog([100, 1000], steps, "o-", color="C3", ms=6,
+                label="max |T(beta) - T(10 beta)| at t = 10 s")
+    for beta, dd in zip((100, 1000), steps):
+        ax_b.annotate(f"{dd:.3g} C", (beta, dd), textcoords="offset points", xytext=(6, 4),
+                      fontsize=7)
+    bb = np.logspace(1.8, 3.3, 20)
+    ax_b.loglog(bb, steps[0] * 100 / bb, "k--", lw=0.8, label="1 / beta")
+    ax_b.set_xlabel("joint conductance factor beta (k_i = beta k / h)")
+    ax_b.set_ylabel("change of T when beta grows ten-fold [C]")
+    ax_b.set_title("the joints' resistance falls as 1 / beta", fontsize=9)
+    ax_b.legend(fontsize=7)
+    ax_b.grid(alpha=0.3, which="both")
+    fig.suptitle("Paper Sec. 5.1 extruded, discrete layer in 3D: 1 x 0.25 x 0.25 m slab, "
+                 "0 C / 100 C faces, kappa = 0.005 m^2/s", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(png)
+    print(f"wrote {png}")
+
+
 # --------------------------------------------------- contact_conduction
 def plot_contact_conduction(folder, png):
     """OUTPUT_FOLDER as written by verify_discrete_contact_heat.py: steady/
@@ -729,6 +793,7 @@ CASES = {"joint_pull": plot_joint_pull,
          "brazilian_disc": plot_brazilian_disc,
          "plate_traction": plot_plate_traction,
          "plate_transient": plot_plate_transient,
+         "plate_transient-discrete-3d": plot_plate_transient_3d,
          "contact_conduction": plot_contact_conduction,
          "sheet_free_expansion": plot_sheet_free_expansion,
          "sheet_restrained_expansion": plot_sheet_restrained_expansion}

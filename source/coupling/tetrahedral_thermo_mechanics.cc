@@ -7,17 +7,26 @@
  * current geometry and joints (M -> T), then the new thermal stretch
  * F_T = s I of every tetrahedron from its mean temperature (T -> M). The
  * strain energy each new stretch changes at fixed geometry is the thermal
- * work of the energy balance.
+ * work of the energy balance. With Discrete heat/Coupling = quasi-static,
+ * the quasi-static loop of 2D: a thermal step of physical time, then the
+ * damped relaxation at its temperatures without advancing the clock, with
+ * the step control of coupling::QuasiStaticRelaxation (the rise of the
+ * joints' utilisation, the joints that break, re-runs from the step's
+ * start).
  */
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/threads.h>
 #include <tmfdem/discrete/discrete_parameters.h>
+#include <tmfdem/discrete/element_kernel.h>
+#include <tmfdem/discrete/joints.h>
 #include <tmfdem/discrete/tetrahedral_heat.h>
 #include <tmfdem/discrete/tetrahedral_solver.h>
+#include <tmfdem/io/checkpoint.h>
 
 namespace tmfdem
 {
@@ -46,10 +55,15 @@ namespace tmfdem
               "Discrete heat/Time integration = implicit.");
           return;
         }
-      // the multi-rate cadence, as in 2D
+      // the multi-rate cadence, as in 2D; quasi-static: the cap of each
+      // relaxation
+      quasi_static =
+        dh.coupling == DiscreteHeatParameters::Coupling::quasi_static;
       const unsigned int n = dh.mechanical_steps_per_thermal_step;
       if (n > 0)
         steps_per_thermal_step = n;
+      else if (quasi_static)
+        steps_per_thermal_step = 2000;
       else if (heat->implicit())
         steps_per_thermal_step =
           std::max(1., std::floor(parameters.time.time_step / time_step + 0.5));
@@ -58,7 +72,25 @@ namespace tmfdem
           std::max(1.,
                    std::floor(dh.safety_factor * heat->stable_time_step() /
                               time_step));
-      const double thermal_step = steps_per_thermal_step * time_step;
+      const double thermal_step = quasi_static ?
+                                    parameters.time.time_step :
+                                    steps_per_thermal_step * time_step;
+      if (quasi_static)
+        {
+          if (!velocity_functions.empty())
+            throw InputError(
+              "Discrete heat/Coupling = quasi-static: imposed velocities "
+              "(velocity conditions, driven bodies) in the relaxations are "
+              "not modelled in 3D yet; allowed are fixed and roller "
+              "conditions and fixed or free bodies.");
+          // an unloaded body relaxes at once (strains below 1e-10)
+          double EV = 0.;
+          for (unsigned int e = 0; e < model.n_elements; ++e)
+            EV += parameters.materials[model.material[e]].youngs_modulus *
+                  model.reference_area[e];
+          relaxation.unloaded_energy         = 1e-20 * EV;
+          relaxation.quasi_static_ramp_steps = 0;
+        }
       if (!heat->implicit() && thermal_step > heat->stable_time_step())
         throw InputError("Discrete heat/Mechanical steps per thermal step = " +
                          std::to_string(steps_per_thermal_step) +
@@ -128,6 +160,293 @@ namespace tmfdem
                      });
       for (const double w : work)
         energies.thermal_work += w;
+    }
+
+    void
+    TetrahedralSolver::relaxation_step()
+    {
+      compute_joint_forces();
+      update_nodes(time_step);
+      ++step_number;
+    }
+
+    double
+    TetrahedralSolver::unbalanced_force()
+    {
+      // the joint forces at the current positions, as the element forces
+      // (the next step evaluates them here again: the same values)
+      compute_joint_forces();
+      // per chunk of tetrahedra (their nodes), summed in chunk order
+      const std::size_t n_chunks =
+        (model.n_elements + chunk_size - 1) / chunk_size;
+      std::vector<std::array<double, 2>> sums(n_chunks, {{0., 0.}});
+      for_each_chunk(
+        arena_for(n_threads),
+        model.n_elements,
+        chunk_size,
+        [&](const std::size_t begin,
+            const std::size_t end,
+            const std::size_t c) {
+          for (std::size_t e = begin; e < end; ++e)
+            {
+              const std::size_t          n0            = 4 * e;
+              const double *const        nodes[3]      = {&model.x[n0],
+                                                          &model.y[n0],
+                                                          &model.z[n0]};
+              const double *const        velocities[3] = {&model.vx[n0],
+                                                          &model.vy[n0],
+                                                          &model.vz[n0]};
+              const double               s = model.thermal_stretch[e];
+              ElementResponse<3, double> r;
+              element_response<3, double>(nodes,
+                                          velocities,
+                                          &model.inverse_basis[9 * e],
+                                          s == 1. ? 1. : 1. / s,
+                                          element_lame[e].mu,
+                                          element_lame[e].lambda,
+                                          nullptr,
+                                          0.,
+                                          r);
+              for (unsigned int k = 0; k < 4; ++k)
+                {
+                  const std::size_t node = n0 + k;
+                  const double     *jf   = &model.node_joint_force[9 * node];
+                  const int         ci   = node_constraint[node];
+                  for (unsigned int i = 0; i < 3; ++i)
+                    {
+                      sums[c][1] += r.f_elastic[k][i] * r.f_elastic[k][i];
+                      if (ci >= 0 && constraints[ci].prescribed[i])
+                        continue;
+                      const double f =
+                        r.f_elastic[k][i] + jf[i] + jf[3 + i] + jf[6 + i];
+                      sums[c][0] += f * f;
+                    }
+                }
+            }
+        });
+      double unbalanced = 0., internal = 0.;
+      for (const auto &c : sums)
+        {
+          unbalanced += c[0];
+          internal += c[1];
+        }
+      return std::sqrt(unbalanced / std::max(internal, 1e-300));
+    }
+
+    void
+    TetrahedralSolver::advance_thermal_step(const double dt)
+    {
+      heat->step(time, dt);
+      time += dt;
+      thermal_time = time;
+      ++n_thermal_steps;
+      update_thermal_stretch();
+      // ... then the mechanics relaxes at these temperatures (no clock)
+      const auto &dh = parameters.get<DiscreteHeatParameters>();
+      relaxation.current_thermal_step = dt;
+      unsigned int i                  = 0;
+      bool         relaxed            = false;
+      while (i < steps_per_thermal_step)
+        {
+          relaxation.relaxation_step = i;
+          relaxation_step();
+          ++i;
+          if (i % 50 != 0)
+            continue;
+          compute_state_energies();
+          relaxation.last_kinetic_to_strain =
+            energies.kinetic / std::max(energies.strain, 1e-300);
+          // an unloaded body: energies at round-off level, where the
+          // ratios measure noise and could never pass
+          if (energies.strain < relaxation.unloaded_energy &&
+              energies.kinetic < relaxation.unloaded_energy)
+            {
+              relaxed = true;
+              break;
+            }
+          if (relaxation.last_kinetic_to_strain < dh.relaxation_tolerance)
+            {
+              relative_unbalanced_force = unbalanced_force();
+              if (relative_unbalanced_force <= dh.relaxation_force_tolerance)
+                {
+                  relaxed = true;
+                  break;
+                }
+            }
+        }
+      relaxation.finish_relaxation(i, relaxed);
+    }
+
+    void
+    TetrahedralSolver::quasi_static_step()
+    {
+      const DiscreteHeatParameters &dh =
+        parameters.get<DiscreteHeatParameters>();
+      double dt =
+        relaxation.next_thermal_step(time,
+                                     n_thermal_steps,
+                                     next_output < output_times.size() ?
+                                       std::optional<double>(
+                                         output_times[next_output]) :
+                                       std::nullopt);
+      // the joints at the start of the step: the rise of their utilisation
+      // and the joints that break in it set the next step; a step in which
+      // too many break at once, or whose relaxation does not converge, is
+      // re-run shorter from here (as in 2D: theory manual 8)
+      const bool control_breaks = dh.maximum_broken_joints_per_step > 0;
+      std::vector<double> utilisation_start, damage_start;
+      if (dh.maximum_utilisation_change > 0.)
+        joint_utilisations(model, utilisation_start);
+      if (control_breaks)
+        {
+          joint_damages(model, damage_start);
+          relaxation.thermal_step_start =
+            std::make_unique<CheckpointWriter>("thermal step", "");
+          put_state(*relaxation.thermal_step_start);
+        }
+      const double        minimum_step = relaxation.minimum_thermal_step();
+      bool                unstable     = false;
+      std::vector<double> damage_end;
+      unsigned int        broke_in_step = 0;
+      while (true)
+        {
+          advance_thermal_step(dt);
+          if (!control_breaks)
+            break;
+          joint_damages(model, damage_end);
+          broke_in_step    = 0;
+          bool damage_grew = false;
+          for (unsigned int j = 0; j < model.n_joints; ++j)
+            {
+              broke_in_step += damage_start[j] < 1. && damage_end[j] >= 1.;
+              damage_grew |= damage_end[j] > damage_start[j];
+            }
+          if (relaxation.resolves_thermal_step(broke_in_step, damage_grew))
+            break;
+          if (dt <= minimum_step * (1. + 1e-12))
+            {
+              // no shorter step resolves it: the crack runs at this load
+              unstable = true;
+              ++relaxation.unstable_thermal_steps;
+              break;
+            }
+          // re-run from the start of the step, shorter
+          CheckpointReader in(*relaxation.thermal_step_start,
+                              "start of the thermal step");
+          get_state(in);
+          in.finish();
+          ++relaxation.rejected_thermal_steps;
+          dt =
+            std::max(minimum_step, relaxation.rerun_factor(broke_in_step) * dt);
+          std::cerr << "[tmfdem] t = " << time << " s: thermal step re-run "
+                    << (broke_in_step > 2. * dh.maximum_broken_joints_per_step ?
+                          "(" + std::to_string(broke_in_step) +
+                            " joints broke in it)" :
+                          std::string("(the relaxation did not converge)"))
+                    << " with " << dt << " s\n";
+        }
+      relaxation.accept_thermal_step(dt, unstable, broke_in_step);
+      if (dh.maximum_utilisation_change > 0.)
+        {
+          // the fastest rise of one joint's utilisation, over the joints
+          // undamaged at both ends of the step
+          std::vector<double> utilisation_end;
+          joint_utilisations(model, utilisation_end);
+          double rise = 0., highest = 0.;
+          for (unsigned int j = 0; j < model.n_joints; ++j)
+            if (utilisation_end[j] >= 0.)
+              {
+                highest = std::max(highest, utilisation_end[j]);
+                if (utilisation_start[j] >= 0.)
+                  rise =
+                    std::max(rise, utilisation_end[j] - utilisation_start[j]);
+              }
+          relaxation.joint_utilisation_rate = unstable ? 0. : rise / dt;
+          relaxation.joint_utilisation      = highest;
+        }
+      if (!relaxation.last_relaxation_converged)
+        {
+          ++relaxation.relaxations_at_cap;
+          if (relaxation.relaxations_at_cap == 1)
+            std::cerr << "[tmfdem] warning: at t = " << time
+                      << " s the relaxation reached its cap of "
+                      << steps_per_thermal_step
+                      << " mechanical steps (Discrete heat/Mechanical steps "
+                         "per thermal step) with kinetic / strain energy "
+                      << relaxation.last_kinetic_to_strain
+                      << " above Relaxation tolerance = "
+                      << dh.relaxation_tolerance
+                      << " or the out-of-balance force "
+                      << relative_unbalanced_force
+                      << " above Relaxation force tolerance: the state is not "
+                         "in equilibrium. Raise the cap or add Mass damping "
+                         "(summary.json counts these steps: "
+                         "relaxations_at_cap).\n";
+          if (dh.relaxation_cap_is_error)
+            guard_failure(
+              "guard: the relaxation at t = " + Utilities::to_string(time) +
+              " s reached its cap of " +
+              std::to_string(steps_per_thermal_step) +
+              " mechanical steps without reaching Relaxation tolerance "
+              "(Discrete heat/Relaxation cap is error = true).");
+        }
+    }
+
+    void
+    TetrahedralSolver::put_state(CheckpointWriter &out) const
+    {
+      out.put(time);
+      out.put<std::uint64_t>(step_number);
+      out.put(thermal_time);
+      out.put<std::uint64_t>(n_thermal_steps);
+      relaxation.save_step_control(out);
+      for (const std::vector<double> *v : {&model.x,
+                                           &model.y,
+                                           &model.z,
+                                           &model.vx,
+                                           &model.vy,
+                                           &model.vz,
+                                           &model.thermal_stretch,
+                                           &model.stress,
+                                           &model.joint_damage,
+                                           &model.joint_break_time,
+                                           &model.node_joint_force})
+        out.put(*v);
+      out.put(model.joint_status);
+      out.put(energies);
+      out.put(owner_reaction);
+      relaxation.save_relaxation(out);
+      heat->save(out);
+    }
+
+    void
+    TetrahedralSolver::get_state(CheckpointReader &in)
+    {
+      std::uint64_t count = 0;
+      in.get(time);
+      in.get(count);
+      step_number = count;
+      in.get(thermal_time);
+      in.get(count);
+      n_thermal_steps = count;
+      relaxation.load_step_control(in);
+      for (std::vector<double> *v : {&model.x,
+                                     &model.y,
+                                     &model.z,
+                                     &model.vx,
+                                     &model.vy,
+                                     &model.vz,
+                                     &model.thermal_stretch,
+                                     &model.stress,
+                                     &model.joint_damage,
+                                     &model.joint_break_time,
+                                     &model.node_joint_force})
+        in.get(*v, v->size());
+      in.get(model.joint_status, model.n_joints);
+      in.get(energies);
+      in.get(owner_reaction, owner_reaction.size());
+      relaxation.load_relaxation(in);
+      heat->load(in);
     }
   } // namespace discrete
 } // namespace tmfdem

@@ -357,6 +357,36 @@ namespace tmfdem
       return false;
     }
 
+    namespace
+    {
+      /** True if joint @p j is intact and undamaged at every Gauss point. */
+      bool
+      undamaged(const DiscreteModel &model, const unsigned int j)
+      {
+        if (model.joint_status[j] != JointStatus::intact)
+          return false;
+        const unsigned int n = model.gauss_points_per_joint();
+        for (unsigned int q = 0; q < n; ++q)
+          if (model.joint_damage[n * j + q] > 0.)
+            return false;
+        return true;
+      }
+
+      /** A Gauss point's utilisation of the peak strength: the larger of
+       *  its opening @p o [m] and slip magnitude @p s [m] over the opening
+       *  and slip of the peak (Eq. 34: 2 f_t / k_n, 2 f_s / k_t with the
+       *  shear strength f_s raised by the friction of a compressed joint)
+       *  [-]. */
+      double
+      point_utilisation(const JointConstants &k, const double o, const double s)
+      {
+        const double fs = k.cohesion - (o < 0. ? k.normal_stiffness * o : 0.) *
+                                         k.friction_tangent;
+        return std::max(o * k.normal_stiffness / (2. * k.tensile_strength),
+                        std::abs(s) * k.tangential_stiffness / (2. * fs));
+      }
+    } // namespace
+
     void
     joint_utilisations(const DiscreteModel &model,
                        std::vector<double> &utilisation)
@@ -364,26 +394,49 @@ namespace tmfdem
       utilisation.assign(model.n_joints, -1.);
       for (unsigned int j = 0; j < model.n_joints; ++j)
         {
-          if (model.joint_status[j] != JointStatus::intact ||
-              model.joint_damage[2 * j] > 0. ||
-              model.joint_damage[2 * j + 1] > 0.)
+          if (!undamaged(model, j))
             continue;
-          const JointFrameT<double> g       = joint_frame_of(model, j);
-          const JointConstants     &k       = model.joint_constants[j];
-          double                    highest = 0.;
-          for (const double u : joint_gauss_points)
+          const JointConstants &k       = model.joint_constants[j];
+          double                highest = 0.;
+          if (model.dim == 2)
             {
-              const double dx = (1. - u) * g.d0x + u * g.d1x;
-              const double dy = (1. - u) * g.d0y + u * g.d1y;
-              const double o  = dx * g.nx + dy * g.ny;
-              const double s  = dx * g.tx + dy * g.ty;
-              const double fs =
-                k.cohesion -
-                (o < 0. ? k.normal_stiffness * o : 0.) * k.friction_tangent;
-              highest =
-                std::max({highest,
-                          o * k.normal_stiffness / (2. * k.tensile_strength),
-                          std::abs(s) * k.tangential_stiffness / (2. * fs)});
+              const JointFrameT<double> g = joint_frame_of(model, j);
+              for (const double u : joint_gauss_points)
+                {
+                  const double dx = (1. - u) * g.d0x + u * g.d1x;
+                  const double dy = (1. - u) * g.d0y + u * g.d1y;
+                  highest         = std::max(highest,
+                                     point_utilisation(k,
+                                                       dx * g.nx + dy * g.ny,
+                                                       dx * g.tx + dy * g.ty));
+                }
+            }
+          else
+            {
+              const unsigned int *p = &model.joint_nodes[6 * j];
+              double              x[3][6];
+              for (unsigned int a = 0; a < 6; ++a)
+                {
+                  x[0][a] = model.x[p[a]];
+                  x[1][a] = model.y[p[a]];
+                  x[2][a] = model.z[p[a]];
+                }
+              const double *const           nodes[3] = {x[0], x[1], x[2]};
+              const FaceJointFrameT<double> g = face_joint_frame<double>(nodes);
+              for (const auto &lambda : face_joint_gauss_points)
+                {
+                  double d[3];
+                  for (int i = 0; i < 3; ++i)
+                    d[i] = lambda[0] * g.d[0][i] + lambda[1] * g.d[1][i] +
+                           lambda[2] * g.d[2][i];
+                  const double o =
+                    d[0] * g.n[0] + d[1] * g.n[1] + d[2] * g.n[2];
+                  double s2 = 0.;
+                  for (int i = 0; i < 3; ++i)
+                    s2 += (d[i] - o * g.n[i]) * (d[i] - o * g.n[i]);
+                  highest =
+                    std::max(highest, point_utilisation(k, o, std::sqrt(s2)));
+                }
             }
           utilisation[j] = std::min(highest, 1.);
         }
@@ -392,12 +445,19 @@ namespace tmfdem
     void
     joint_damages(const DiscreteModel &model, std::vector<double> &damage)
     {
+      const unsigned int n = model.gauss_points_per_joint();
       damage.resize(model.n_joints);
       for (unsigned int j = 0; j < model.n_joints; ++j)
-        damage[j] =
-          model.joint_status[j] != JointStatus::intact ?
-            1. :
-            std::max(model.joint_damage[2 * j], model.joint_damage[2 * j + 1]);
+        {
+          double d = 1.;
+          if (model.joint_status[j] == JointStatus::intact)
+            {
+              d = model.joint_damage[n * j];
+              for (unsigned int q = 1; q < n; ++q)
+                d = std::max(d, model.joint_damage[n * j + q]);
+            }
+          damage[j] = d;
+        }
     }
 
     unsigned int
@@ -405,9 +465,7 @@ namespace tmfdem
     {
       unsigned int n = 0;
       for (unsigned int j = 0; j < model.n_joints; ++j)
-        n += model.joint_status[j] != JointStatus::intact ||
-             model.joint_damage[2 * j] > 0. ||
-             model.joint_damage[2 * j + 1] > 0.;
+        n += !undamaged(model, j);
       return n;
     }
   } // namespace discrete

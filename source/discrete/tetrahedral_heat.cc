@@ -6,6 +6,7 @@
 #include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/discrete/heat_kernel.h>
 #include <tmfdem/discrete/tetrahedral_heat.h>
+#include <tmfdem/io/checkpoint.h>
 
 namespace tmfdem
 {
@@ -623,6 +624,28 @@ namespace tmfdem
             time_step * totals[2 + slot] + totals[2 + n_slots + slot];
           last_rate[id] = totals[2 + slot] + totals[2 + 2 * n_slots + slot];
         }
+    }
+
+    void
+    TetrahedralHeat::save(CheckpointWriter &out) const
+    {
+      out.put(T);
+      out.put(heat_balance.boundary_heat_in);
+      out.put(heat_balance.source_heat);
+      out.put(heat_balance.stored_heat);
+      out.put(last_rate);
+      out.put(iterations);
+    }
+
+    void
+    TetrahedralHeat::load(CheckpointReader &in)
+    {
+      in.get(T, model.n_nodes);
+      in.get(heat_balance.boundary_heat_in);
+      in.get(heat_balance.source_heat);
+      in.get(heat_balance.stored_heat);
+      in.get(last_rate);
+      in.get(iterations);
     }
   } // namespace discrete
 } // namespace tmfdem

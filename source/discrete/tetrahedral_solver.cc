@@ -53,6 +53,7 @@ namespace tmfdem
       , communicator(communicator)
       , physics(physics)
       , fe(1)
+      , relaxation(parameters)
     {}
 
     TetrahedralSolver::~TetrahedralSolver() = default;
@@ -74,8 +75,25 @@ namespace tmfdem
               in_3d + "allowed is discrete heat.");
           if (physics == Physics::thermo_mechanics &&
               dh.coupling == DiscreteHeatParameters::Coupling::quasi_static)
-            throw InputError("Discrete heat/Coupling = quasi-static" + in_3d +
-                             "allowed is dynamic (the multi-rate coupling).");
+            {
+              const std::string in_3d_quasi_static =
+                " is not modelled in 3D quasi-static coupling yet; ";
+              if (dh.relaxation_predictor !=
+                  DiscreteHeatParameters::RelaxationPredictor::none)
+                throw InputError("Discrete heat/Relaxation predictor = "
+                                 "extrapolate" +
+                                 in_3d_quasi_static + "allowed is none.");
+              if (dh.relaxation_damping !=
+                  DiscreteHeatParameters::RelaxationDamping::mass)
+                throw InputError("Discrete heat/Relaxation damping = kinetic" +
+                                 in_3d_quasi_static +
+                                 "allowed is mass (Discrete mechanics/Mass "
+                                 "damping).");
+              if (dh.fracture_event_duration > 0.)
+                throw InputError("Discrete heat/Fracture event duration: a "
+                                 "fracture with inertia" +
+                                 in_3d_quasi_static + "allowed is 0.");
+            }
           if (parameters.time.mode != TimeSteppingParameters::Mode::transient)
             throw InputError("Time stepping/Mode = steady: the discrete heat "
                              "is transient only; allowed is transient.");
@@ -796,7 +814,7 @@ namespace tmfdem
       update_nodes(dt);
       time += dt;
       ++step_number;
-      if (heat && step_number % steps_per_thermal_step == 0)
+      if (heat && !quasi_static && step_number % steps_per_thermal_step == 0)
         thermal_step(); // coupling/tetrahedral_thermo_mechanics.cc
     }
 
@@ -881,6 +899,7 @@ namespace tmfdem
                       Utilities::to_string(factor) +
                       " times the energy put in (Guards/Kinetic energy "
                       "factor): the run is unstable");
+      history_step = step_number;
       std::ostringstream row;
       row << std::setprecision(10) << time << "," << step_number;
       if (with_mechanics())
@@ -967,6 +986,23 @@ namespace tmfdem
                       static_cast<long long>(steps_per_thermal_step));
           summary.add("stable_explicit_thermal_step", heat->stable_time_step());
           summary.add("cg_iterations_last_step", heat->last_iterations());
+          summary.add("coupling", dh.coupling_name());
+          if (quasi_static)
+            {
+              summary.add("relaxations_at_cap", relaxation.relaxations_at_cap);
+              summary.add("rejected_thermal_steps",
+                          static_cast<long long>(
+                            relaxation.rejected_thermal_steps));
+              summary.add("unstable_thermal_steps",
+                          static_cast<long long>(
+                            relaxation.unstable_thermal_steps));
+              summary.add("last_relaxation_steps",
+                          relaxation.last_relaxation_steps);
+              summary.add("last_kinetic_to_strain_energy",
+                          relaxation.last_kinetic_to_strain);
+              summary.add("last_relative_unbalanced_force",
+                          relative_unbalanced_force);
+            }
           summary.add("heat_balance",
                       heat_balance_summary(heat->balance(),
                                            heat->last_boundary_rate()));
@@ -1041,13 +1077,19 @@ namespace tmfdem
         {
           if (max_steps > 0 && step_number >= max_steps)
             break;
-          step(OutputSchedule::step_towards(time,
-                                            output_times[next_output],
-                                            time_step));
-          if (time >= next_history - 0.5 * time_step)
+          if (quasi_static)
+            quasi_static_step(); // coupling/tetrahedral_thermo_mechanics.cc
+          else
+            step(OutputSchedule::step_towards(time,
+                                              output_times[next_output],
+                                              time_step));
+          // quasi-static: a row after every thermal step
+          if (quasi_static || time >= next_history - 0.5 * time_step)
             {
               write_history_row();
               next_history += history_interval;
+              while (history_interval > 0. && next_history <= time)
+                next_history += history_interval;
             }
           while (next_output < output_times.size() &&
                  schedule.reached(time, output_times[next_output]))
@@ -1067,7 +1109,9 @@ namespace tmfdem
       loop_cpu_time = process_cpu_time() - cpu_start;
       loop_thread_cpu_times =
         thread_cpu_time_differences(threads_before, thread_cpu_times());
-      write_history_row();
+      // the last state, unless the loop's last row holds it
+      if (step_number != history_step)
+        write_history_row();
       write_summary(true);
     }
   } // namespace discrete

@@ -33,6 +33,9 @@
 
 namespace tmfdem
 {
+  class CheckpointWriter;
+  class CheckpointReader;
+
   namespace discrete
   {
     /** The thermal state and operators of the discrete layer in 3D. */
@@ -115,6 +118,14 @@ namespace tmfdem
       {
         return 0.25 * (T[4 * e] + T[4 * e + 1] + T[4 * e + 2] + T[4 * e + 3]);
       }
+
+      /** Appends the thermal state (temperatures, heat balance, last
+       *  rates, last iterations) to @p out. */
+      void
+      save(CheckpointWriter &out) const;
+      /** Restores what save() wrote; InputError on a size mismatch. */
+      void
+      load(CheckpointReader &in);
 
     private:
       /** A boundary face with a thermal condition. */

@@ -31,6 +31,7 @@
 #include <memory>
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/base/simulation.h>
+#include <tmfdem/coupling/quasi_static_relaxation.h>
 #include <tmfdem/discrete/cohesive_law.h>
 #include <tmfdem/discrete/discrete_model.h>
 #include <tmfdem/discrete/solid.h>
@@ -40,6 +41,8 @@
 namespace tmfdem
 {
   class CsvSeries;
+  class CheckpointWriter;
+  class CheckpointReader;
 
   namespace discrete
   {
@@ -174,6 +177,32 @@ namespace tmfdem
        *  change of strain energy at fixed geometry is thermal work. */
       void
       update_thermal_stretch();
+      /** Quasi-static coupling: one thermal step of the step control of
+       *  coupling::QuasiStaticRelaxation, re-run shorter where too many
+       *  joints break in it or its relaxation does not converge. */
+      void
+      quasi_static_step();
+      /** The heat over @p dt [s], the new stretches, then the damped
+       *  relaxation at these temperatures (no clock) until kinetic / strain
+       *  energy and the out-of-balance force are below their tolerances or
+       *  the cap of steps is reached. */
+      void
+      advance_thermal_step(const double dt);
+      /** One mechanical step of the relaxation (the clock stays). */
+      void
+      relaxation_step();
+      /** |out-of-balance force| / |internal force| over the free
+       *  components of the nodes, at the current positions [-] (the
+       *  elastic and joint forces there; the viscous ones left out). */
+      double
+      unbalanced_force();
+      /** The state a thermal step may be re-run from (and a checkpoint
+       *  would hold): clocks, nodes, stretches, stresses, joints, energies,
+       *  reactions, the step control and the heat. */
+      void
+      put_state(CheckpointWriter &out) const;
+      void
+      get_state(CheckpointReader &in);
       /** Writes summary.json with @p what as the stop reason, then throws
        *  RunError naming the time, the step and @p what (the outputs
        *  written before stay). */
@@ -221,6 +250,11 @@ namespace tmfdem
       /** Time of the last thermal step [s]. */
       double        thermal_time    = 0.;
       unsigned long n_thermal_steps = 0;
+      /** Coupling = quasi-static: the thermal steps and relaxations. */
+      bool                            quasi_static = false;
+      coupling::QuasiStaticRelaxation relaxation;
+      /** The out-of-balance force of the last convergence check [-]. */
+      double relative_unbalanced_force = 0.;
 
       // imposed motions
       std::vector<NodeConstraint> constraints;
@@ -277,6 +311,8 @@ namespace tmfdem
       unsigned int               next_output      = 0;
       double                     history_interval = 0.;
       double                     next_history     = 0.;
+      /** The step of the last history row. */
+      unsigned long history_step = 0;
     };
   } // namespace discrete
 } // namespace tmfdem
