@@ -416,7 +416,8 @@ namespace tmfdem
       out.put(energies);
       out.put(owner_reaction);
       relaxation.save_relaxation(out);
-      heat->save(out);
+      if (heat)
+        heat->save(out);
     }
 
     void
@@ -446,7 +447,8 @@ namespace tmfdem
       in.get(energies);
       in.get(owner_reaction, owner_reaction.size());
       relaxation.load_relaxation(in);
-      heat->load(in);
+      if (heat)
+        heat->load(in);
     }
   } // namespace discrete
 } // namespace tmfdem

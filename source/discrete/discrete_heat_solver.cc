@@ -231,12 +231,7 @@ namespace tmfdem
         out.put<std::uint64_t>(cg_iterations);
         out.put(next_output);
         out.put(output_times);
-        out.put<std::uint64_t>(series.get_records().size());
-        for (const auto &[t, name] : series.get_records())
-          {
-            out.put(t);
-            out.put(name);
-          }
+        series.save_records(out);
         out.put<std::uint64_t>(probes_csv.size());
         out.put<std::uint64_t>(lines_csv.size());
         heat->save(out);
@@ -272,23 +267,14 @@ namespace tmfdem
                              "' is corrupt (output counter).");
           // End time may have changed (a run continued): this input's
           // output times from the next unwritten one on
-          next_output = continue_output_times(file,
+          next_output           = continue_output_times(file,
                                               time,
                                               end,
                                               saved_output_times,
                                               next_output,
                                               output_times,
                                               0.5 * time_step);
-          in.get(count);
-          if (count > 100000000)
-            throw InputError("the checkpoint '" + file +
-                             "' is corrupt (record count).");
-          std::vector<std::pair<double, std::string>> records(count);
-          for (auto &[t, name] : records)
-            {
-              in.get(t);
-              in.get(name);
-            }
+          const auto    records = VtuSeries::load_records(in);
           std::uint64_t csv_bytes[2];
           in.get(csv_bytes[0]);
           in.get(csv_bytes[1]);

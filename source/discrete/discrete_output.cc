@@ -13,6 +13,7 @@
 #include <tmfdem/base/polar_stress.h>
 #include <tmfdem/discrete/discrete_output.h>
 #include <tmfdem/discrete/temperature_source.h>
+#include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 #include <type_traits>
 #include <zlib.h>
@@ -345,6 +346,34 @@ namespace tmfdem
     VtuSeries::add_parallel_record(const double time)
     {
       records.emplace_back(time, next_stem() + ".pvtu");
+    }
+
+    void
+    VtuSeries::save_records(CheckpointWriter &out) const
+    {
+      out.put<std::uint64_t>(records.size());
+      for (const auto &[t, name] : records)
+        {
+          out.put(t);
+          out.put(name);
+        }
+    }
+
+    std::vector<std::pair<double, std::string>>
+    VtuSeries::load_records(CheckpointReader &in)
+    {
+      std::uint64_t n = 0;
+      in.get(n);
+      if (n > 100000000)
+        throw InputError("the checkpoint '" + in.name() +
+                         "' is corrupt (output record count).");
+      std::vector<std::pair<double, std::string>> saved(n);
+      for (auto &[t, name] : saved)
+        {
+          in.get(t);
+          in.get(name);
+        }
+      return saved;
     }
 
     void

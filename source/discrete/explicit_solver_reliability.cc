@@ -22,36 +22,6 @@ namespace tmfdem
   {
     namespace
     {
-      using Records = std::vector<std::pair<double, std::string>>;
-
-      void
-      put_records(CheckpointWriter &out, const Records &records)
-      {
-        out.put<std::uint64_t>(records.size());
-        for (const auto &[t, name] : records)
-          {
-            out.put(t);
-            out.put(name);
-          }
-      }
-
-      Records
-      get_records(CheckpointReader &in)
-      {
-        std::uint64_t n = 0;
-        in.get(n);
-        if (n > 100000000)
-          throw InputError("the checkpoint '" + in.name() +
-                           "' is corrupt (output record count).");
-        Records records(n);
-        for (auto &[t, name] : records)
-          {
-            in.get(t);
-            in.get(name);
-          }
-        return records;
-      }
-
       std::string
       number(const double value)
       {
@@ -131,8 +101,8 @@ namespace tmfdem
       out.put(next_history);
       out.put(history_interval);
       out.put(output_times);
-      put_records(out, solution_series->get_records());
-      put_records(out, crack_series->get_records());
+      solution_series->save_records(out);
+      crack_series->save_records(out);
       out.put<std::uint64_t>(history_csv->size());
       out.put<std::uint64_t>(probes_csv ? probes_csv->size() : 0);
       out.put<std::uint64_t>(lines_csv ? lines_csv->size() : 0);
@@ -284,8 +254,8 @@ namespace tmfdem
         next_output,
         output_times,
         1e-9 * std::max(1., std::abs(parameters.time.end_time)));
-      const Records solution_records = get_records(in);
-      const Records crack_records    = get_records(in);
+      const auto    solution_records = VtuSeries::load_records(in);
+      const auto    crack_records    = VtuSeries::load_records(in);
       std::uint64_t csv_bytes[3];
       for (auto &b : csv_bytes)
         in.get(b);

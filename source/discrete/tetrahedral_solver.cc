@@ -26,6 +26,7 @@
 #include <tmfdem/discrete/stable_step.h>
 #include <tmfdem/discrete/tetrahedral_heat.h>
 #include <tmfdem/discrete/tetrahedral_solver.h>
+#include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 #include <tmfdem/io/output_schedule.h>
 #include <tmfdem/mesh/mesh_checks.h>
@@ -105,11 +106,6 @@ namespace tmfdem
               "Mesh/Dimension = 3: the discrete layer in 3D runs on one MPI "
               "process; allowed is mpirun -np 1 (or no mpirun), with Discrete "
               "mechanics/Threads for the cores.");
-          if (parameters.checkpoint.interval_steps > 0 ||
-              parameters.checkpoint.interval_minutes > 0. || parameters.resume)
-            throw InputError("Checkpoint/Interval (steps), Interval (wall "
-                             "minutes), --resume: checkpoints" +
-                             in_3d + "allowed is 0 for both, no --resume.");
           if (!parameters.monitors.probes.empty() ||
               !parameters.monitors.lines.empty())
             throw InputError("Monitors/Probes, Lines: probes and lines of the "
@@ -131,11 +127,6 @@ namespace tmfdem
       if (!dm.initial_cracks.empty())
         throw InputError("Discrete mechanics/Initial cracks: segments are 2D "
                          "cracks; allowed in 3D is none.");
-      if (parameters.checkpoint.interval_steps > 0 ||
-          parameters.checkpoint.interval_minutes > 0.)
-        throw InputError("Checkpoint/Interval (steps), Interval (wall "
-                         "minutes): checkpoints" +
-                         in_3d + "allowed is 0 for both.");
       if (!parameters.monitors.probes.empty() ||
           !parameters.monitors.lines.empty())
         throw InputError("Monitors/Probes, Lines: probes and lines of the "
@@ -143,9 +134,6 @@ namespace tmfdem
                          in_3d +
                          "allowed in 3D is none (solution.pvd holds "
                          "the fields).");
-      if (parameters.resume)
-        throw InputError("--resume: checkpoints" + in_3d +
-                         "allowed is a run without --resume.");
       if (Utilities::MPI::n_mpi_processes(communicator) > 1)
         throw InputError("Mesh/Dimension = 3: the discrete layer in 3D runs "
                          "on one MPI process; allowed is mpirun -np 1 (or "
@@ -1026,6 +1014,124 @@ namespace tmfdem
                             summary.str());
     }
 
+    std::string
+    TetrahedralSolver::checkpoint_kind() const
+    {
+      return std::string(physics == Physics::mechanics ?
+                           "discrete mechanics" :
+                           (physics == Physics::heat ?
+                              "discrete heat" :
+                              "discrete thermo-mechanics")) +
+             " (3D)";
+    }
+
+    void
+    TetrahedralSolver::write_checkpoint_file() const
+    {
+      CheckpointWriter out(checkpoint_kind(), parameters.input_digest);
+      out.put<std::uint32_t>(model.n_elements);
+      out.put<std::uint32_t>(model.n_nodes);
+      out.put<std::uint32_t>(model.n_joints);
+      out.put(time_step);
+      put_state(out);
+      out.put(next_output);
+      out.put(next_history);
+      out.put(history_interval);
+      out.put(history_step);
+      out.put(output_times);
+      solution_series->save_records(out);
+      crack_series->save_records(out);
+      out.put<std::uint64_t>(history_csv->size());
+      out.put(initial_kinetic);
+      out.put(element_steps);
+      const std::size_t bytes = write_checkpoint(parameters, step_number, out);
+      std::cerr << "[tmfdem] checkpoint at step " << step_number
+                << ", t = " << time << " s: " << bytes << " bytes\n";
+    }
+
+    std::uint64_t
+    TetrahedralSolver::load_checkpoint()
+    {
+      const std::string file = newest_checkpoint(parameters);
+      CheckpointReader  in(file, checkpoint_kind(), parameters.input_digest);
+      std::uint32_t     sizes[3];
+      for (auto &n : sizes)
+        in.get(n);
+      if (sizes[0] != model.n_elements || sizes[1] != model.n_nodes ||
+          sizes[2] != model.n_joints)
+        throw InputError("the checkpoint '" + file + "' is of another mesh (" +
+                         std::to_string(sizes[0]) + " tetrahedra, this run " +
+                         std::to_string(model.n_elements) + ").");
+      double saved_time_step = 0.;
+      in.get(saved_time_step);
+      if (saved_time_step != time_step)
+        throw InputError("the checkpoint '" + file + "' has the time step " +
+                         Utilities::to_string(saved_time_step) +
+                         " s, this run " + Utilities::to_string(time_step) +
+                         " s.");
+      get_state(in);
+      in.get(next_output);
+      in.get(next_history);
+      in.get(history_interval);
+      in.get(history_step);
+      std::vector<double> saved_output_times;
+      in.get(saved_output_times);
+      if (next_output > saved_output_times.size())
+        throw InputError("the checkpoint '" + file +
+                         "' is corrupt (output counter).");
+      // End time may have changed (a run continued): this input's output
+      // times from the next unwritten one on
+      next_output = continue_output_times(
+        file,
+        time,
+        parameters.time.end_time,
+        saved_output_times,
+        next_output,
+        output_times,
+        1e-9 * std::max(1., std::abs(parameters.time.end_time)));
+      const auto    solution_records = VtuSeries::load_records(in);
+      const auto    crack_records    = VtuSeries::load_records(in);
+      std::uint64_t history_bytes    = 0;
+      in.get(history_bytes);
+      in.get(initial_kinetic);
+      in.get(element_steps);
+      in.finish();
+      if (parameters.output.write_vtu)
+        {
+          solution_series->restore(solution_records, true);
+          crack_series->restore(crack_records, true);
+        }
+      std::cerr << "[tmfdem] resumed from " << file << ": step " << step_number
+                << ", t = " << time << " s\n";
+      return history_bytes;
+    }
+
+    void
+    TetrahedralSolver::after_step(CheckpointSchedule &schedule)
+    {
+      if (schedule.active() && schedule.due(step_number))
+        {
+          write_checkpoint_file();
+          schedule.written(step_number);
+        }
+      if (!stop_requested())
+        return;
+      const std::string signal = stop_signal_name();
+      std::cerr << "[tmfdem] " << signal
+                << ": finishing the step, writing a checkpoint and the "
+                   "outputs\n";
+      write_checkpoint_file();
+      compute_state_energies();
+      stop_reason = "stopped by " + signal;
+      write_summary(false);
+      throw StopRequested(
+        "stopped by " + signal + " at t = " + Utilities::to_string(time) +
+        " s after step " + std::to_string(step_number) + "; checkpoint in " +
+        checkpoint_folder(parameters) + ", outputs so far in " +
+        parameters.output.directory + ". Continue with: tmfdem " +
+        parameters.prm_file + " --resume (and the same --set options).");
+    }
+
     void
     TetrahedralSolver::run()
     {
@@ -1052,19 +1158,35 @@ namespace tmfdem
         }
       if (heat)
         header += ",T_min,T_max,stored_heat,heat_imbalance";
-      history_csv = std::make_unique<CsvSeries>(parameters.output.directory +
-                                                  "/history.csv",
-                                                header,
-                                                communicator);
       const auto         &dm = parameters.get<DiscreteMechanicsParameters>();
       const unsigned long max_steps = dm.max_steps;
       history_interval              = (end - start) / 1000.;
       next_history                  = start;
-      compute_state_energies();
-      initial_kinetic = energies.kinetic;
-      write_output();
-      write_history_row();
-      next_history += history_interval;
+      if (parameters.resume)
+        {
+          // the state, the output counters and series of the newest
+          // checkpoint; history.csv cut to its length then
+          const std::uint64_t history_bytes = load_checkpoint();
+          history_csv                       = std::make_unique<CsvSeries>(
+            CsvSeries::reopen(parameters.output.directory + "/history.csv",
+                              history_bytes,
+                              communicator));
+        }
+      else
+        {
+          history_csv =
+            std::make_unique<CsvSeries>(parameters.output.directory +
+                                          "/history.csv",
+                                        header,
+                                        communicator);
+          compute_state_energies();
+          initial_kinetic = energies.kinetic;
+          write_output();
+          write_history_row();
+          next_history += history_interval;
+        }
+      CheckpointSchedule checkpoints(parameters.checkpoint);
+      checkpoints.written(step_number);
       ProgressReporter progress(parameters.output.progress_interval,
                                 start,
                                 end,
@@ -1102,6 +1224,7 @@ namespace tmfdem
               ++next_output;
             }
           progress.update(step_number, time);
+          after_step(checkpoints);
         }
       loop_wall_time = std::chrono::duration<double>(
                          std::chrono::steady_clock::now() - wall_start)

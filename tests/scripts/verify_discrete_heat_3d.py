@@ -39,11 +39,16 @@
    of tetrahedra within 3 % for sigma_xx and sigma_yy; sigma_zz printed
    (the z miss of 4, not asserted as met).
 
+8. Checkpoints: the run of 5 stopped at 0.3 ms (checkpoints every 1000
+   steps) and continued with --resume to 0.5 ms ends bitwise in the
+   uninterrupted run's state (summary.json, every vtu file).
+
 usage: verify_discrete_heat_3d.py TMFDEM OUT
 """
 import json
 import os
 import re
+import subprocess
 import sys
 
 import numpy as np
@@ -252,12 +257,40 @@ print(("target met" if worst["szz"] <= 0.03 else "TARGET NOT MET") +
       f": sigma_zz within {100 * worst['szz']:.2f} % (target 3 %; the restrained "
       "cube's z miss of 4, doc/verification.md)", flush=True)
 
+# 8. checkpoints: the run of 5 stopped at 0.3 ms with a checkpoint every
+# 1000 steps, then resumed to 0.5 ms (--resume may extend End time), ends
+# in the state of the uninterrupted run: every vtu file and summary.json
+# (less its timings) bitwise the same
+folder = os.path.join(out, "cube_source_resumed")
+partial = source + ["Checkpoint/Interval (steps)=1000", "Discrete mechanics/Threads=1"]
+run(binary, cube, folder, *partial, "Time stepping/End time=3e-4")
+command = [binary, cube, "--resume", "--set", f"Output/Directory={folder}",
+           "--set", "Output/Progress interval=0"]
+for setting in partial:
+    command += ["--set", setting]
+print("$", " ".join(command), flush=True)
+resume = subprocess.run(command, capture_output=True, text=True)
+print(resume.stderr[-1500:], flush=True)
+ok &= check(resume.returncode == 0 and "resumed from" in resume.stderr,
+            "--resume continued from the checkpoint")
 timing = ("wall_time_s", "cpu_time_s", "cpu_time_busiest_thread_s",
           "cpu_time_other_threads_s", "element_steps_per_second", "threads",
           "threads_requested", "threads_used")
 same = all(runs[1][k] == runs[2][k] for k in runs[1] if k not in timing)
 ok &= check(same, "1 and 2 threads: summary.json the same bit for bit "
             "(temperatures, heat balance, energies)")
+resumed = summary(folder)
+same_resumed = all(resumed[k] == runs[1][k] for k in runs[1] if k not in timing)
+reference_folder = os.path.join(out, "cube_source_1_threads")
+vtu_files = sorted(f for f in os.listdir(reference_folder) if f.endswith(".vtu"))
+for name in vtu_files:
+    with open(os.path.join(reference_folder, name), "rb") as a, \
+            open(os.path.join(folder, name), "rb") as b:
+        same_resumed &= a.read() == b.read()
+ok &= check(same_resumed and resumed["steps"] == runs[1]["steps"],
+            f"stopped at 0.3 ms and resumed from the checkpoint at step 1000: "
+            f"summary.json and the {len(vtu_files)} vtu files bitwise those of "
+            "the uninterrupted run")
 parallel = check_parallel(runs[2], 2, load_before)
 if parallel == "fail":
     ok = False

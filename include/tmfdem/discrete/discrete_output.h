@@ -18,6 +18,9 @@
 
 namespace tmfdem
 {
+  class CheckpointWriter;
+  class CheckpointReader;
+
   class JsonObject;
   struct OutputParameters;
 } // namespace tmfdem
@@ -83,6 +86,12 @@ namespace tmfdem
        *  than 0). */
       void
       add_parallel_record(const double time);
+      /** Appends the records (time [s], file) to a checkpoint. */
+      void
+      save_records(CheckpointWriter &out) const;
+      /** The records save_records() wrote; InputError if corrupt. */
+      static std::vector<std::pair<double, std::string>>
+      load_records(CheckpointReader &in);
       /** The (time [s], file) records so far, for checkpoints. */
       const std::vector<std::pair<double, std::string>> &
       get_records() const

@@ -28,6 +28,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <tmfdem/base/parameters.h>
 #include <tmfdem/base/simulation.h>
@@ -43,6 +44,7 @@ namespace tmfdem
   class CsvSeries;
   class CheckpointWriter;
   class CheckpointReader;
+  class CheckpointSchedule;
 
   namespace discrete
   {
@@ -208,6 +210,21 @@ namespace tmfdem
        *  written before stay). */
       [[noreturn]] void
       guard_failure(const std::string &what);
+      /** The checkpoint's kind: the model and "(3D)". */
+      std::string
+      checkpoint_kind() const;
+      /** Writes a checkpoint (Checkpoint/Interval, a stop signal): the
+       *  state of put_state(), the output counters and series. */
+      void
+      write_checkpoint_file() const;
+      /** Restores the newest checkpoint (--resume); returns the length of
+       *  history.csv at it [bytes]. */
+      std::uint64_t
+      load_checkpoint();
+      /** Checkpoints due after a step, and a stop signal (SIGTERM, SIGINT):
+       *  checkpoint, summary.json, then StopRequested. */
+      void
+      after_step(CheckpointSchedule &schedule);
       void
       write_output();
       void
