@@ -233,6 +233,18 @@ namespace tmfdem
             reference_point(model, n));
     }
 
+    double
+    TetrahedralHeat::nodal_source(const unsigned int e) const
+    {
+      const auto &source = sources[model.material[e]];
+      if (!source)
+        return 0.;
+      Point<3> centroid;
+      for (unsigned int n = 4 * e; n < 4 * e + 4; ++n)
+        centroid += 0.25 * reference_point(model, n);
+      return source->value(centroid) * model.reference_area[e] / 4.;
+    }
+
     template <typename Function>
     double
     TetrahedralHeat::chunked_sum(const Function &f) const
@@ -360,13 +372,8 @@ namespace tmfdem
       set_function_time(time);
       // sources at the centroid, lumped a quarter per node
       for (unsigned int e = 0; e < model.n_elements; ++e)
-        if (const auto &source = sources[model.material[e]])
+        if (const double q = nodal_source(e); q != 0.)
           {
-            Point<3> centroid;
-            for (unsigned int n = 4 * e; n < 4 * e + 4; ++n)
-              centroid += 0.25 * reference_point(model, n);
-            const double q =
-              source->value(centroid) * model.reference_area[e] / 4.;
             for (unsigned int n = 4 * e; n < 4 * e + 4; ++n)
               rate[n] += q;
             partials[(e / chunk_elements) * W + 1] += 4. * q;
@@ -453,16 +460,9 @@ namespace tmfdem
           }
       set_function_time(time + time_step);
       for (unsigned int e = 0; e < model.n_elements; ++e)
-        if (const auto &source = sources[model.material[e]])
-          {
-            Point<3> centroid;
-            for (unsigned int n = 4 * e; n < 4 * e + 4; ++n)
-              centroid += 0.25 * reference_point(model, n);
-            const double q =
-              source->value(centroid) * model.reference_area[e] / 4.;
-            for (unsigned int n = 4 * e; n < 4 * e + 4; ++n)
-              rhs[n] += q;
-          }
+        if (const double q = nodal_source(e); q != 0.)
+          for (unsigned int n = 4 * e; n < 4 * e + 4; ++n)
+            rhs[n] += q;
       std::fill(robin_diagonal.begin(), robin_diagonal.end(), 0.);
       for_each_flux_node(
         [&](const BoundaryFace &b, const unsigned int n, const double third) {

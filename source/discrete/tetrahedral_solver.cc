@@ -66,7 +66,7 @@ namespace tmfdem
       const std::string in_3d =
         " is not modelled in 3D yet (Mesh/Dimension = 3: tetrahedra with "
         "cohesive joints, bodies and boundary conditions, heat with the "
-        "multi-rate coupling, no contact or gravity); ";
+        "multi-rate and quasi-static coupling, no contact or gravity); ";
       if (physics != Physics::mechanics)
         {
           const auto &dh = parameters.get<DiscreteHeatParameters>();
@@ -99,34 +99,7 @@ namespace tmfdem
             throw InputError("Time stepping/Mode = steady: the discrete heat "
                              "is transient only; allowed is transient.");
         }
-      if (physics == Physics::heat)
-        {
-          if (Utilities::MPI::n_mpi_processes(communicator) > 1)
-            throw InputError(
-              "Mesh/Dimension = 3: the discrete layer in 3D runs on one MPI "
-              "process; allowed is mpirun -np 1 (or no mpirun), with Discrete "
-              "mechanics/Threads for the cores.");
-          if (!parameters.monitors.probes.empty() ||
-              !parameters.monitors.lines.empty())
-            throw InputError("Monitors/Probes, Lines: probes and lines of the "
-                             "discrete layer" +
-                             in_3d +
-                             "allowed in 3D is none (solution.pvd holds "
-                             "the fields).");
-          return;
-        }
-      parameters.mechanics.check_dimension(3);
-      if (dm.contact)
-        throw InputError("Discrete mechanics/Contact = true: contact between "
-                         "tetrahedra" +
-                         in_3d + "allowed is Contact = false.");
-      for (const double g : dm.gravity)
-        if (g != 0.)
-          throw InputError("Discrete mechanics/Gravity: gravity" + in_3d +
-                           "allowed is 0, 0.");
-      if (!dm.initial_cracks.empty())
-        throw InputError("Discrete mechanics/Initial cracks: segments are 2D "
-                         "cracks; allowed in 3D is none.");
+      // every 3D model, heat alone too
       if (!parameters.monitors.probes.empty() ||
           !parameters.monitors.lines.empty())
         throw InputError("Monitors/Probes, Lines: probes and lines of the "
@@ -139,6 +112,20 @@ namespace tmfdem
                          "on one MPI process; allowed is mpirun -np 1 (or "
                          "no mpirun), with Discrete mechanics/Threads for "
                          "the cores.");
+      if (physics == Physics::heat)
+        return;
+      parameters.mechanics.check_dimension(3);
+      if (dm.contact)
+        throw InputError("Discrete mechanics/Contact = true: contact between "
+                         "tetrahedra" +
+                         in_3d + "allowed is Contact = false.");
+      for (const double g : dm.gravity)
+        if (g != 0.)
+          throw InputError("Discrete mechanics/Gravity: gravity" + in_3d +
+                           "allowed is 0, 0.");
+      if (!dm.initial_cracks.empty())
+        throw InputError("Discrete mechanics/Initial cracks: segments are 2D "
+                         "cracks; allowed in 3D is none.");
       for (const auto &condition : parameters.mechanical_boundary.conditions)
         if (condition.type == MechanicalBoundaryCondition::Type::displacement ||
             condition.type == MechanicalBoundaryCondition::Type::traction)

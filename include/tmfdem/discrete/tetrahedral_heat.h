@@ -164,6 +164,10 @@ namespace tmfdem
       solve_implicit(const double               time,
                      const double               time_step,
                      const std::vector<double> &T_old);
+      /** The heat source of tetrahedron @p e lumped on each of its four
+       *  nodes, q V / 4 with q at the centroid at the functions' time [W]. */
+      double
+      nodal_source(const unsigned int e) const;
       /** Sum over the chunks, in order, of f(begin, end) on the threads. */
       template <typename Function>
       double

@@ -15,9 +15,9 @@
  * TetrahedralHeat drive the thermal stretch F_T = s I of every tetrahedron
  * in the multi-rate coupling of 2D (one thermal step every n mechanical
  * steps over the same time: source/coupling/tetrahedral_thermo_mechanics.cc).
- * Contact between tetrahedra, gravity, quasi-static coupling, monitors,
- * checkpoints and MPI ranks beyond one are refused with a message naming
- * the entry (doc/theory.md 5.12, 5.13).
+ * Quasi-static coupling, checkpoints and --resume as in 2D. Contact
+ * between tetrahedra, gravity, monitors and MPI ranks beyond one are
+ * refused with a message naming the entry (doc/theory.md 5.12, 7.9).
  */
 #ifndef tmfdem_discrete_tetrahedral_solver_h
 #define tmfdem_discrete_tetrahedral_solver_h
