@@ -484,8 +484,14 @@ namespace tmfdem
       threads_used  = measure_concurrency(arena_for(n_threads));
       input_checked = true;
 
-      // the vector batches: the widest set unless one is named
-      vector_instructions = dm.vector_instructions;
+      // the vector batches: the widest set unless one is named, but AVX2
+      // for AVX-512 (the loop waits on memory: AVX2 as fast at 17 496
+      // tetrahedra, faster at 117 912, doc/performance.md)
+      vector_instructions =
+        dm.vector_instructions_auto &&
+            dm.vector_instructions == VectorInstructions::avx512 ?
+          VectorInstructions::avx2 :
+          dm.vector_instructions;
     }
 
     void

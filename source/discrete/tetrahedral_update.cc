@@ -13,6 +13,7 @@
 #include <tmfdem/discrete/element_kernel.h>
 #include <tmfdem/discrete/joint_kernel.h>
 #include <tmfdem/discrete/tetrahedral_update.h>
+#include <utility>
 
 namespace tmfdem
 {
@@ -20,15 +21,26 @@ namespace tmfdem
   {
     namespace
     {
+      template <typename Lanes, std::size_t... l>
+      __attribute__((always_inline)) inline Lanes
+      gather(const double      *p,
+             const unsigned int stride,
+             std::index_sequence<l...>)
+      {
+        // one initialiser: the loads are combined as a tree (insertion lane
+        // by lane would chain them)
+        return Lanes{p[stride * l]...};
+      }
+
       /** The vector of p[0], p[stride], ... (one per lane). */
       template <typename Lanes>
       __attribute__((always_inline)) inline Lanes
       gather(const double *p, const unsigned int stride)
       {
-        Lanes v;
-        for (unsigned int l = 0; l < sizeof(Lanes) / sizeof(double); ++l)
-          v[l] = p[stride * l];
-        return v;
+        return gather<Lanes>(
+          p,
+          stride,
+          std::make_index_sequence<sizeof(Lanes) / sizeof(double)>());
       }
 
       /** p[0], p[stride], ... = the lanes of @p v. */
@@ -38,6 +50,31 @@ namespace tmfdem
       {
         for (unsigned int l = 0; l < sizeof(Lanes) / sizeof(double); ++l)
           p[stride * l] = v[l];
+      }
+
+      template <typename Lanes, std::size_t... l>
+      __attribute__((always_inline)) inline Lanes
+      gather_nodes(const double       *v,
+                   const unsigned int *nodes,
+                   const unsigned int  k,
+                   std::index_sequence<l...>)
+      {
+        return Lanes{v[nodes[6 * l + k]]...};
+      }
+
+      /** The vector of v[nodes[k]], v[nodes[6 + k]], ... (node k of
+       *  consecutive face joints, DiscreteModel::joint_nodes). */
+      template <typename Lanes>
+      __attribute__((always_inline)) inline Lanes
+      gather_nodes(const double       *v,
+                   const unsigned int *nodes,
+                   const unsigned int  k)
+      {
+        return gather_nodes<Lanes>(
+          v,
+          nodes,
+          k,
+          std::make_index_sequence<sizeof(Lanes) / sizeof(double)>());
       }
 
       /**
@@ -166,16 +203,13 @@ namespace tmfdem
       {
         using Lanes = typename LaneVector<lanes>::type;
         // x[component][node], nodes a0, a1, a2, b0, b1, b2
-        Lanes x[3][6];
-        for (unsigned int l = 0; l < lanes; ++l)
+        Lanes               x[3][6];
+        const unsigned int *p = &m.joint_nodes[6 * j0];
+        for (unsigned int k = 0; k < 6; ++k)
           {
-            const unsigned int *p = &m.joint_nodes[6 * (j0 + l)];
-            for (unsigned int k = 0; k < 6; ++k)
-              {
-                x[0][k][l] = m.x[p[k]];
-                x[1][k][l] = m.y[p[k]];
-                x[2][k][l] = m.z[p[k]];
-              }
+            x[0][k] = gather_nodes<Lanes>(m.x.data(), p, k);
+            x[1][k] = gather_nodes<Lanes>(m.y.data(), p, k);
+            x[2][k] = gather_nodes<Lanes>(m.z.data(), p, k);
           }
         const Lanes *const              nodes[3] = {x[0], x[1], x[2]};
         const FaceJointFrameT<Lanes>    g = face_joint_frame<Lanes>(nodes);
