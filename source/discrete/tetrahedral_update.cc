@@ -202,6 +202,21 @@ namespace tmfdem
                        char                &broke)
       {
         using Lanes = typename LaneVector<lanes>::type;
+        // the nodes of the batch after next, scattered over the model:
+        // their coordinates and force slots fetched ahead (no effect on
+        // the results)
+        const std::size_t ahead = j0 + 2 * lanes;
+        if (ahead + lanes <= m.n_joints)
+          {
+            const unsigned int *q = &m.joint_nodes[6 * ahead];
+            for (unsigned int n = 0; n < 6 * lanes; ++n)
+              {
+                __builtin_prefetch(&m.x[q[n]]);
+                __builtin_prefetch(&m.y[q[n]]);
+                __builtin_prefetch(&m.z[q[n]]);
+                __builtin_prefetch(&m.node_joint_force[9 * q[n]], 1);
+              }
+          }
         // x[component][node], nodes a0, a1, a2, b0, b1, b2
         Lanes               x[3][6];
         const unsigned int *p = &m.joint_nodes[6 * j0];
