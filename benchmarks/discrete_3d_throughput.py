@@ -18,7 +18,9 @@ memory (ru_maxrss) of the cubes N and N - 4, their difference divided by
 the difference in tetrahedra (the libraries' fixed footprint cancels), and
 the whole process's peak over its tetrahedra for the cube N.
 
-usage: benchmarks/discrete_3d_throughput.py [path/to/tmfdem] [--cells N] [--steps S]
+--set ENTRY=VALUE (repeatable) goes to the 3D runs, e.g.
+--set "Discrete mechanics/Vector instructions=AVX-512".
+usage: benchmarks/discrete_3d_throughput.py [path/to/tmfdem] [--cells N] [--steps S] [--set ENTRY=VALUE]
 """
 import argparse
 import json
@@ -80,6 +82,8 @@ def main():
                         default=os.path.join(here, "..", "build-release", "tmfdem"))
     parser.add_argument("--cells", type=int, default=17)
     parser.add_argument("--steps", type=int, default=200)
+    parser.add_argument("--set", action="append", default=[],
+                        help="ENTRY=VALUE for the 3D runs (repeatable)")
     args = parser.parse_args()
     binary = os.path.abspath(args.binary)
     work = tempfile.mkdtemp(prefix="tmfdem_bench3d_")
@@ -89,7 +93,7 @@ def main():
         rates = {}
         for threads in (1, 2):
             s, rss = run(binary, PRM_3D, os.path.join(work, f"cube_{threads}"),
-                         cube(args.cells, args.steps, threads))
+                         cube(args.cells, args.steps, threads) + args.set)
             rates[threads] = s["elements"] * s["steps"] / s["wall_time_s"]
             print(f"3D, {threads} thread(s): {s['elements']} tetrahedra, {s['joints']} joints, "
                   f"{rates[threads]:.4g} tetrahedron-steps/s (threads_used "

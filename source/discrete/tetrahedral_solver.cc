@@ -26,6 +26,7 @@
 #include <tmfdem/discrete/stable_step.h>
 #include <tmfdem/discrete/tetrahedral_heat.h>
 #include <tmfdem/discrete/tetrahedral_solver.h>
+#include <tmfdem/discrete/tetrahedral_update.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 #include <tmfdem/io/output_schedule.h>
@@ -36,17 +37,6 @@ namespace tmfdem
 {
   namespace discrete
   {
-    namespace
-    {
-      /** The slot of face @p f among the three faces of a tetrahedron that
-       *  hold its vertex @p k (face f holds every vertex but 3 - f). */
-      inline unsigned int
-      face_slot(const unsigned int f, const unsigned int k)
-      {
-        return f < 3 - k ? f : f - 1;
-      }
-    } // namespace
-
     TetrahedralSolver::TetrahedralSolver(const Parameters &parameters,
                                          MPI_Comm          communicator,
                                          const Physics     physics)
@@ -528,6 +518,15 @@ namespace tmfdem
       if (physics != Physics::mechanics)
         setup_heat(); // coupling/tetrahedral_thermo_mechanics.cc
       input_checked = true;
+
+      // the vector batches: the widest set unless one is named, but AVX2
+      // for AVX-512 (the loop waits on memory: AVX2 as fast at 17 496
+      // tetrahedra, faster at 117 912, doc/performance.md)
+      vector_instructions =
+        dm.vector_instructions_auto &&
+            dm.vector_instructions == VectorInstructions::avx512 ?
+          VectorInstructions::avx2 :
+          dm.vector_instructions;
     }
 
     void
@@ -554,6 +553,10 @@ namespace tmfdem
       broke.assign((m.n_joints + chunk_size - 1) / chunk_size, 0);
       const double       t   = time;
       const SofteningLaw law = softening_law;
+      // batches of intact joints (tetrahedral_update.h); nullptr: none
+      const FaceJointBatchKernel batch =
+        face_joint_batch_kernel(vector_instructions, law);
+      const unsigned int lanes = vector_lanes(vector_instructions);
       for_each_chunk(
         arena_for(n_threads),
         m.n_joints,
@@ -563,6 +566,17 @@ namespace tmfdem
             const std::size_t c) {
           for (std::size_t j = begin; j < end; ++j)
             {
+              if (batch != nullptr && j + lanes <= end &&
+                  std::all_of(&m.joint_status[j],
+                              &m.joint_status[j] + lanes,
+                              [](const JointStatus s) {
+                                return s == JointStatus::intact;
+                              }))
+                {
+                  batch(m, j, joint_face.data(), t, broke[c]);
+                  j += lanes - 1;
+                  continue;
+                }
               const unsigned int *p = &m.joint_nodes[6 * j];
               double              f[2][3][3]; // side, node, component
               if (m.joint_status[j] != JointStatus::intact)
@@ -599,14 +613,8 @@ namespace tmfdem
                       r);
                   if (damage[0] >= 1. && damage[1] >= 1. && damage[2] >= 1.)
                     {
-                      const double d_o = r.d_opening, d_s = r.d_slip;
-                      const double ratio =
-                        d_o * d_o / std::max(1e-300, d_o * d_o + d_s * d_s);
-                      m.joint_status[j] = ratio > 0.9 ? JointStatus::mode_I :
-                                          ratio < 0.1 ? JointStatus::mode_II :
-                                                        JointStatus::mixed;
-                      m.joint_break_time[j] = t;
-                      broke[c]              = 1;
+                      mark_face_joint_broken(m, j, r.d_opening, r.d_slip, t);
+                      broke[c] = 1;
                       for (auto &side : f)
                         for (auto &node : side)
                           node[0] = node[1] = node[2] = 0.;
@@ -620,20 +628,7 @@ namespace tmfdem
                         }
                 }
               // each node's slot of this face
-              for (unsigned int side = 0; side < 2; ++side)
-                {
-                  const unsigned int face = joint_face[2 * j + side];
-                  for (unsigned int k = 0; k < 3; ++k)
-                    {
-                      const unsigned int node  = p[3 * side + k];
-                      const unsigned int local = node % 4;
-                      double            *slot =
-                        &m.node_joint_force[9 * node +
-                                            3 * face_slot(face, local)];
-                      for (unsigned int i = 0; i < 3; ++i)
-                        slot[i] = f[side][k][i];
-                    }
-                }
+              write_face_joint_forces(m, j, joint_face.data(), f);
             }
         });
       return std::find(broke.begin(), broke.end(), 1) != broke.end();
@@ -655,6 +650,18 @@ namespace tmfdem
       chunk_reaction.assign(n_chunks * n_owners, {{0., 0., 0.}});
       chunk_guard.assign(n_chunks, {{-1, -1}});
       auto &reaction = chunk_reaction;
+      // batches of tetrahedra whose nodes are all free
+      // (tetrahedral_update.h); nullptr: none
+      const TetrahedronBatchKernel batch =
+        tetrahedron_batch_kernel(vector_instructions);
+      const unsigned int    lanes = vector_lanes(vector_instructions);
+      TetrahedronBatchInput batch_input;
+      batch_input.lame      = element_lame.data();
+      batch_input.viscosity = viscosity.data();
+      batch_input.dt        = dt;
+      batch_input.damp_a    = a;
+      batch_input.damp_b    = damp_b_factor;
+      batch_input.c_m       = c_m;
       for_each_chunk(
         arena_for(n_threads),
         m.n_elements,
@@ -665,6 +672,15 @@ namespace tmfdem
           std::array<double, 5> &w = chunk_works[c];
           for (std::size_t e = begin; e < end; ++e)
             {
+              if (batch != nullptr && e + lanes <= end &&
+                  std::all_of(&node_constraint[4 * e],
+                              &node_constraint[4 * (e + lanes)],
+                              [](const int ci) { return ci < 0; }))
+                {
+                  batch(m, e, batch_input, w.data(), chunk_guard[c].data());
+                  e += lanes - 1;
+                  continue;
+                }
               const std::size_t   n0       = 4 * e;
               const double *const nodes[3] = {&m.x[n0], &m.y[n0], &m.z[n0]};
               const double *const velocities[3] = {&m.vx[n0],
@@ -706,9 +722,9 @@ namespace tmfdem
                       const double f_joint = jf[i] + jf[3 + i] + jf[6 + i];
                       const double f =
                         r.f_elastic[k][i] + r.f_viscous[k][i] + f_joint;
-                      const double v_old      = *v[i];
-                      double       v_new      = a * v_old + b_m * f;
-                      double       f_reaction = 0.;
+                      const double v_old = *v[i];
+                      double v_new = damped_velocity<double>(a, v_old, b_m, f);
+                      double f_reaction = 0.;
                       if (ci >= 0 && constraints[ci].prescribed[i])
                         {
                           const NodeConstraint &nc = constraints[ci];
@@ -716,12 +732,22 @@ namespace tmfdem
                           f_reaction = (v_new - a * v_old) / b_m - f;
                           reaction[c * n_owners + nc.owner][i] += f_reaction;
                         }
-                      const double travel = 0.5 * dt * (v_old + v_new);
-                      w[0] += r.f_elastic[k][i] * travel;
-                      w[1] += r.f_viscous[k][i] * travel;
-                      w[2] += f_joint * travel;
-                      w[3] += f_reaction * travel;
-                      w[4] += c_m * mass / dt * travel * travel;
+                      const double travel =
+                        half_step_travel<double>(dt, v_old, v_new);
+                      const TetrahedronNodeWorks<double> nw =
+                        tetrahedron_node_works<double>(r.f_elastic[k][i],
+                                                       r.f_viscous[k][i],
+                                                       f_joint,
+                                                       f_reaction,
+                                                       travel,
+                                                       c_m,
+                                                       mass,
+                                                       dt);
+                      w[0] += nw.elastic;
+                      w[1] += nw.viscous;
+                      w[2] += nw.joint;
+                      w[3] += nw.reaction;
+                      w[4] += nw.damping;
                       *v[i] = v_new;
                       *x[i] += dt * v_new;
                       // guards: the first non-finite velocity of the chunk

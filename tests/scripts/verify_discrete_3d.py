@@ -12,7 +12,9 @@
    external work (central differences: an O(dt^2) error), momentum-free
    rigid motions aside; and the run on two threads gives bitwise the
    summary of the run on one (the chunks do not depend on the thread
-   count), with the two threads shown to have run (common.check_parallel).
+   count), with the two threads shown to have run (common.check_parallel);
+   and the vector batches (Vector instructions = auto) give bitwise the
+   history and summary of the one-at-a-time loop (none) and of SSE2.
 3. The jointed cube under uniaxial stress (rollers on three faces, the
    fourth pulled slowly, 25 wave transits): the effective modulus
    (reaction / area) / (u / L) without Joint compliance compensation more
@@ -80,6 +82,23 @@ same = all(runs[1][k] == runs[2][k] for k in keys) and \
     runs[1]["energy"] == runs[2]["energy"]
 ok &= check(same, "1 and 2 threads: the same broken joints, cracks and "
             "energies, bit for bit")
+# the vector batches (tetrahedral_update.cc) against the one-at-a-time loop
+# (none) and the narrowest set: the same history and summary, bit for bit
+# (the run above takes the set of auto)
+with open(os.path.join(out, "cube_1_threads", "history.csv"), "rb") as f:
+    history_auto = f.read()
+for instructions in ("none", "SSE2"):
+    folder = os.path.join(out, f"cube_vector_{instructions}")
+    run(binary, cube_prm, folder, "Discrete mechanics/Threads=1",
+        f"Discrete mechanics/Vector instructions={instructions}")
+    v = summary(folder)
+    with open(os.path.join(folder, "history.csv"), "rb") as f:
+        history = f.read()
+    ok &= check(all(v[k] == s[k] for k in keys) and v["energy"] == e
+                and history == history_auto,
+                f"Vector instructions = {instructions} and auto: "
+                "the same broken joints, cracks, energies and history.csv, "
+                "bit for bit")
 
 # 3. the jointed cube's stiffness: uniaxial stress (rollers on x = 0, y = 0,
 # z = 0; the face x = 0.1 m pulled along x with a smooth ramp to 0.01 m/s

@@ -36,6 +36,7 @@
 #include <tmfdem/discrete/cohesive_law.h>
 #include <tmfdem/discrete/discrete_model.h>
 #include <tmfdem/discrete/solid.h>
+#include <tmfdem/discrete/vector_instructions.h>
 #include <tmfdem/io/validation_report.h>
 #include <vector>
 
@@ -298,6 +299,10 @@ namespace tmfdem
       unsigned int  threads_available = 1; ///< cores this process may use
       unsigned int  threads_used = 1; ///< measured concurrency of the arena
       static constexpr unsigned int chunk_size = 512;
+      /** Instruction set of the vector batches of the element and
+       *  face-joint loops (Discrete mechanics/Vector instructions;
+       *  tetrahedral_update.h). */
+      VectorInstructions vector_instructions = VectorInstructions::none;
       /** Per chunk of elements: the works of the step (elastic, viscous,
        *  joint, external, damping). */
       std::vector<std::array<double, 5>> chunk_works;
