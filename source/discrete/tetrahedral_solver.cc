@@ -80,10 +80,8 @@ namespace tmfdem
                                  in_3d_quasi_static +
                                  "allowed is mass (Discrete mechanics/Mass "
                                  "damping).");
-              if (dh.fracture_event_duration > 0.)
-                throw InputError("Discrete heat/Fracture event duration: a "
-                                 "fracture with inertia" +
-                                 in_3d_quasi_static + "allowed is 0.");
+              // (Fracture event duration needs kinetic damping: refused
+              // with it)
             }
           if (parameters.time.mode != TimeSteppingParameters::Mode::transient)
             throw InputError("Time stepping/Mode = steady: the discrete heat "
