@@ -346,29 +346,9 @@ namespace tmfdem
     {
       const unsigned int W = 2 + 3 * balance_slot.size();
       // conduction and joints, per tetrahedron (each writes its own nodes)
-      for_each_chunk(
-        arena_for(n_threads),
-        model.n_elements,
-        chunk_elements,
-        [&](const std::size_t begin, const std::size_t end, const std::size_t) {
-          for (std::size_t e = begin; e < end; ++e)
-            {
-              const double *K = &element_matrix[16 * e];
-              for (unsigned int a = 0; a < 4; ++a)
-                {
-                  const std::size_t n = 4 * e + a;
-                  double            q = 0.;
-                  for (unsigned int b = 0; b < 4; ++b)
-                    q -= K[4 * a + b] * T[4 * e + b];
-                  for (std::size_t s = 3 * n; s < 3 * n + 3; ++s)
-                    if (partner[s] >= 0 &&
-                        model.joint_status[partner_joint[s]] ==
-                          JointStatus::intact)
-                      q += partner_conductance[s] * (T[partner[s]] - T[n]);
-                  rate[n] = q;
-                }
-            }
-        });
+      for_each_row(T, [&](const std::size_t n, const double product) {
+        rate[n] = -product;
+      });
       set_function_time(time);
       // sources at the centroid, lumped a quarter per node
       for (unsigned int e = 0; e < model.n_elements; ++e)
@@ -393,9 +373,10 @@ namespace tmfdem
         });
     }
 
+    template <typename Row>
     void
-    TetrahedralHeat::apply(const std::vector<double> &x,
-                           std::vector<double>       &y) const
+    TetrahedralHeat::for_each_row(const std::vector<double> &x,
+                                  const Row                 &row) const
     {
       for_each_chunk(
         arena_for(n_threads),
@@ -407,13 +388,8 @@ namespace tmfdem
               const double *A = &element_matrix[16 * e];
               for (unsigned int a = 0; a < 4; ++a)
                 {
-                  const std::size_t n = 4 * e + a;
-                  if (dirichlet_node[n])
-                    {
-                      y[n] = 0.;
-                      continue;
-                    }
-                  double sum = robin_diagonal[n] * x[n];
+                  const std::size_t n   = 4 * e + a;
+                  double            sum = 0.;
                   for (unsigned int b = 0; b < 4; ++b)
                     sum += A[4 * a + b] * x[4 * e + b];
                   for (std::size_t s = 3 * n; s < 3 * n + 3; ++s)
@@ -421,10 +397,19 @@ namespace tmfdem
                         model.joint_status[partner_joint[s]] ==
                           JointStatus::intact)
                       sum += partner_conductance[s] * (x[n] - x[partner[s]]);
-                  y[n] = sum;
+                  row(n, sum);
                 }
             }
         });
+    }
+
+    void
+    TetrahedralHeat::apply(const std::vector<double> &x,
+                           std::vector<double>       &y) const
+    {
+      for_each_row(x, [&](const std::size_t n, const double product) {
+        y[n] = dirichlet_node[n] ? 0. : product + robin_diagonal[n] * x[n];
+      });
     }
 
     void
@@ -544,16 +529,6 @@ namespace tmfdem
             p[n] = z[n] + beta_k * p[n];
           ++iterations;
         }
-      // back to K alone for the balance
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        for (unsigned int a = 0; a < 4; ++a)
-          for (unsigned int b = 0; b < 4; ++b)
-            element_matrix[16 * e + 4 * a + b] -=
-              consistent_capacity<3>(volumetric_heat_capacity[e],
-                                     model.reference_area[e],
-                                     a,
-                                     b) /
-              time_step;
     }
 
     void
@@ -576,7 +551,8 @@ namespace tmfdem
       else
         {
           solve_implicit(time, time_step, T_old);
-          // the rates at the new temperatures (what backward Euler used)
+          // the rates at the new temperatures (what backward Euler used),
+          // with the conductivity matrices alone again (the solve added M/dt)
           update_element_matrices();
           heat_rates(time + time_step, rate, partials);
         }

@@ -155,6 +155,12 @@ namespace tmfdem
       heat_rates(const double         time,
                  std::vector<double> &rate,
                  std::vector<double> &partials);
+      /** Calls @p row(n, p_n) for every node n with p = (element_matrix +
+       *  intact joints) @p x, per tetrahedron on the threads (each row its
+       *  own node's). */
+      template <typename Row>
+      void
+      for_each_row(const std::vector<double> &x, const Row &row) const;
       /** y = (M/dt + K + joints + Robin) x on the free nodes, 0 on the
        *  Dirichlet nodes (implicit step). */
       void
