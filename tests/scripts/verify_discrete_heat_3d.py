@@ -101,8 +101,10 @@ imbalance = s["heat_balance"]["relative_imbalance"]
 ok &= check(imbalance < 1e-6, f"plate: heat balance {imbalance:.3g} (< 1e-6)")
 
 # 2. the joints' conductance: the O(1/beta) difference
-T = {}
-for beta in (100, 1000, 10000):
+# (beta = 1000 is the shipped run of 1, its output at t = 10 s)
+T = {1000: next(a for t, a in outputs(os.path.join(out, "plate"))
+                if t == 10.0)[("PointData", "temperature")]}
+for beta in (100, 10000):
     folder = os.path.join(out, f"plate_beta_{beta}")
     run(binary, plate, folder, f"Discrete heat/Joint conductance factor={beta}",
         "Time stepping/End time=10", "Output/Times=10")
