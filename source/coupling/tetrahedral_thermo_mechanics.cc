@@ -17,6 +17,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <tmfdem/base/exceptions.h>
@@ -392,6 +393,29 @@ namespace tmfdem
         }
     }
 
+    namespace
+    {
+      /** The per-node, per-element and per-joint arrays of the state a
+       *  thermal step is re-run from and a checkpoint holds, in the order
+       *  they are written (const or not, as @p model). */
+      template <typename Model>
+      auto
+      state_vectors(Model &model)
+      {
+        return std::array{&model.x,
+                          &model.y,
+                          &model.z,
+                          &model.vx,
+                          &model.vy,
+                          &model.vz,
+                          &model.thermal_stretch,
+                          &model.stress,
+                          &model.joint_damage,
+                          &model.joint_break_time,
+                          &model.node_joint_force};
+      }
+    } // namespace
+
     void
     TetrahedralSolver::put_state(CheckpointWriter &out) const
     {
@@ -400,17 +424,7 @@ namespace tmfdem
       out.put(thermal_time);
       out.put<std::uint64_t>(n_thermal_steps);
       relaxation.save_step_control(out);
-      for (const std::vector<double> *v : {&model.x,
-                                           &model.y,
-                                           &model.z,
-                                           &model.vx,
-                                           &model.vy,
-                                           &model.vz,
-                                           &model.thermal_stretch,
-                                           &model.stress,
-                                           &model.joint_damage,
-                                           &model.joint_break_time,
-                                           &model.node_joint_force})
+      for (const std::vector<double> *v : state_vectors(model))
         out.put(*v);
       out.put(model.joint_status);
       out.put(energies);
@@ -431,17 +445,7 @@ namespace tmfdem
       in.get(count);
       n_thermal_steps = count;
       relaxation.load_step_control(in);
-      for (std::vector<double> *v : {&model.x,
-                                     &model.y,
-                                     &model.z,
-                                     &model.vx,
-                                     &model.vy,
-                                     &model.vz,
-                                     &model.thermal_stretch,
-                                     &model.stress,
-                                     &model.joint_damage,
-                                     &model.joint_break_time,
-                                     &model.node_joint_force})
+      for (std::vector<double> *v : state_vectors(model))
         in.get(*v, v->size());
       in.get(model.joint_status, model.n_joints);
       in.get(energies);
