@@ -205,7 +205,7 @@ namespace tmfdem
                                           s == 1. ? 1. : 1. / s,
                                           element_lame[e].mu,
                                           element_lame[e].lambda,
-                                          nullptr,
+                                          anisotropy_of(e),
                                           0.,
                                           r);
               for (unsigned int k = 0; k < 4; ++k)
@@ -402,17 +402,17 @@ namespace tmfdem
       auto
       state_vectors(Model &model)
       {
-        return std::array{&model.x,
-                          &model.y,
-                          &model.z,
-                          &model.vx,
-                          &model.vy,
-                          &model.vz,
-                          &model.thermal_stretch,
-                          &model.stress,
-                          &model.joint_damage,
-                          &model.joint_break_time,
-                          &model.node_joint_force};
+        return std::array<decltype(&model.x), 11>{{&model.x,
+                                                   &model.y,
+                                                   &model.z,
+                                                   &model.vx,
+                                                   &model.vy,
+                                                   &model.vz,
+                                                   &model.thermal_stretch,
+                                                   &model.stress,
+                                                   &model.joint_damage,
+                                                   &model.joint_break_time,
+                                                   &model.node_joint_force}};
       }
     } // namespace
 

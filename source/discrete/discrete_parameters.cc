@@ -83,14 +83,15 @@ namespace tmfdem
       "Anisotropic joint compliance compensation",
       "true",
       Patterns::Bool(),
-      "With Joint compliance compensation: true removes each triangle's "
+      "With Joint compliance compensation: true removes each element's "
       "joints' compliance as the tensor it is (direction by direction), "
-      "not only its isotropic average, so that a triangle whose joints are "
-      "not spread evenly (on a free edge: no joint along it) is as stiff as "
-      "the material in every direction; the triangles then take an "
-      "anisotropic correction of Eq. 44 (doc/theory.md, 'Joint compliance "
-      "compensation'). false: isotropic compensation only. Tetrahedra "
-      "(Mesh/Dimension = 3) take the isotropic compensation either way.");
+      "not only its isotropic average, so that an element whose joints are "
+      "not spread evenly (on a free edge or face: no joint there; "
+      "tetrahedra of a structured mesh) is as stiff as the material in "
+      "every direction; the elements then take an anisotropic correction "
+      "of Eq. 44 (doc/theory.md, 'Joint compliance compensation'; 6 values "
+      "per triangle, 21 per tetrahedron). false: isotropic compensation "
+      "only.");
     prm.declare_entry("Contact penalty factor",
                       "10",
                       Patterns::Double(0.),

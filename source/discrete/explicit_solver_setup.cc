@@ -306,9 +306,9 @@ namespace tmfdem
               element_lame[e] = c.lame;
               if (anisotropic)
                 {
-                  std::copy(c.anisotropy.begin(),
-                            c.anisotropy.end(),
-                            &element_anisotropy[6 * e]);
+                  std::copy_n(c.anisotropy.begin(),
+                              anisotropy_size<2>,
+                              &element_anisotropy[6 * e]);
                   element_stiffness_bound[e] = c.stiffness_bound_factor;
                 }
               max_share = std::max(max_share, c.share);

@@ -1,6 +1,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <tmfdem/discrete/joint_compliance.h>
@@ -107,6 +108,123 @@ namespace tmfdem
           std::max(1., largest_eigenvalue(inverse_root * Ce * inverse_root));
       }
 
+      using Matrix6 = Eigen::Matrix<double, 6, 6>;
+      using Vector6 = Eigen::Matrix<double, 6, 1>;
+
+      /** The Mandel vector (mandel_pair<3>()) of the symmetric part of the
+       *  3x3 tensor @p t. */
+      Vector6
+      mandel_vector(const double (&t)[3][3])
+      {
+        Vector6 m;
+        for (int k = 0; k < 6; ++k)
+          {
+            const auto [i, j] = mandel_pair<3>(k);
+            m[k] = i == j ? t[i][i] : mandel_sqrt2 * 0.5 * (t[i][j] + t[j][i]);
+          }
+        return m;
+      }
+
+      /** C(lame)^(power) of the 3D isotropic stiffness as a Mandel matrix:
+       *  the eigenvalues 3K (on (1, 1, 1, 0, 0, 0) / sqrt 3) and 2 mu (the
+       *  rest); power 1 is C itself. */
+      Matrix6
+      isotropic_stiffness_power_3d(const LameConstants &lame,
+                                   const double         power)
+      {
+        const double bulk  = std::pow(3. * lame.lambda + 2. * lame.mu, power);
+        const double shear = std::pow(2. * lame.mu, power);
+        Matrix6      P     = shear * Matrix6::Identity();
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j)
+            P(i, j) += (bulk - shear) / 3.;
+        return P;
+      }
+
+      /** The largest eigenvalue of the symmetric part of @p A. */
+      double
+      largest_eigenvalue(const Matrix6 &A)
+      {
+        const Matrix6 symmetric = 0.5 * (A + A.transpose());
+        return Eigen::SelfAdjointEigenSolver<Matrix6>(symmetric,
+                                                      Eigen::EigenvaluesOnly)
+          .eigenvalues()
+          .maxCoeff();
+      }
+
+      /**
+       * The anisotropic compensation of a tetrahedron (the 3D counterpart of
+       * anisotropic_compensation()): the compliance tensor of its face
+       * joints, S_J = sum_k w_k (m_n m_n^T / p_n + (m_t1 m_t1^T +
+       * m_t2 m_t2^T) / p_t) with m the Mandel vectors of n n, sym(t1 n),
+       * sym(t2 n) (t1, t2 orthonormal in the face), removed from the
+       * material's compliance: C_e = (S - S_J)^-1, capped as in 2D.
+       */
+      void
+      anisotropic_compensation(const double (&p)[4][3],
+                               const double                 volume,
+                               const LameConstants         &lame,
+                               const std::array<double, 4> &normal_penalty,
+                               const std::array<double, 4> &tangential_penalty,
+                               const double                 max_share,
+                               CompensatedElement          &result)
+      {
+        Matrix6 SJ = Matrix6::Zero();
+        for (int k = 0; k < 4; ++k)
+          {
+            const double pn = normal_penalty[k], pt = tangential_penalty[k];
+            if (!(pn > 0.) || !(pt > 0.))
+              continue;
+            const int a = (k + 1) % 4, b = (k + 2) % 4, d = (k + 3) % 4;
+            dealii::Tensor<1, 3> f1, f2, f3;
+            for (int i = 0; i < 3; ++i)
+              {
+                f1[i] = p[b][i] - p[a][i];
+                f2[i] = p[d][i] - p[a][i];
+                f3[i] = p[d][i] - p[b][i];
+              }
+            const dealii::Tensor<1, 3> c    = dealii::cross_product_3d(f1, f2);
+            const double               area = 0.5 * c.norm();
+            const double h = (f1.norm() + f2.norm() + f3.norm()) / 3.;
+            const double w = area * h / (2. * volume);
+            const dealii::Tensor<1, 3> n  = c / c.norm();
+            const dealii::Tensor<1, 3> t1 = f1 / f1.norm();
+            const dealii::Tensor<1, 3> t2 = dealii::cross_product_3d(n, t1);
+            double                     nn[3][3], t1n[3][3], t2n[3][3];
+            for (int i = 0; i < 3; ++i)
+              for (int j = 0; j < 3; ++j)
+                {
+                  nn[i][j]  = n[i] * n[j];
+                  t1n[i][j] = t1[i] * n[j];
+                  t2n[i][j] = t2[i] * n[j];
+                }
+            const Vector6 mn = mandel_vector(nn), mt1 = mandel_vector(t1n),
+                          mt2 = mandel_vector(t2n);
+            SJ += w * (mn * mn.transpose() / pn +
+                       (mt1 * mt1.transpose() + mt2 * mt2.transpose()) / pt);
+          }
+        const Matrix6 root_C = isotropic_stiffness_power_3d(lame, 0.5);
+        const double  share  = largest_eigenvalue(root_C * SJ * root_C);
+        result.share         = std::max(result.share, share);
+        if (share > max_share)
+          {
+            result.capped = true;
+            SJ *= max_share / share;
+          }
+        const Matrix6 Ce =
+          (isotropic_stiffness_power_3d(lame, -1.) - SJ).inverse();
+        const Matrix6 delta =
+          Ce - isotropic_stiffness_power_3d(result.lame, 1.);
+        for (int i = 0; i < 6; ++i)
+          for (int j = i; j < 6; ++j)
+            result.anisotropy[anisotropy_index<3>(i, j)] =
+              0.5 * (delta(i, j) + delta(j, i));
+        const Matrix6 inverse_root =
+          isotropic_stiffness_power_3d(result.lame, -0.5);
+        result.stiffness_bound_factor =
+          std::max(1., largest_eigenvalue(inverse_root * Ce * inverse_root));
+      }
+
       /**
        * The isotropic compensation of an element in @p dim dimensions whose
        * joints add the bulk compliance @p bulk (to 1/K) and the shear
@@ -193,7 +311,8 @@ namespace tmfdem
                                 const LameConstants         &lame,
                                 const std::array<double, 4> &normal_penalty,
                                 const std::array<double, 4> &tangential_penalty,
-                                const double                 max_share)
+                                const double                 max_share,
+                                const bool                   anisotropic)
     {
       CompensatedElement result;
       result.lame          = lame;
@@ -248,6 +367,14 @@ namespace tmfdem
       if (result.weight == 0.)
         return result;
       compensate_isotropic(3, bulk, shear, lame, max_share, result);
+      if (anisotropic)
+        anisotropic_compensation(p,
+                                 volume,
+                                 lame,
+                                 normal_penalty,
+                                 tangential_penalty,
+                                 max_share,
+                                 result);
       return result;
     }
   } // namespace discrete

@@ -191,14 +191,21 @@ namespace tmfdem
         }
       setup_joint_constants(parameters, softening_law, model);
 
-      // joint compliance compensation (isotropic): each tetrahedron in
-      // series with half of its joints has the material's stiffness
+      // joint compliance compensation: each tetrahedron in series with
+      // half of its joints has the material's stiffness (isotropic, or
+      // direction by direction with the anisotropic correction)
       compensation_capped = 0;
       compensation_share  = 0.;
+      element_anisotropy.clear();
+      element_stiffness_bound.clear();
       if (!dm.joint_compliance_compensation)
         return;
-      // tetrahedra: the isotropic compensation (Anisotropic joint
-      // compliance compensation is written for triangles)
+      const bool anisotropic = dm.anisotropic_joint_compliance_compensation;
+      if (anisotropic)
+        {
+          element_anisotropy.assign(anisotropy_size<3> * model.n_elements, 0.);
+          element_stiffness_bound.assign(model.n_elements, 1.);
+        }
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
           std::array<double, 4> x, y, z, p_n{}, p_t{};
@@ -227,8 +234,16 @@ namespace tmfdem
                                         element_lame[e],
                                         p_n,
                                         p_t,
-                                        max_compensated_share);
+                                        max_compensated_share,
+                                        anisotropic);
           element_lame[e] = c.lame;
+          if (anisotropic)
+            {
+              std::copy(c.anisotropy.begin(),
+                        c.anisotropy.end(),
+                        &element_anisotropy[anisotropy_size<3> * e]);
+              element_stiffness_bound[e] = c.stiffness_bound_factor;
+            }
           compensation_capped += c.capped;
           compensation_share = std::max(compensation_share, c.share);
         }
@@ -456,6 +471,13 @@ namespace tmfdem
                                                               in.lame,
                                                               in.node_mass);
           in.viscosity = viscosity[e];
+          // the anisotropic correction: C_e <= f C(lame) bounds the
+          // element's stiffness
+          if (!element_stiffness_bound.empty())
+            {
+              in.lame.lambda *= element_stiffness_bound[e];
+              in.lame.mu *= element_stiffness_bound[e];
+            }
           for (unsigned int f = 0; f < 4; ++f)
             {
               const int code = model.edge_joint[4 * e + f];
@@ -656,10 +678,12 @@ namespace tmfdem
       TetrahedronBatchInput batch_input;
       batch_input.lame      = element_lame.data();
       batch_input.viscosity = viscosity.data();
-      batch_input.dt        = dt;
-      batch_input.damp_a    = a;
-      batch_input.damp_b    = damp_b_factor;
-      batch_input.c_m       = c_m;
+      batch_input.anisotropy =
+        element_anisotropy.empty() ? nullptr : element_anisotropy.data();
+      batch_input.dt     = dt;
+      batch_input.damp_a = a;
+      batch_input.damp_b = damp_b_factor;
+      batch_input.c_m    = c_m;
       for_each_chunk(
         arena_for(n_threads),
         m.n_elements,
@@ -692,7 +716,7 @@ namespace tmfdem
                                           s == 1. ? 1. : 1. / s,
                                           element_lame[e].mu,
                                           element_lame[e].lambda,
-                                          nullptr,
+                                          anisotropy_of(e),
                                           viscosity[e],
                                           r);
               // guards: the first inverted element of the chunk
@@ -829,8 +853,10 @@ namespace tmfdem
       for (auto &row : F)
         for (double &f : row)
           f /= s;
-      return model.reference_area[e] * s * s * s *
-             constitutive::strain_energy_density<3>(F, element_lame[e]);
+      double psi = constitutive::strain_energy_density<3>(F, element_lame[e]);
+      if (const double *c = anisotropy_of(e))
+        psi += anisotropic_energy_density<3>(F, c);
+      return model.reference_area[e] * s * s * s * psi;
     }
 
     void
@@ -963,6 +989,7 @@ namespace tmfdem
       summary.add("joint_compliance_compensation",
                   parameters.get<DiscreteMechanicsParameters>()
                     .joint_compliance_compensation);
+      summary.add("anisotropic_compensation", !element_anisotropy.empty());
       summary.add("compensation_capped_elements", compensation_capped);
       summary.add("compensation_largest_share", compensation_share);
       summary.add("crack_area", crack_area);

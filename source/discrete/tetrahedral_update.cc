@@ -114,10 +114,15 @@ namespace tmfdem
             mu[l]     = in.lame[e0 + l].mu;
             lambda[l] = in.lame[e0 + l].lambda;
           }
-        const Lanes               eta = gather<Lanes>(&in.viscosity[e0], 1);
-        const Lanes *const        nodes[3]      = {X[0], X[1], X[2]};
-        const Lanes *const        velocities[3] = {V[0], V[1], V[2]};
-        const Lanes *const        no_anisotropy = nullptr;
+        const Lanes        eta           = gather<Lanes>(&in.viscosity[e0], 1);
+        const Lanes *const nodes[3]      = {X[0], X[1], X[2]};
+        const Lanes *const velocities[3] = {V[0], V[1], V[2]};
+        constexpr int      n_anisotropy  = anisotropy_size<3>;
+        Lanes              anisotropy[n_anisotropy];
+        if (in.anisotropy != nullptr)
+          for (int i = 0; i < n_anisotropy; ++i)
+            anisotropy[i] = gather<Lanes>(&in.anisotropy[n_anisotropy * e0 + i],
+                                          n_anisotropy);
         ElementResponse<3, Lanes> r;
         element_response<3, Lanes>(nodes,
                                    velocities,
@@ -125,7 +130,8 @@ namespace tmfdem
                                    inv_s,
                                    mu,
                                    lambda,
-                                   no_anisotropy,
+                                   in.anisotropy != nullptr ? anisotropy :
+                                                              nullptr,
                                    eta,
                                    r);
         // xx, yy, zz, xy, yz, xz

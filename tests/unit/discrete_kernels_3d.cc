@@ -339,7 +339,8 @@ TEST(Tetrahedron, RigidMotionsAreStressFreeAndStretchRatesViscous)
 }
 
 // The vector batches: element_response<3> on four lanes gives every lane
-// bitwise the result of the element-by-element call.
+// bitwise the result of the element-by-element call, with and without the
+// anisotropic correction.
 TEST(Tetrahedron, LanesMatchOneElementAtATimeBitwise)
 {
   using Lanes = LaneVector<4>::type;
@@ -362,49 +363,59 @@ TEST(Tetrahedron, LanesMatchOneElementAtATimeBitwise)
       for (int k = 0; k < 9; ++k)
         ibl[k][l] = ib[l][k];
     }
-  const Lanes inverse_stretch             = {1., 1. / 1.01, 1., 1. / 0.99};
-  const Lanes mu_l                        = {mu, mu, mu, mu},
-              lambda_l                    = {lambda, lambda, lambda, lambda};
-  const Lanes               eta_l         = {0., 1e3, 2e3, 0.};
-  const Lanes *const        nodes[3]      = {xl[0], xl[1], xl[2]};
-  const Lanes *const        velocities[3] = {vl[0], vl[1], vl[2]};
-  ElementResponse<3, Lanes> rl;
-  element_response<3, Lanes>(nodes,
-                             velocities,
-                             ibl,
-                             inverse_stretch,
-                             mu_l,
-                             lambda_l,
-                             nullptr,
-                             eta_l,
-                             rl);
-  for (int l = 0; l < 4; ++l)
+  const Lanes inverse_stretch      = {1., 1. / 1.01, 1., 1. / 0.99};
+  const Lanes mu_l                 = {mu, mu, mu, mu},
+              lambda_l             = {lambda, lambda, lambda, lambda};
+  const Lanes        eta_l         = {0., 1e3, 2e3, 0.};
+  const Lanes *const nodes[3]      = {xl[0], xl[1], xl[2]};
+  const Lanes *const velocities[3] = {vl[0], vl[1], vl[2]};
+  // the anisotropic correction of joint compliance compensation: none, or
+  // 21 values per lane
+  double dC[4][21];
+  Lanes  dCl[21];
+  for (int k = 0; k < 21; ++k)
+    for (int l = 0; l < 4; ++l)
+      dCl[k][l] = dC[l][k] = 1e9 * sym(random);
+  for (const bool anisotropic : {false, true})
     {
-      const double *const        n[3] = {x[l][0], x[l][1], x[l][2]};
-      const double *const        w[3] = {v[l][0], v[l][1], v[l][2]};
-      ElementResponse<3, double> r;
-      element_response<3, double>(n,
-                                  w,
-                                  ib[l],
-                                  inverse_stretch[l],
-                                  mu,
-                                  lambda,
-                                  nullptr,
-                                  eta_l[l],
-                                  r);
-      EXPECT_EQ(r.det, rl.det[l]);
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-          {
-            EXPECT_EQ(r.stress[i][j], rl.stress[i][j][l]);
-            EXPECT_EQ(r.viscous[i][j], rl.viscous[i][j][l]);
-          }
-      for (int a = 0; a < 4; ++a)
-        for (int i = 0; i < 3; ++i)
-          {
-            EXPECT_EQ(r.f_elastic[a][i], rl.f_elastic[a][i][l]);
-            EXPECT_EQ(r.f_viscous[a][i], rl.f_viscous[a][i][l]);
-          }
+      ElementResponse<3, Lanes> rl;
+      element_response<3, Lanes>(nodes,
+                                 velocities,
+                                 ibl,
+                                 inverse_stretch,
+                                 mu_l,
+                                 lambda_l,
+                                 anisotropic ? dCl : nullptr,
+                                 eta_l,
+                                 rl);
+      for (int l = 0; l < 4; ++l)
+        {
+          const double *const        n[3] = {x[l][0], x[l][1], x[l][2]};
+          const double *const        w[3] = {v[l][0], v[l][1], v[l][2]};
+          ElementResponse<3, double> r;
+          element_response<3, double>(n,
+                                      w,
+                                      ib[l],
+                                      inverse_stretch[l],
+                                      mu,
+                                      lambda,
+                                      anisotropic ? dC[l] : nullptr,
+                                      eta_l[l],
+                                      r);
+          EXPECT_EQ(r.det, rl.det[l]);
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+              {
+                EXPECT_EQ(r.stress[i][j], rl.stress[i][j][l]);
+                EXPECT_EQ(r.viscous[i][j], rl.viscous[i][j][l]);
+              }
+          for (int a = 0; a < 4; ++a)
+            for (int i = 0; i < 3; ++i)
+              {
+                EXPECT_EQ(r.f_elastic[a][i], rl.f_elastic[a][i][l]);
+                EXPECT_EQ(r.f_viscous[a][i], rl.f_viscous[a][i][l]);
+              }
+        }
     }
 }
 

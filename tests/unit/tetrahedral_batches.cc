@@ -115,7 +115,9 @@ namespace
                                     s == 1. ? 1. : 1. / s,
                                     in.lame[e].mu,
                                     in.lame[e].lambda,
-                                    nullptr,
+                                    in.anisotropy != nullptr ?
+                                      &in.anisotropy[anisotropy_size<3> * e] :
+                                      nullptr,
                                     in.viscosity[e],
                                     r);
         if (!(r.det > 0.) && guard[0] < 0)
@@ -169,7 +171,9 @@ namespace
 } // namespace
 
 // The element batches of every instruction set against one tetrahedron at a
-// time, an inverted tetrahedron among them, with viscosity and mass damping.
+// time, an inverted tetrahedron among them, with viscosity and mass damping,
+// without and with the anisotropic correction of joint compliance
+// compensation.
 TEST(TetrahedralBatches, ElementsMatchOneAtATimeBitwise)
 {
   const unsigned int         n = 16; // whole batches of 8, 4 and 2
@@ -188,6 +192,13 @@ TEST(TetrahedralBatches, ElementsMatchOneAtATimeBitwise)
   in.c_m       = 50.;
   in.damp_a    = (1. - 0.5 * in.c_m * in.dt) / (1. + 0.5 * in.c_m * in.dt);
   in.damp_b    = in.dt / (1. + 0.5 * in.c_m * in.dt);
+  std::vector<double> anisotropy(anisotropy_size<3> * n);
+  for (std::size_t k = 0; k < anisotropy.size(); ++k)
+    anisotropy[k] = 1e9 * std::sin(0.37 * k + 0.1);
+  for (const bool anisotropic : {false, true})
+  {
+  SCOPED_TRACE(anisotropic ? "anisotropic" : "isotropic");
+  in.anisotropy = anisotropic ? anisotropy.data() : nullptr;
 
   const DiscreteModel start = random_tetrahedra(n);
   DiscreteModel       expected(start);
@@ -220,6 +231,7 @@ TEST(TetrahedralBatches, ElementsMatchOneAtATimeBitwise)
       EXPECT_EQ(guard[0], expected_guard[0]);
       EXPECT_EQ(guard[1], expected_guard[1]);
     }
+  }
 }
 
 namespace

@@ -7,7 +7,7 @@
  * source/discrete/node_update.cc): the deformation gradient F from the
  * current nodes and the inverse initial basis (paper Eq. 39), its elastic
  * part F_e = F / s, the Cauchy stress of Eq. 44 on F_e
- * (constitutive::elastic_stress()) plus, in 2D, the anisotropic correction
+ * (constitutive::elastic_stress()) plus the anisotropic correction
  * of joint compliance compensation (anisotropic_stress()), the viscous
  * stress 2 eta sym(dF/dt F^-1) (Eqs. 45-46) and the nodal forces of both
  * (nodal_forces()); then each node's resultant, its damped velocity
@@ -81,7 +81,8 @@ namespace tmfdem
      * basis @p inverse_basis (row-major dim x dim) [1/m], inverse thermal
      * stretch @p inverse_stretch (1 / s) [-], Lame constants @p mu,
      * @p lambda [Pa], Mandel components of the anisotropic correction
-     * @p anisotropy (six, or nullptr for none; 2D only) [Pa] and viscosity
+     * @p anisotropy (anisotropy_size<dim>, or nullptr for none) [Pa] and
+     * viscosity
      * @p eta [Pa s] (no viscous stress where eta is not > 0).
      */
     template <int dim, typename Number>
@@ -106,23 +107,17 @@ namespace tmfdem
         for (int j = 0; j < dim; ++j)
           Fe[i][j] = F[i][j] * inverse_stretch;
       constitutive::elastic_stress<dim>(Fe, mu, lambda, r.stress);
-      if constexpr (dim == 2)
-        if (anisotropy != nullptr)
-          {
-            Number axx, ayy, axy;
-            anisotropic_stress(Fe[0][0],
-                               Fe[0][1],
-                               Fe[1][0],
-                               Fe[1][1],
-                               anisotropy,
-                               axx,
-                               ayy,
-                               axy);
-            r.stress[0][0] += axx;
-            r.stress[1][1] += ayy;
-            r.stress[0][1] += axy;
-            r.stress[1][0] = r.stress[0][1];
-          }
+      if (anisotropy != nullptr)
+        {
+          Number a[dim][dim];
+          anisotropic_stress<dim>(Fe, anisotropy, a);
+          for (int i = 0; i < dim; ++i)
+            for (int j = i; j < dim; ++j)
+              {
+                r.stress[i][j] += a[i][j];
+                r.stress[j][i] = r.stress[i][j];
+              }
+        }
       nodal_forces<dim>(r.stress, x, r.f_elastic);
 
       // viscous stress 2 eta sym(dF/dt F^-1) where eta > 0, else +0; a

@@ -64,10 +64,12 @@ namespace tmfdem
        * Anisotropic compensation only: Delta C = C_e - C(lame) [Pa], the
        * element's stiffness (the inverse of the material's compliance minus
        * its joints' compliance tensor) less the isotropic part in `lame`,
-       * in Mandel components (11, 22, 33, 12, 13, 23) of (xx, yy,
-       * sqrt 2 xy); all zero where the joints' compliance is isotropic.
+       * stored as anisotropy_index<dim>() lays it out (solid.h): in 2D the
+       * first six, (11, 22, 33, 12, 13, 23) of the Mandel (xx, yy,
+       * sqrt 2 xy), in 3D all 21 of (xx, yy, zz, sqrt 2 xy, sqrt 2 xz,
+       * sqrt 2 yz); all zero where the joints' compliance is isotropic.
        */
-      std::array<double, 6> anisotropy = {{0., 0., 0., 0., 0., 0.}};
+      std::array<double, anisotropy_size<3>> anisotropy = {};
       /** Anisotropic compensation only: f >= 1 with C_e <= f C(lame) in
        *  every direction, so that `lame` times f bounds the stiffness
        *  (stable step) [-]. */
@@ -118,8 +120,14 @@ namespace tmfdem
      * / 15,
      *
      * K = lambda + 2 mu / 3 the 3D bulk modulus, the joints' share capped at
-     * @p max_share as in 2D. No anisotropic part (the fields of
-     * CompensatedElement for it stay at their defaults).
+     * @p max_share as in 2D.
+     *
+     * With @p anisotropic, also the tensor, as for triangles: S_J =
+     * sum_k w_k (m_n m_n^T / p_n + (m_t1 m_t1^T + m_t2 m_t2^T) / p_t) (Mandel
+     * vectors of n n, sym(t1 n), sym(t2 n), t1 and t2 orthonormal in the
+     * face) removed from the material's compliance, C_e = (S - S_J)^-1,
+     * limited to @p max_share of S in its stiffest direction; C_e - C(lame)
+     * in `anisotropy` (21 components) and the bound factor of C_e.
      */
     CompensatedElement
     compensate_joint_compliance(const std::array<double, 4> &x,
@@ -128,7 +136,8 @@ namespace tmfdem
                                 const LameConstants         &lame,
                                 const std::array<double, 4> &normal_penalty,
                                 const std::array<double, 4> &tangential_penalty,
-                                const double                 max_share);
+                                const double                 max_share,
+                                const bool anisotropic = false);
   } // namespace discrete
 } // namespace tmfdem
 

@@ -89,9 +89,71 @@ namespace tmfdem
     /** sqrt 2, of the Mandel components below. */
     constexpr double mandel_sqrt2 = 1.4142135623730951;
 
-    /** Green-Lagrange strain E = (F_e^T F_e - I) / 2 of F_e = [f00, f01;
-     *  f10, f11] in Mandel components (xx, yy, sqrt 2 xy) [-], written to
-     *  @p e. @p Number: double or a vector of doubles. */
+    /** The number of Mandel components of a symmetric dim x dim tensor:
+     *  3 in 2D (xx, yy, sqrt 2 xy), 6 in 3D (xx, yy, zz, sqrt 2 xy,
+     *  sqrt 2 xz, sqrt 2 yz). */
+    template <int dim>
+    constexpr int mandel_size = dim *(dim + 1) / 2;
+
+    /** The number of stored components of a symmetric matrix of Mandel
+     *  size n = mandel_size<dim> (6 in 2D, 21 in 3D): the diagonal
+     *  (11, 22, ..., nn), then the entries above it row by row (12, 13,
+     *  ..., 1n, 23, ...). */
+    template <int dim>
+    constexpr int anisotropy_size = mandel_size<dim> *(mandel_size<dim> + 1) /
+                                    2;
+
+    /** Row i and column j of Mandel component @p k of a symmetric dim x dim
+     *  tensor: the diagonal first, then (0, 1), (0, 2), (1, 2). */
+    template <int dim>
+    constexpr std::array<int, 2>
+    mandel_pair(const int k)
+    {
+      if (k < dim)
+        return {{k, k}};
+      if (dim == 2)
+        return {{0, 1}};
+      constexpr int rows[3] = {0, 0, 1}, cols[3] = {1, 2, 2};
+      return {{rows[k - dim], cols[k - dim]}};
+    }
+
+    /** The stored index of entry (i, j) of a symmetric matrix of Mandel
+     *  size n = mandel_size<dim> (layout of anisotropy_size). */
+    template <int dim>
+    constexpr int
+    anisotropy_index(const int i, const int j)
+    {
+      constexpr int n = mandel_size<dim>;
+      if (i == j)
+        return i;
+      const int r = i < j ? i : j, c = i < j ? j : i;
+      // entries above the diagonal before row r: (n - 1) + ... + (n - r)
+      return n + r * (2 * n - r - 1) / 2 + (c - r - 1);
+    }
+
+    /** Green-Lagrange strain E = (F_e^T F_e - I) / 2 of @p Fe [-] in
+     *  Mandel components (mandel_pair()), written to @p e. @p Number:
+     *  double or a vector of doubles. */
+    template <int dim, typename Number>
+    __attribute__((always_inline)) inline void
+    green_lagrange_mandel(const Number (&Fe)[dim][dim],
+                          Number (&e)[mandel_size<dim>])
+    {
+      for (int k = 0; k < mandel_size<dim>; ++k)
+        {
+          const auto [i, j] = mandel_pair<dim>(k);
+          Number c          = Fe[0][i] * Fe[0][j];
+          for (int l = 1; l < dim; ++l)
+            c = c + Fe[l][i] * Fe[l][j];
+          if (i == j)
+            e[k] = 0.5 * (c - 1.);
+          else
+            e[k] = mandel_sqrt2 * 0.5 * c;
+        }
+    }
+
+    /** The same for the 2D F_e = [f00, f01; f10, f11], in (xx, yy,
+     *  sqrt 2 xy). */
     template <typename Number>
     __attribute__((always_inline)) inline void
     green_lagrange_mandel(const Number f00,
@@ -100,9 +162,11 @@ namespace tmfdem
                           const Number f11,
                           Number      *e)
     {
-      e[0] = 0.5 * (f00 * f00 + f10 * f10 - 1.);
-      e[1] = 0.5 * (f01 * f01 + f11 * f11 - 1.);
-      e[2] = mandel_sqrt2 * 0.5 * (f00 * f01 + f10 * f11);
+      const Number Fe[2][2] = {{f00, f01}, {f10, f11}};
+      Number       m[3];
+      green_lagrange_mandel<2>(Fe, m);
+      for (int k = 0; k < 3; ++k)
+        e[k] = m[k];
     }
 
     /** The same for a Matrix2 @p Fe. */
@@ -118,63 +182,98 @@ namespace tmfdem
      * The anisotropic correction of an element's stress [Pa]
      * (joint_compliance.h): the Cauchy stress of the second Piola-Kirchhoff
      * stress Delta C : E, E = (F_e^T F_e - I) / 2, that is
-     * F_e (Delta C : E) F_e^T / J, with @p c the Mandel components of
-     * Delta C (11, 22, 33, 12, 13, 23) [Pa], for F_e = [f00, f01; f10, f11]
-     * [-]; written to @p sxx, @p syy, @p sxy. Linear in the small strain,
+     * F_e (Delta C : E) F_e^T / J, with @p c the stored components of the
+     * Mandel matrix Delta C (anisotropy_index(): 11, 22, 33, 12, 13, 23 in
+     * 2D; 21 in 3D) [Pa], for the elastic deformation gradient @p Fe [-];
+     * written to @p sigma (symmetric). Linear in the small strain,
      * objective, and the derivative of anisotropic_energy_density().
      * @p Number: double or a vector of doubles.
      */
-    template <typename Number>
+    template <int dim, typename Number>
     __attribute__((always_inline)) inline void
-    anisotropic_stress(const Number  f00,
-                       const Number  f01,
-                       const Number  f10,
-                       const Number  f11,
+    anisotropic_stress(const Number (&Fe)[dim][dim],
                        const Number *c,
-                       Number       &sxx,
-                       Number       &syy,
-                       Number       &sxy)
+                       Number (&sigma)[dim][dim])
     {
-      Number e[3];
-      green_lagrange_mandel(f00, f01, f10, f11, e);
-      const Number Sxx = c[0] * e[0] + c[3] * e[1] + c[4] * e[2];
-      const Number Syy = c[3] * e[0] + c[1] * e[1] + c[5] * e[2];
-      const Number Sxy =
-        (c[4] * e[0] + c[5] * e[1] + c[2] * e[2]) / mandel_sqrt2;
-      const Number inverse_J = 1. / (f00 * f11 - f01 * f10);
-      const Number a00 = f00 * Sxx + f01 * Sxy, a01 = f00 * Sxy + f01 * Syy;
-      const Number a10 = f10 * Sxx + f11 * Sxy, a11 = f10 * Sxy + f11 * Syy;
-      sxx = (a00 * f00 + a01 * f01) * inverse_J;
-      syy = (a10 * f10 + a11 * f11) * inverse_J;
-      sxy = (a00 * f10 + a01 * f11) * inverse_J;
+      constexpr int n = mandel_size<dim>;
+      Number        e[n];
+      green_lagrange_mandel<dim>(Fe, e);
+      // the second Piola-Kirchhoff stress S = Delta C : E as a tensor
+      Number S[dim][dim];
+      for (int k = 0; k < n; ++k)
+        {
+          Number s = c[anisotropy_index<dim>(k, 0)] * e[0];
+          for (int l = 1; l < n; ++l)
+            s = s + c[anisotropy_index<dim>(k, l)] * e[l];
+          const auto [i, j] = mandel_pair<dim>(k);
+          if (i == j)
+            S[i][i] = s;
+          else
+            S[i][j] = S[j][i] = s / mandel_sqrt2;
+        }
+      // sigma = F_e S F_e^T / J
+      const Number inverse_J = 1. / constitutive::determinant<dim>(Fe);
+      Number       A[dim][dim];
+      for (int i = 0; i < dim; ++i)
+        for (int j = 0; j < dim; ++j)
+          {
+            Number a = Fe[i][0] * S[0][j];
+            for (int k = 1; k < dim; ++k)
+              a = a + Fe[i][k] * S[k][j];
+            A[i][j] = a;
+          }
+      for (int i = 0; i < dim; ++i)
+        for (int j = i; j < dim; ++j)
+          {
+            Number a = A[i][0] * Fe[j][0];
+            for (int k = 1; k < dim; ++k)
+              a = a + A[i][k] * Fe[j][k];
+            sigma[i][j] = a * inverse_J;
+            sigma[j][i] = sigma[i][j];
+          }
     }
 
     /** The same for a Matrix2 @p Fe and Delta C @p delta_C [Pa]. */
     inline Stress2
     anisotropic_stress(const Matrix2 &Fe, const double *delta_C)
     {
+      const double Fa[2][2] = {{Fe(0, 0), Fe(0, 1)}, {Fe(1, 0), Fe(1, 1)}};
+      double       sigma[2][2];
+      anisotropic_stress<2>(Fa, delta_C, sigma);
       Stress2 s;
-      anisotropic_stress(Fe(0, 0),
-                         Fe(0, 1),
-                         Fe(1, 0),
-                         Fe(1, 1),
-                         delta_C,
-                         s.xx,
-                         s.yy,
-                         s.xy);
+      s.xx = sigma[0][0];
+      s.yy = sigma[1][1];
+      s.xy = sigma[0][1];
       return s;
     }
 
-    /** The energy of anisotropic_stress() per unit area of the stress-free
-     *  configuration, E : Delta C : E / 2 [J/m^2]. */
+    /** The energy of anisotropic_stress() per unit measure (area, volume)
+     *  of the stress-free configuration, E : Delta C : E / 2 [J/m^dim], for
+     *  the elastic deformation gradient @p Fe [-] and the stored Delta C
+     *  @p c [Pa]. */
+    template <int dim>
+    inline double
+    anisotropic_energy_density(const double (&Fe)[dim][dim], const double *c)
+    {
+      constexpr int n = mandel_size<dim>;
+      double        e[n];
+      green_lagrange_mandel<dim>(Fe, e);
+      double diagonal = c[0] * e[0] * e[0];
+      for (int k = 1; k < n; ++k)
+        diagonal += c[k] * e[k] * e[k];
+      double psi = 0.5 * diagonal;
+      for (int k = 0; k < n; ++k)
+        for (int l = k + 1; l < n; ++l)
+          psi += c[anisotropy_index<dim>(k, l)] * e[k] * e[l];
+      return psi;
+    }
+
+    /** The same for a Matrix2 @p Fe. */
     inline double
     anisotropic_energy_density(const Matrix2 &Fe, const double *delta_C)
     {
-      const auto e = green_lagrange_mandel(Fe);
-      return 0.5 * (delta_C[0] * e[0] * e[0] + delta_C[1] * e[1] * e[1] +
-                    delta_C[2] * e[2] * e[2]) +
-             delta_C[3] * e[0] * e[1] + delta_C[4] * e[0] * e[2] +
-             delta_C[5] * e[1] * e[2];
+      const double Fa[2][2] = {{Fe(0, 0), Fe(0, 1)}, {Fe(1, 0), Fe(1, 1)}};
+      return anisotropic_energy_density<2>(Fa, delta_C);
     }
 
     /**

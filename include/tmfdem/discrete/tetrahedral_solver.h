@@ -255,6 +255,21 @@ namespace tmfdem
        *  [Pa s]. */
       std::vector<LameConstants> element_lame;
       std::vector<double>        viscosity;
+      /** Anisotropic joint compliance compensation: Delta C of each
+       *  tetrahedron, anisotropy_size<3> = 21 per element (solid.h) [Pa],
+       *  and the factor f >= 1 with C_e <= f C(lame) for the stable step;
+       *  both empty without it. */
+      std::vector<double> element_anisotropy;
+      std::vector<double> element_stiffness_bound;
+      /** Delta C of element @p e (21 values), nullptr without the
+       *  anisotropic compensation. */
+      const double *
+      anisotropy_of(const unsigned int e) const
+      {
+        return element_anisotropy.empty() ?
+                 nullptr :
+                 &element_anisotropy[anisotropy_size<3> * e];
+      }
       /** Per joint and side: the face of its element (deal.II's face
        *  index, 0-3). */
       std::vector<unsigned char> joint_face;

@@ -136,6 +136,8 @@ namespace tmfdem
       /** Per element: Lame constants [Pa] and viscosity [Pa s]. */
       const LameConstants *lame;
       const double        *viscosity;
+      /** Per element: the anisotropic correction (21 each), or nullptr. */
+      const double *anisotropy = nullptr;
       /** The step [s]; v_new = a v_old + b / m f with @p damp_a [-] and
        *  @p damp_b [s]; the mass damping c [1/s]. */
       double dt, damp_a, damp_b, c_m;
