@@ -196,42 +196,42 @@ TEST(TetrahedralBatches, ElementsMatchOneAtATimeBitwise)
   for (std::size_t k = 0; k < anisotropy.size(); ++k)
     anisotropy[k] = 1e9 * std::sin(0.37 * k + 0.1);
   for (const bool anisotropic : {false, true})
-  {
-  SCOPED_TRACE(anisotropic ? "anisotropic" : "isotropic");
-  in.anisotropy = anisotropic ? anisotropy.data() : nullptr;
-
-  const DiscreteModel start = random_tetrahedra(n);
-  DiscreteModel       expected(start);
-  double              expected_works[5] = {0., 0., 0., 0., 0.};
-  long long           expected_guard[2] = {-1, -1};
-  update_one_at_a_time(expected, in, expected_works, expected_guard);
-  EXPECT_EQ(expected_guard[0], 5);
-  EXPECT_EQ(expected_guard[1], -1);
-
-  const auto sets = batch_sets();
-  EXPECT_FALSE(sets.empty());
-  for (const VectorInstructions set : sets)
     {
-      SCOPED_TRACE(vector_instructions_name(set));
-      const TetrahedronBatchKernel kernel = tetrahedron_batch_kernel(set);
-      ASSERT_NE(kernel, nullptr);
-      DiscreteModel m(start);
-      double        works[5] = {0., 0., 0., 0., 0.};
-      long long     guard[2] = {-1, -1};
-      for (std::size_t e = 0; e < n; e += vector_lanes(set))
-        kernel(m, e, in, works, guard);
-      EXPECT_TRUE(same_bits(m.x, expected.x));
-      EXPECT_TRUE(same_bits(m.y, expected.y));
-      EXPECT_TRUE(same_bits(m.z, expected.z));
-      EXPECT_TRUE(same_bits(m.vx, expected.vx));
-      EXPECT_TRUE(same_bits(m.vy, expected.vy));
-      EXPECT_TRUE(same_bits(m.vz, expected.vz));
-      EXPECT_TRUE(same_bits(m.stress, expected.stress));
-      EXPECT_EQ(std::memcmp(works, expected_works, sizeof(works)), 0);
-      EXPECT_EQ(guard[0], expected_guard[0]);
-      EXPECT_EQ(guard[1], expected_guard[1]);
+      SCOPED_TRACE(anisotropic ? "anisotropic" : "isotropic");
+      in.anisotropy = anisotropic ? anisotropy.data() : nullptr;
+
+      const DiscreteModel start = random_tetrahedra(n);
+      DiscreteModel       expected(start);
+      double              expected_works[5] = {0., 0., 0., 0., 0.};
+      long long           expected_guard[2] = {-1, -1};
+      update_one_at_a_time(expected, in, expected_works, expected_guard);
+      EXPECT_EQ(expected_guard[0], 5);
+      EXPECT_EQ(expected_guard[1], -1);
+
+      const auto sets = batch_sets();
+      EXPECT_FALSE(sets.empty());
+      for (const VectorInstructions set : sets)
+        {
+          SCOPED_TRACE(vector_instructions_name(set));
+          const TetrahedronBatchKernel kernel = tetrahedron_batch_kernel(set);
+          ASSERT_NE(kernel, nullptr);
+          DiscreteModel m(start);
+          double        works[5] = {0., 0., 0., 0., 0.};
+          long long     guard[2] = {-1, -1};
+          for (std::size_t e = 0; e < n; e += vector_lanes(set))
+            kernel(m, e, in, works, guard);
+          EXPECT_TRUE(same_bits(m.x, expected.x));
+          EXPECT_TRUE(same_bits(m.y, expected.y));
+          EXPECT_TRUE(same_bits(m.z, expected.z));
+          EXPECT_TRUE(same_bits(m.vx, expected.vx));
+          EXPECT_TRUE(same_bits(m.vy, expected.vy));
+          EXPECT_TRUE(same_bits(m.vz, expected.vz));
+          EXPECT_TRUE(same_bits(m.stress, expected.stress));
+          EXPECT_EQ(std::memcmp(works, expected_works, sizeof(works)), 0);
+          EXPECT_EQ(guard[0], expected_guard[0]);
+          EXPECT_EQ(guard[1], expected_guard[1]);
+        }
     }
-  }
 }
 
 namespace
