@@ -240,10 +240,26 @@ namespace tmfdem
                                     parameters.center,
                                     parameters.outer_radius);
         else
-          GridGenerator::hyper_shell(hexahedra,
-                                     parameters.center,
-                                     parameters.inner_radius,
-                                     parameters.outer_radius);
+          {
+            // hexahedra: deal.II's six cells (one per face of a cube);
+            // tetrahedra: six or 24 cells (each cube face split in four),
+            // whichever makes the cells' arc at the mean radius closer to
+            // the wall thickness, since the joints of flat tetrahedra take
+            // much of their compliance (theory 5.12)
+            const double a      = parameters.inner_radius,
+                         b      = parameters.outer_radius;
+            const double arc_6  = 0.5 * numbers::PI * 0.5 * (a + b);
+            const auto   aspect = [&](const double arc) {
+              return std::abs(std::log(arc / (b - a)));
+            };
+            const unsigned int n_cells =
+              tetrahedra && aspect(0.5 * arc_6) < aspect(arc_6) ? 24 : 6;
+            GridGenerator::hyper_shell(hexahedra,
+                                       parameters.center,
+                                       a,
+                                       b,
+                                       n_cells);
+          }
         refine_to_size_and_flatten(hexahedra, h);
         if (parameters.source == Source::spherical_shell &&
             parameters.radial_grading != 1.)
