@@ -213,101 +213,44 @@ namespace tmfdem
           DiscreteHeatParameters::RelaxationPredictor::extrapolate)
         predict_relaxation(dt);
       relaxation.current_thermal_step = dt;
-      unsigned int i                  = 0;
-      bool         relaxed            = false;
-      // kinetic damping: the kinetic energy of the last step and the
-      // largest one since the last check (a reset just before a check
-      // must not pass for convergence)
-      const bool kinetic_damping =
-        parameters.get<DiscreteHeatParameters>().relaxation_damping ==
-        DiscreteHeatParameters::RelaxationDamping::kinetic;
-      double previous_kinetic = 0., window_kinetic = 0.;
-      // Fracture event duration: once a joint breaks (on any rank), the
-      // velocity resets pause until step event_end, so that the fracture
-      // runs with inertia (counted again from every later break)
-      const double event_duration =
-        parameters.get<DiscreteHeatParameters>().fracture_event_duration;
-      const unsigned int event_length =
-        event_duration > 0. ?
-          static_cast<unsigned int>(
-            std::min(std::ceil(event_duration / time_step), double(1u << 30))) :
-          0u;
-      unsigned int event_end = 0;
-      bool         had_event = false;
-      while (i < steps_per_thermal_step)
+      // the relaxation (QuasiStaticRelaxation::relax(), written once for
+      // triangles and tetrahedra) on this solver's steps and energies
+      struct Steps
+      {
+        ExplicitSolver &s;
+        bool
+        relaxation_step()
         {
-          relaxation.relaxation_step = i;
-          mechanical_step();
-          ++i;
-          if (event_length > 0 && joints_broke_anywhere)
-            {
-              event_end = i + event_length;
-              had_event = true;
-            }
-          const bool in_event = i < event_end;
-          if (in_event)
-            {
-              ++relaxation.fracture_event_steps;
-              window_kinetic   = std::max(window_kinetic, step_kinetic);
-              previous_kinetic = step_kinetic;
-            }
-          else if (i == event_end)
-            {
-              // the event is over: every piece comes to rest (as on the
-              // real support); a free piece drifting at constant speed has
-              // no peak of kinetic energy for the kinetic damping to catch
-              window_kinetic = std::max(window_kinetic, step_kinetic);
-              reset_velocities();
-              previous_kinetic = 0.;
-            }
-          else if (kinetic_damping)
-            {
-              window_kinetic = std::max(window_kinetic, step_kinetic);
-              if (step_kinetic < previous_kinetic)
-                {
-                  reset_velocities();
-                  previous_kinetic = 0.;
-                }
-              else
-                previous_kinetic = step_kinetic;
-            }
-          // convergence checks, not while a fracture event runs (it is not
-          // over until event_end, whatever its energies say)
-          if (i % 50 == 0 && !in_event)
-            {
-              energy();
-              relaxation.last_kinetic_to_strain =
-                (kinetic_damping ? window_kinetic : balance.kinetic) /
-                std::max(balance.strain, 1e-300);
-              // an unloaded body: energies at round-off level, where the
-              // ratios measure noise and could never pass
-              const bool unloaded =
-                balance.strain + balance.joint_stored <
-                  relaxation.unloaded_energy &&
-                (kinetic_damping ? window_kinetic : balance.kinetic) <
-                  relaxation.unloaded_energy;
-              window_kinetic = 0.;
-              if (i > relaxation.quasi_static_ramp_steps && unloaded)
-                {
-                  relaxed = true;
-                  break;
-                }
-              if (i > relaxation.quasi_static_ramp_steps &&
-                  relaxation.last_kinetic_to_strain <
-                    parameters.get<DiscreteHeatParameters>()
-                      .relaxation_tolerance &&
-                  relative_unbalanced_force <=
-                    parameters.get<DiscreteHeatParameters>()
-                      .relaxation_force_tolerance)
-                {
-                  relaxed = true;
-                  break;
-                }
-            }
+          s.mechanical_step();
+          return s.joints_broke_anywhere;
         }
-      relaxation.finish_relaxation(i, relaxed);
-      if (had_event)
-        ++relaxation.fracture_events;
+        double
+        step_kinetic() const
+        {
+          return s.step_kinetic;
+        }
+        void
+        reset_velocities()
+        {
+          s.reset_velocities();
+        }
+        coupling::QuasiStaticRelaxation::Energies
+        relaxation_energies()
+        {
+          s.energy();
+          return {s.balance.kinetic,
+                  s.balance.strain,
+                  s.balance.strain + s.balance.joint_stored};
+        }
+        double
+        relative_unbalanced_force() const
+        {
+          return s.relative_unbalanced_force;
+        }
+      } steps{*this};
+      relaxation.relax(steps,
+                       steps_per_thermal_step,
+                       relaxation.control(time_step));
       synchronise(); // joint counts and utilisation of the whole state
       if (parameters.get<DiscreteHeatParameters>().relaxation_predictor ==
           DiscreteHeatParameters::RelaxationPredictor::extrapolate)

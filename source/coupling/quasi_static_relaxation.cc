@@ -15,6 +15,24 @@ namespace tmfdem
 
     QuasiStaticRelaxation::~QuasiStaticRelaxation() = default;
 
+    QuasiStaticRelaxation::Control
+    QuasiStaticRelaxation::control(const double time_step) const
+    {
+      const auto &dh = parameters.get<DiscreteHeatParameters>();
+      Control     c;
+      c.kinetic_damping = dh.relaxation_damping ==
+                          DiscreteHeatParameters::RelaxationDamping::kinetic;
+      const double event_duration = dh.fracture_event_duration;
+      c.event_length =
+        event_duration > 0. ?
+          static_cast<unsigned int>(
+            std::min(std::ceil(event_duration / time_step), double(1u << 30))) :
+          0u;
+      c.tolerance       = dh.relaxation_tolerance;
+      c.force_tolerance = dh.relaxation_force_tolerance;
+      return c;
+    }
+
     double
     QuasiStaticRelaxation::next_thermal_step(
       const double                time,

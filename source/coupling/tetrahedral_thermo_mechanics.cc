@@ -163,12 +163,46 @@ namespace tmfdem
         energies.thermal_work += w;
     }
 
-    void
+    bool
     TetrahedralSolver::relaxation_step()
     {
-      compute_joint_forces();
+      const bool broke = compute_joint_forces();
       update_nodes(time_step);
       ++step_number;
+      return broke;
+    }
+
+    double
+    TetrahedralSolver::kinetic_energy() const
+    {
+      double kinetic = 0.;
+      for (std::size_t n = 0; n < model.n_nodes; ++n)
+        kinetic += 0.5 * model.mass[n] *
+                   (model.vx[n] * model.vx[n] + model.vy[n] * model.vy[n] +
+                    model.vz[n] * model.vz[n]);
+      return kinetic;
+    }
+
+    void
+    TetrahedralSolver::reset_velocities()
+    {
+      double removed = 0.;
+      for (std::size_t n = 0; n < model.n_nodes; ++n)
+        {
+          const int ci   = node_constraint[n];
+          double   *v[3] = {&model.vx[n], &model.vy[n], &model.vz[n]};
+          double   *x[3] = {&model.x[n], &model.y[n], &model.z[n]};
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              if (ci >= 0 && constraints[ci].prescribed[i])
+                continue;
+              removed += 0.5 * model.mass[n] * *v[i] * *v[i];
+              *x[i] -= 0.5 * time_step * *v[i];
+              *v[i] = 0.;
+            }
+        }
+      energies.damping += removed;
+      ++relaxation.velocity_resets;
     }
 
     double
@@ -243,39 +277,43 @@ namespace tmfdem
       ++n_thermal_steps;
       update_thermal_stretch();
       // ... then the mechanics relaxes at these temperatures (no clock)
-      const auto &dh = parameters.get<DiscreteHeatParameters>();
       relaxation.current_thermal_step = dt;
-      unsigned int i                  = 0;
-      bool         relaxed            = false;
-      while (i < steps_per_thermal_step)
+      // the relaxation (QuasiStaticRelaxation::relax(), written once for
+      // triangles and tetrahedra) on this solver's steps and energies
+      struct Steps
+      {
+        TetrahedralSolver &s;
+        bool
+        relaxation_step()
         {
-          relaxation.relaxation_step = i;
-          relaxation_step();
-          ++i;
-          if (i % 50 != 0)
-            continue;
-          compute_state_energies();
-          relaxation.last_kinetic_to_strain =
-            energies.kinetic / std::max(energies.strain, 1e-300);
-          // an unloaded body: energies at round-off level, where the
-          // ratios measure noise and could never pass
-          if (energies.strain < relaxation.unloaded_energy &&
-              energies.kinetic < relaxation.unloaded_energy)
-            {
-              relaxed = true;
-              break;
-            }
-          if (relaxation.last_kinetic_to_strain < dh.relaxation_tolerance)
-            {
-              relative_unbalanced_force = unbalanced_force();
-              if (relative_unbalanced_force <= dh.relaxation_force_tolerance)
-                {
-                  relaxed = true;
-                  break;
-                }
-            }
+          return s.relaxation_step();
         }
-      relaxation.finish_relaxation(i, relaxed);
+        double
+        step_kinetic() const
+        {
+          return s.kinetic_energy();
+        }
+        void
+        reset_velocities()
+        {
+          s.reset_velocities();
+        }
+        coupling::QuasiStaticRelaxation::Energies
+        relaxation_energies()
+        {
+          s.compute_state_energies();
+          return {s.energies.kinetic, s.energies.strain, s.energies.strain};
+        }
+        double
+        relative_unbalanced_force()
+        {
+          s.relative_unbalanced_force = s.unbalanced_force();
+          return s.relative_unbalanced_force;
+        }
+      } steps{*this};
+      relaxation.relax(steps,
+                       steps_per_thermal_step,
+                       relaxation.control(time_step));
     }
 
     void

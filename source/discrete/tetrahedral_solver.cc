@@ -74,14 +74,6 @@ namespace tmfdem
                 throw InputError("Discrete heat/Relaxation predictor = "
                                  "extrapolate" +
                                  in_3d_quasi_static + "allowed is none.");
-              if (dh.relaxation_damping !=
-                  DiscreteHeatParameters::RelaxationDamping::mass)
-                throw InputError("Discrete heat/Relaxation damping = kinetic" +
-                                 in_3d_quasi_static +
-                                 "allowed is mass (Discrete mechanics/Mass "
-                                 "damping).");
-              // (Fracture event duration needs kinetic damping: refused
-              // with it)
             }
           if (parameters.time.mode != TimeSteppingParameters::Mode::transient)
             throw InputError("Time stepping/Mode = steady: the discrete heat "
@@ -1028,6 +1020,13 @@ namespace tmfdem
                           relaxation.last_kinetic_to_strain);
               summary.add("last_relative_unbalanced_force",
                           relative_unbalanced_force);
+              summary.add("velocity_resets",
+                          static_cast<long long>(relaxation.velocity_resets));
+              summary.add("fracture_events",
+                          static_cast<long long>(relaxation.fracture_events));
+              summary.add("fracture_event_steps",
+                          static_cast<long long>(
+                            relaxation.fracture_event_steps));
             }
           summary.add("heat_balance",
                       heat_balance_summary(heat->balance(),

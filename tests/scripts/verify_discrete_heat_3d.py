@@ -39,6 +39,12 @@
 8. Checkpoints: the run of 5 stopped at 0.3 ms (checkpoints every 1000
    steps) and continued with --resume to 0.5 ms ends bitwise in the
    uninterrupted run's state (summary.json, every vtu file).
+9. A fracture event in 3D: the restrained cube cooled by 100 C at once
+   (tension up to E alpha 100 / (1 - 2 nu) = 59.6 MPa against a tensile
+   strength of 30 MPa), quasi-static with kinetic damping and Fracture event
+   duration = 0.1 ms: joints break, the velocity resets pause for a
+   fracture event of at least 0.1 ms of mechanical steps, and the
+   relaxations converge (none at the cap).
 
 usage: verify_discrete_heat_3d.py TMFDEM OUT
 """
@@ -286,6 +292,27 @@ ok &= check(same_resumed and resumed["steps"] == runs[1]["steps"],
             f"stopped at 0.3 ms and resumed from the checkpoint at step 1000: "
             f"summary.json and the {len(vtu_files)} vtu files bitwise those of "
             "the uninterrupted run")
+# 9. a fracture event
+folder = os.path.join(out, "cube_fracture_event")
+run(binary, cube, folder, *restrained, "Initial conditions/Temperature=-100",
+    "Materials/Material 0/Tensile strength=3e7", "Materials/Material 0/Cohesion=6e7",
+    "Materials/Material 0/Mode I fracture energy=50",
+    "Materials/Material 0/Mode II fracture energy=250",
+    "Discrete heat/Coupling=quasi-static", "Discrete heat/Relaxation damping=kinetic",
+    "Discrete heat/Fracture event duration=1e-4", "Time stepping/Time step=1e-4",
+    "Time stepping/End time=3e-4", "Output/Times=3e-4",
+    "Discrete heat/Mechanical steps per thermal step=20000")
+f = summary(folder)
+event_steps = 1e-4 / f["time_step"]
+ok &= check(f["broken_joints"] > 0 and f["fracture_events"] >= 1 and
+            f["fracture_event_steps"] >= event_steps and f["relaxations_at_cap"] == 0,
+            f"fracture event: {f['broken_joints']} joints broke, {f['fracture_events']} "
+            f"event(s) of {f['fracture_event_steps']} mechanical steps (>= "
+            f"{event_steps:.0f}: 0.1 ms), {f['velocity_resets']} velocity resets, no "
+            f"relaxation at the cap; energy balance error {f['energy']['balance_error']:.4g} J "
+            f"of the thermal work {f['energy']['thermal_work']:.4g} J (printed: the resets "
+            f"of a state released at once)")
+
 parallel = check_parallel(runs[2], 2, load_before)
 if parallel == "fail":
     ok = False

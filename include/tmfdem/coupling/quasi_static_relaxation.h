@@ -14,6 +14,7 @@
 #ifndef tmfdem_coupling_quasi_static_relaxation_h
 #define tmfdem_coupling_quasi_static_relaxation_h
 
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <tmfdem/base/parameters.h>
@@ -123,6 +124,140 @@ namespace tmfdem
         last_relaxation_steps         = steps;
         previous_relaxation_converged = last_relaxation_converged;
         last_relaxation_converged     = converged;
+      }
+
+      // ------------------------------------------------ one relaxation
+
+      /** What relax() reads of Discrete heat: the damping, the fracture
+       *  event and the convergence tolerances. */
+      struct Control
+      {
+        /** Relaxation damping = kinetic: velocities reset at each peak of
+         *  the kinetic energy. */
+        bool kinetic_damping = false;
+        /** Fracture event duration in mechanical steps (0: none). */
+        unsigned int event_length = 0;
+        /** Relaxation tolerance (kinetic / strain energy) and Relaxation
+         *  force tolerance (out-of-balance force) [-]. */
+        double tolerance = 0., force_tolerance = 0.;
+      };
+      /** The Control of the run's Discrete heat for the mechanical step
+       *  @p time_step [s]. */
+      Control
+      control(const double time_step) const;
+
+      /** A solver's energies at a convergence check of relax() [J]. */
+      struct Energies
+      {
+        double kinetic = 0.;
+        double strain  = 0.;
+        /** The energy an unloaded body holds at round-off level: the
+         *  strain energy and what the joints store. */
+        double stored = 0.;
+      };
+
+      /**
+       * One relaxation at fixed temperatures (theory manual 8), written
+       * once for the triangles and the tetrahedra: at most @p max_steps
+       * mechanical steps of @p solver, with the velocity resets of
+       * kinetic damping, the fracture events (a joint breaks: the resets
+       * pause for event_length steps, then every node comes to rest) and a
+       * convergence check every 50 steps (kinetic / strain energy, the
+       * out-of-balance force, or an unloaded body); the record in
+       * finish_relaxation(). @p solver provides
+       *   bool relaxation_step()          one step; true if a joint broke,
+       *   double step_kinetic()           the kinetic energy after it [J],
+       *   void reset_velocities()         every free node at rest,
+       *   Energies relaxation_energies()  the energies at a check,
+       *   double relative_unbalanced_force()  the out-of-balance force [-].
+       * Returns true if the relaxation converged.
+       */
+      template <typename Solver>
+      bool
+      relax(Solver &solver, const unsigned int max_steps, const Control &c)
+      {
+        unsigned int i       = 0;
+        bool         relaxed = false;
+        // kinetic damping: the kinetic energy of the last step and the
+        // largest one since the last check (a reset just before a check
+        // must not pass for convergence)
+        double previous_kinetic = 0., window_kinetic = 0.;
+        // once a joint breaks, the resets pause until step event_end, so
+        // that the fracture runs with inertia (counted again from every
+        // later break)
+        unsigned int event_end = 0;
+        bool         had_event = false;
+        while (i < max_steps)
+          {
+            relaxation_step  = i;
+            const bool broke = solver.relaxation_step();
+            ++i;
+            if (c.event_length > 0 && broke)
+              {
+                event_end = i + c.event_length;
+                had_event = true;
+              }
+            const bool in_event = i < event_end;
+            if (in_event)
+              {
+                ++fracture_event_steps;
+                const double kinetic = solver.step_kinetic();
+                window_kinetic       = std::max(window_kinetic, kinetic);
+                previous_kinetic     = kinetic;
+              }
+            else if (i == event_end)
+              {
+                // the event is over: every piece comes to rest (as on the
+                // real support); a free piece drifting at constant speed
+                // has no peak of kinetic energy for the damping to catch
+                window_kinetic =
+                  std::max(window_kinetic, solver.step_kinetic());
+                solver.reset_velocities();
+                previous_kinetic = 0.;
+              }
+            else if (c.kinetic_damping)
+              {
+                const double kinetic = solver.step_kinetic();
+                window_kinetic       = std::max(window_kinetic, kinetic);
+                if (kinetic < previous_kinetic)
+                  {
+                    solver.reset_velocities();
+                    previous_kinetic = 0.;
+                  }
+                else
+                  previous_kinetic = kinetic;
+              }
+            // convergence checks, not while a fracture event runs (it is
+            // not over until event_end, whatever its energies say)
+            if (i % 50 == 0 && !in_event)
+              {
+                const Energies e = solver.relaxation_energies();
+                const double   kinetic =
+                  c.kinetic_damping ? window_kinetic : e.kinetic;
+                last_kinetic_to_strain = kinetic / std::max(e.strain, 1e-300);
+                // an unloaded body: energies at round-off level, where the
+                // ratios measure noise and could never pass
+                const bool unloaded =
+                  e.stored < unloaded_energy && kinetic < unloaded_energy;
+                window_kinetic = 0.;
+                if (i > quasi_static_ramp_steps && unloaded)
+                  {
+                    relaxed = true;
+                    break;
+                  }
+                if (i > quasi_static_ramp_steps &&
+                    last_kinetic_to_strain < c.tolerance &&
+                    solver.relative_unbalanced_force() <= c.force_tolerance)
+                  {
+                    relaxed = true;
+                    break;
+                  }
+              }
+          }
+        finish_relaxation(i, relaxed);
+        if (had_event)
+          ++fracture_events;
+        return relaxed;
       }
 
       // -------------------- the predictor (Relaxation predictor = extrapolate)

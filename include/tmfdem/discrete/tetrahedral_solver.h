@@ -186,14 +186,25 @@ namespace tmfdem
       void
       quasi_static_step();
       /** The heat over @p dt [s], the new stretches, then the damped
-       *  relaxation at these temperatures (no clock) until kinetic / strain
-       *  energy and the out-of-balance force are below their tolerances or
-       *  the cap of steps is reached. */
+       *  relaxation at these temperatures (no clock;
+       *  coupling::QuasiStaticRelaxation::relax(): mass or kinetic damping,
+       *  fracture events) until kinetic / strain energy and the
+       *  out-of-balance force are below their tolerances or the cap of
+       *  steps is reached. */
       void
       advance_thermal_step(const double dt);
-      /** One mechanical step of the relaxation (the clock stays). */
-      void
+      /** One mechanical step of the relaxation (the clock stays); true if
+       *  a joint broke in it. */
+      bool
       relaxation_step();
+      /** The kinetic energy of the nodes, summed in node order [J]. */
+      double
+      kinetic_energy() const;
+      /** Kinetic damping: every free velocity component to 0, the node
+       *  back to the middle of the last step (where v^(n+1/2) lives); the
+       *  kinetic energy removed goes to the damping account. */
+      void
+      reset_velocities();
       /** |out-of-balance force| / |internal force| over the free
        *  components of the nodes, at the current positions [-] (the
        *  elastic and joint forces there; the viscous ones left out). */
