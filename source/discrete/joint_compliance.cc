@@ -49,65 +49,6 @@ namespace tmfdem
         return dealii::eigenvalues(dealii::symmetrize(A))[0];
       }
 
-      void
-      anisotropic_compensation(const std::array<double, 3> &x,
-                               const std::array<double, 3> &y,
-                               const double                 area,
-                               const LameConstants         &lame,
-                               const std::array<double, 3> &normal_penalty,
-                               const std::array<double, 3> &tangential_penalty,
-                               const double                 max_share,
-                               CompensatedElement          &result)
-      {
-        // the joints' compliance tensor S_J (Mandel)
-        Matrix3 SJ;
-        for (unsigned int k = 0; k < 3; ++k)
-          {
-            const double pn = normal_penalty[k], pt = tangential_penalty[k];
-            if (!(pn > 0.) || !(pt > 0.))
-              continue;
-            const unsigned int b  = (k + 1) % 3;
-            const double       ex = x[b] - x[k], ey = y[b] - y[k];
-            const double       L2 = ex * ex + ey * ey;
-            const double       L  = std::sqrt(L2);
-            const double       tx = ex / L, ty = ey / L;
-            const double       nx = ty, ny = -tx;
-            const double       w = L2 / (2. * area);
-            const double mn[3]   = {nx * nx, ny * ny, mandel_sqrt2 * nx * ny};
-            const double mt[3]   = {tx * nx,
-                                    ty * ny,
-                                    mandel_sqrt2 * 0.5 * (tx * ny + ty * nx)};
-            for (unsigned int i = 0; i < 3; ++i)
-              for (unsigned int j = 0; j < 3; ++j)
-                SJ[i][j] += w * (mn[i] * mn[j] / pn + mt[i] * mt[j] / pt);
-          }
-        // its share of the material's compliance S in the worst direction:
-        // the largest eigenvalue of C^1/2 S_J C^1/2 (C = S^-1)
-        const Matrix3 root_C = isotropic_stiffness_power(lame, 0.5);
-        const double  share  = largest_eigenvalue(root_C * SJ * root_C);
-        result.share         = std::max(result.share, share);
-        if (share > max_share)
-          {
-            result.capped = true;
-            SJ *= max_share / share;
-          }
-        const Matrix3 Ce =
-          dealii::invert(dealii::invert(isotropic_stiffness(lame)) - SJ);
-        const Matrix3 delta = Ce - isotropic_stiffness(result.lame);
-        result.anisotropy   = {{delta[0][0],
-                                delta[1][1],
-                                delta[2][2],
-                                0.5 * (delta[0][1] + delta[1][0]),
-                                0.5 * (delta[0][2] + delta[2][0]),
-                                0.5 * (delta[1][2] + delta[2][1])}};
-        // f with C_e <= f C(lame_e): the largest eigenvalue of
-        // C(lame_e)^-1/2 C_e C(lame_e)^-1/2
-        const Matrix3 inverse_root =
-          isotropic_stiffness_power(result.lame, -0.5);
-        result.stiffness_bound_factor =
-          std::max(1., largest_eigenvalue(inverse_root * Ce * inverse_root));
-      }
-
       using Matrix6 = Eigen::Matrix<double, 6, 6>;
       using Vector6 = Eigen::Matrix<double, 6, 1>;
 
@@ -150,6 +91,149 @@ namespace tmfdem
                                                       Eigen::EigenvaluesOnly)
           .eigenvalues()
           .maxCoeff();
+      }
+
+      /** The Mandel algebra of the anisotropic compensation: 2D (3x3,
+       *  deal.II tensors) and 3D (6x6, Eigen matrices). */
+      template <int dim>
+      struct MandelAlgebra;
+
+      template <>
+      struct MandelAlgebra<2>
+      {
+        using Matrix = Matrix3;
+        static Matrix
+        stiffness(const LameConstants &lame)
+        {
+          return isotropic_stiffness(lame);
+        }
+        static Matrix
+        compliance(const LameConstants &lame)
+        {
+          return dealii::invert(isotropic_stiffness(lame));
+        }
+        static Matrix
+        power(const LameConstants &lame, const double p)
+        {
+          return isotropic_stiffness_power(lame, p);
+        }
+        static Matrix
+        inverse(const Matrix &m)
+        {
+          return dealii::invert(m);
+        }
+        static double
+        entry(const Matrix &m, const int i, const int j)
+        {
+          return m[i][j];
+        }
+      };
+
+      template <>
+      struct MandelAlgebra<3>
+      {
+        using Matrix = Matrix6;
+        static Matrix
+        stiffness(const LameConstants &lame)
+        {
+          return isotropic_stiffness_power_3d(lame, 1.);
+        }
+        static Matrix
+        compliance(const LameConstants &lame)
+        {
+          return isotropic_stiffness_power_3d(lame, -1.);
+        }
+        static Matrix
+        power(const LameConstants &lame, const double p)
+        {
+          return isotropic_stiffness_power_3d(lame, p);
+        }
+        static Matrix
+        inverse(const Matrix &m)
+        {
+          return m.inverse();
+        }
+        static double
+        entry(const Matrix &m, const int i, const int j)
+        {
+          return m(i, j);
+        }
+      };
+
+      /**
+       * The joints' compliance tensor @p SJ (Mandel) removed from the
+       * material's compliance S = C(lame)^-1, written once for triangles
+       * and tetrahedra: the joints' share of S in its worst direction (the
+       * largest eigenvalue of C^1/2 S_J C^1/2) into result.share, S_J
+       * scaled down to @p max_share where it is larger, C_e = (S - S_J)^-1
+       * less the isotropic C(result.lame) into result.anisotropy, and the
+       * factor f with C_e <= f C(result.lame) (the largest eigenvalue of
+       * C(lame_e)^-1/2 C_e C(lame_e)^-1/2) into
+       * result.stiffness_bound_factor.
+       */
+      template <int dim>
+      void
+      remove_joint_compliance(typename MandelAlgebra<dim>::Matrix SJ,
+                              const LameConstants                &lame,
+                              const double                        max_share,
+                              CompensatedElement                 &result)
+      {
+        using Algebra       = MandelAlgebra<dim>;
+        using Matrix        = typename Algebra::Matrix;
+        const Matrix root_C = Algebra::power(lame, 0.5);
+        const double share  = largest_eigenvalue(root_C * SJ * root_C);
+        result.share        = std::max(result.share, share);
+        if (share > max_share)
+          {
+            result.capped = true;
+            SJ *= max_share / share;
+          }
+        const Matrix Ce    = Algebra::inverse(Algebra::compliance(lame) - SJ);
+        const Matrix delta = Ce - Algebra::stiffness(result.lame);
+        for (int i = 0; i < mandel_size<dim>; ++i)
+          for (int j = i; j < mandel_size<dim>; ++j)
+            result.anisotropy[anisotropy_index<dim>(i, j)] =
+              i == j ? Algebra::entry(delta, i, i) :
+                       0.5 * (Algebra::entry(delta, i, j) +
+                              Algebra::entry(delta, j, i));
+        const Matrix inverse_root = Algebra::power(result.lame, -0.5);
+        result.stiffness_bound_factor =
+          std::max(1., largest_eigenvalue(inverse_root * Ce * inverse_root));
+      }
+
+      void
+      anisotropic_compensation(const std::array<double, 3> &x,
+                               const std::array<double, 3> &y,
+                               const double                 area,
+                               const LameConstants         &lame,
+                               const std::array<double, 3> &normal_penalty,
+                               const std::array<double, 3> &tangential_penalty,
+                               const double                 max_share,
+                               CompensatedElement          &result)
+      {
+        // the joints' compliance tensor S_J (Mandel)
+        Matrix3 SJ;
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            const double pn = normal_penalty[k], pt = tangential_penalty[k];
+            if (!(pn > 0.) || !(pt > 0.))
+              continue;
+            const unsigned int b  = (k + 1) % 3;
+            const double       ex = x[b] - x[k], ey = y[b] - y[k];
+            const double       L2 = ex * ex + ey * ey;
+            const double       L  = std::sqrt(L2);
+            const double       tx = ex / L, ty = ey / L;
+            const double       nx = ty, ny = -tx;
+            const double       w = L2 / (2. * area);
+            const double mn[3]   = {nx * nx, ny * ny, mandel_sqrt2 * nx * ny};
+            const double mt[3]   = {tx * nx,
+                                    ty * ny,
+                                    mandel_sqrt2 * 0.5 * (tx * ny + ty * nx)};
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = 0; j < 3; ++j)
+                SJ[i][j] += w * (mn[i] * mn[j] / pn + mt[i] * mt[j] / pt);
+          }
+        remove_joint_compliance<2>(SJ, lame, max_share, result);
       }
 
       /**
@@ -203,26 +287,7 @@ namespace tmfdem
             SJ += w * (mn * mn.transpose() / pn +
                        (mt1 * mt1.transpose() + mt2 * mt2.transpose()) / pt);
           }
-        const Matrix6 root_C = isotropic_stiffness_power_3d(lame, 0.5);
-        const double  share  = largest_eigenvalue(root_C * SJ * root_C);
-        result.share         = std::max(result.share, share);
-        if (share > max_share)
-          {
-            result.capped = true;
-            SJ *= max_share / share;
-          }
-        const Matrix6 Ce =
-          (isotropic_stiffness_power_3d(lame, -1.) - SJ).inverse();
-        const Matrix6 delta =
-          Ce - isotropic_stiffness_power_3d(result.lame, 1.);
-        for (int i = 0; i < 6; ++i)
-          for (int j = i; j < 6; ++j)
-            result.anisotropy[anisotropy_index<3>(i, j)] =
-              0.5 * (delta(i, j) + delta(j, i));
-        const Matrix6 inverse_root =
-          isotropic_stiffness_power_3d(result.lame, -0.5);
-        result.stiffness_bound_factor =
-          std::max(1., largest_eigenvalue(inverse_root * Ce * inverse_root));
+        remove_joint_compliance<3>(SJ, lame, max_share, result);
       }
 
       /**
