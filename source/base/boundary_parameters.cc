@@ -131,8 +131,10 @@ namespace tmfdem
           "(Displacement x, Displacement y[, Displacement z]); traction: "
           "nominal traction (Traction x, Traction y[, Traction z]), force "
           "per unit reference length (2D) or area (3D); velocity: v = "
-          "(Velocity x, Velocity y), discrete layer only (the continuum "
-          "solver refuses it).");
+          "(Velocity x, Velocity y[, Velocity z]), every component held "
+          "(one not set is held at 0: a face pulled along x does not "
+          "contract sideways), discrete layer only (the continuum solver "
+          "refuses it).");
         for (const char *axis : {"z"})
           {
             prm.declare_entry(std::string("Displacement ") + axis,
