@@ -71,9 +71,7 @@ namespace tmfdem
     void
     ExplicitSolver::quasi_static_step()
     {
-      const DiscreteHeatParameters &dh =
-        parameters.get<DiscreteHeatParameters>();
-      double dt =
+      const double dt =
         relaxation.next_thermal_step(time,
                                      n_thermal_steps,
                                      next_output < output_times.size() ?
@@ -83,118 +81,66 @@ namespace tmfdem
       // the whole state (on several ranks): the relaxation predictor
       // extrapolates every node from it; the heat reads its own part
       synchronise();
-      // the joints at the start of the step: the rise of their utilisation
-      // and the joints that break in it set the next step; a step in which
-      // too many break at once, or whose relaxation does not
-      // converge, is re-run shorter from here (theory manual 8, "Thermal
-      // steps through the fracture process")
-      const bool control_breaks = dh.maximum_broken_joints_per_step > 0;
-      std::vector<double> utilisation_start, damage_start;
-      if (dh.maximum_utilisation_change > 0.)
-        joint_utilisations(model, utilisation_start);
-      if (control_breaks)
+      // the thermal step, re-run shorter from its start where too many
+      // joints break in it or its relaxation does not converge (theory
+      // manual 8, "Thermal steps through the fracture process"):
+      // QuasiStaticRelaxation::thermal_step(), written once for triangles
+      // and tetrahedra, on this solver's joints, state and steps
+      struct Step
+      {
+        ExplicitSolver &s;
+        void
+        joint_damages(std::vector<double> &d) const
         {
-          joint_damages(model, damage_start);
-          keep_thermal_step_start();
+          discrete::joint_damages(s.model, d);
         }
-      const double        minimum_step = relaxation.minimum_thermal_step();
-      const double        allowed      = dh.maximum_broken_joints_per_step;
-      bool                unstable     = false;
-      std::vector<double> damage_end;
-      unsigned int        broke_in_step = 0;
-      while (true)
+        void
+        joint_utilisations(std::vector<double> &u) const
         {
-          advance_thermal_step(dt);
-          if (!control_breaks)
-            break;
-          // joints that broke in this step (their onset of damage is
-          // resolved by the utilisation control above)
-          joint_damages(model, damage_end);
-          broke_in_step    = 0;
-          bool damage_grew = false;
-          for (unsigned int j = 0; j < model.n_joints; ++j)
-            {
-              broke_in_step += damage_start[j] < 1. && damage_end[j] >= 1.;
-              damage_grew |= damage_end[j] > damage_start[j];
-            }
-          // an unconverged relaxation is re-run only where damage grew in
-          // the step (a crack that runs): without fracture, a shorter step
-          // does not help a cap that is too low for the load, which the
-          // count of relaxations at the cap reports
-          if (relaxation.resolves_thermal_step(broke_in_step, damage_grew))
-            break;
-          if (dt <= minimum_step * (1. + 1e-12))
-            {
-              // no shorter step resolves it: the crack runs at this load
-              // (unstable propagation, with inertia where Fracture event
-              // duration says so)
-              unstable = true;
-              ++relaxation.unstable_thermal_steps;
-              break;
-            }
-          // re-run from the start of the step, shorter
-          restore_thermal_step_start();
-          ++relaxation.rejected_thermal_steps;
-          dt =
-            std::max(minimum_step, relaxation.rerun_factor(broke_in_step) * dt);
-          if (writes_files())
-            std::cerr << "[tmfdem] t = " << time << " s: thermal step re-run "
-                      << (broke_in_step > 2. * allowed ?
-                            "(" + std::to_string(broke_in_step) +
-                              " joints broke in it)" :
-                            std::string("(the relaxation did not converge)"))
-                      << " with " << dt << " s\n";
+          discrete::joint_utilisations(s.model, u);
         }
-      // the next step shrinks by allowed / broke_in_step where more broke than
-      // allowed
-      relaxation.accept_thermal_step(dt, unstable, broke_in_step);
-      if (dh.maximum_utilisation_change > 0.)
+        void
+        keep_thermal_step_start()
         {
-          // the fastest rise of one joint's utilisation, over the joints
-          // undamaged at both ends of the step (a joint that became
-          // damaged leaves the set; the most loaded one before it does not
-          // stand for the others)
-          std::vector<double> utilisation_end;
-          joint_utilisations(model, utilisation_end);
-          double rise = 0., highest = 0.;
-          for (unsigned int j = 0; j < model.n_joints; ++j)
-            if (utilisation_end[j] >= 0.)
-              {
-                highest = std::max(highest, utilisation_end[j]);
-                if (utilisation_start[j] >= 0.)
-                  rise =
-                    std::max(rise, utilisation_end[j] - utilisation_start[j]);
-              }
-          relaxation.joint_utilisation_rate = unstable ? 0. : rise / dt;
-          relaxation.joint_utilisation      = highest;
+          s.keep_thermal_step_start();
         }
-      if (!relaxation.last_relaxation_converged)
+        void
+        restore_thermal_step_start()
         {
-          ++relaxation.relaxations_at_cap;
-          if (relaxation.relaxations_at_cap == 1)
-            std::cerr
-              << "[tmfdem] warning: at t = " << time
-              << " s the relaxation reached its cap of "
-              << steps_per_thermal_step
-              << " mechanical steps (Discrete heat/Mechanical steps per "
-                 "thermal step) with kinetic / strain energy "
-              << relaxation.last_kinetic_to_strain
-              << " above Relaxation tolerance = " << dh.relaxation_tolerance
-              << ": the state is not in equilibrium"
-              << (control_breaks ? ", also with Minimum thermal step" : "")
-              << ". Raise the cap, "
-                 "add Mass damping or run the fracture with inertia "
-                 "(Relaxation damping = kinetic, Fracture event duration); "
-                 "summary.json counts these steps "
-                 "(relaxations_at_cap).\n";
-          if (dh.relaxation_cap_is_error)
-            guard_failure(
-              "guard: the relaxation at t = " + Utilities::to_string(time) +
-              " s reached its cap of " +
-              std::to_string(steps_per_thermal_step) +
-              " mechanical steps without reaching Relaxation tolerance "
-              "(Discrete heat/Relaxation cap is error = true).");
+          s.restore_thermal_step_start();
         }
+        void
+        advance_thermal_step(const double dt)
+        {
+          s.advance_thermal_step(dt);
+        }
+        double
+        time() const
+        {
+          return s.time;
+        }
+        bool
+        writes_files() const
+        {
+          return s.writes_files();
+        }
+        unsigned int
+        cap() const
+        {
+          return s.steps_per_thermal_step;
+        }
+        double
+        relative_unbalanced_force() const
+        {
+          return s.relative_unbalanced_force;
+        }
+        void
+        guard_failure(const std::string &message)
+        {
+          s.guard_failure(message);
+        }
+      } step{*this};
+      relaxation.thermal_step(step, dt, relaxation.control(time_step));
     }
 
     void

@@ -1,6 +1,9 @@
+#include <deal.II/base/utilities.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <sstream>
 #include <tmfdem/coupling/quasi_static_relaxation.h>
 #include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/io/checkpoint.h>
@@ -28,9 +31,95 @@ namespace tmfdem
           static_cast<unsigned int>(
             std::min(std::ceil(event_duration / time_step), double(1u << 30))) :
           0u;
-      c.tolerance       = dh.relaxation_tolerance;
-      c.force_tolerance = dh.relaxation_force_tolerance;
+      c.tolerance                  = dh.relaxation_tolerance;
+      c.force_tolerance            = dh.relaxation_force_tolerance;
+      c.maximum_broken_joints      = dh.maximum_broken_joints_per_step;
+      c.maximum_utilisation_change = dh.maximum_utilisation_change;
+      c.cap_is_error               = dh.relaxation_cap_is_error;
       return c;
+    }
+
+    void
+    QuasiStaticRelaxation::count_breaks(const std::vector<double> &start,
+                                        const std::vector<double> &end,
+                                        unsigned int              &broken,
+                                        bool                      &grew)
+    {
+      broken = 0;
+      grew   = false;
+      for (std::size_t j = 0; j < start.size(); ++j)
+        {
+          broken += start[j] < 1. && end[j] >= 1.;
+          grew |= end[j] > start[j];
+        }
+    }
+
+    void
+    QuasiStaticRelaxation::record_utilisation(const std::vector<double> &start,
+                                              const std::vector<double> &end,
+                                              const double               dt,
+                                              const bool unstable)
+    {
+      double rise = 0., highest = 0.;
+      for (std::size_t j = 0; j < end.size(); ++j)
+        if (end[j] >= 0.)
+          {
+            highest = std::max(highest, end[j]);
+            if (start[j] >= 0.)
+              rise = std::max(rise, end[j] - start[j]);
+          }
+      joint_utilisation_rate = unstable ? 0. : rise / dt;
+      joint_utilisation      = highest;
+    }
+
+    std::string
+    QuasiStaticRelaxation::rerun_message(const double       time,
+                                         const unsigned int broken,
+                                         const double       dt,
+                                         const Control     &c)
+    {
+      std::ostringstream message;
+      message << "[tmfdem] t = " << time << " s: thermal step re-run "
+              << (broken > 2. * c.maximum_broken_joints ?
+                    "(" + std::to_string(broken) + " joints broke in it)" :
+                    std::string("(the relaxation did not converge)"))
+              << " with " << dt << " s\n";
+      return message.str();
+    }
+
+    std::string
+    QuasiStaticRelaxation::cap_warning(const double       time,
+                                       const unsigned int cap,
+                                       const double       unbalanced_force,
+                                       const bool         control_breaks,
+                                       const Control     &c) const
+    {
+      std::ostringstream message;
+      message << "[tmfdem] warning: at t = " << time
+              << " s the relaxation reached its cap of " << cap
+              << " mechanical steps (Discrete heat/Mechanical steps per "
+                 "thermal step) with kinetic / strain energy "
+              << last_kinetic_to_strain
+              << " above Relaxation tolerance = " << c.tolerance
+              << " or the out-of-balance force " << unbalanced_force
+              << " above Relaxation force tolerance = " << c.force_tolerance
+              << ": the state is not in equilibrium"
+              << (control_breaks ? ", also with Minimum thermal step" : "")
+              << ". Raise the cap, add Mass damping or run the fracture with "
+                 "inertia (Relaxation damping = kinetic, Fracture event "
+                 "duration); summary.json counts these steps "
+                 "(relaxations_at_cap).\n";
+      return message.str();
+    }
+
+    std::string
+    QuasiStaticRelaxation::cap_error(const double time, const unsigned int cap)
+    {
+      return "guard: the relaxation at t = " +
+             dealii::Utilities::to_string(time) + " s reached its cap of " +
+             std::to_string(cap) +
+             " mechanical steps without reaching Relaxation tolerance "
+             "(Discrete heat/Relaxation cap is error = true).";
     }
 
     double

@@ -319,116 +319,77 @@ namespace tmfdem
     void
     TetrahedralSolver::quasi_static_step()
     {
-      const DiscreteHeatParameters &dh =
-        parameters.get<DiscreteHeatParameters>();
-      double dt =
+      const double dt =
         relaxation.next_thermal_step(time,
                                      n_thermal_steps,
                                      next_output < output_times.size() ?
                                        std::optional<double>(
                                          output_times[next_output]) :
                                        std::nullopt);
-      // the joints at the start of the step: the rise of their utilisation
-      // and the joints that break in it set the next step; a step in which
-      // too many break at once, or whose relaxation does not converge, is
-      // re-run shorter from here (as in 2D: theory manual 8)
-      const bool control_breaks = dh.maximum_broken_joints_per_step > 0;
-      std::vector<double> utilisation_start, damage_start;
-      if (dh.maximum_utilisation_change > 0.)
-        joint_utilisations(model, utilisation_start);
-      if (control_breaks)
+      // the thermal step, re-run shorter from its start where too many
+      // joints break in it or its relaxation does not converge:
+      // QuasiStaticRelaxation::thermal_step(), written once for triangles
+      // and tetrahedra, on this solver's joints, state and steps
+      struct Step
+      {
+        TetrahedralSolver &s;
+        void
+        joint_damages(std::vector<double> &d) const
         {
-          joint_damages(model, damage_start);
-          relaxation.thermal_step_start =
+          discrete::joint_damages(s.model, d);
+        }
+        void
+        joint_utilisations(std::vector<double> &u) const
+        {
+          discrete::joint_utilisations(s.model, u);
+        }
+        void
+        keep_thermal_step_start()
+        {
+          s.relaxation.thermal_step_start =
             std::make_unique<CheckpointWriter>("thermal step", "");
-          put_state(*relaxation.thermal_step_start);
+          s.put_state(*s.relaxation.thermal_step_start);
         }
-      const double        minimum_step = relaxation.minimum_thermal_step();
-      bool                unstable     = false;
-      std::vector<double> damage_end;
-      unsigned int        broke_in_step = 0;
-      while (true)
+        void
+        restore_thermal_step_start()
         {
-          advance_thermal_step(dt);
-          if (!control_breaks)
-            break;
-          joint_damages(model, damage_end);
-          broke_in_step    = 0;
-          bool damage_grew = false;
-          for (unsigned int j = 0; j < model.n_joints; ++j)
-            {
-              broke_in_step += damage_start[j] < 1. && damage_end[j] >= 1.;
-              damage_grew |= damage_end[j] > damage_start[j];
-            }
-          if (relaxation.resolves_thermal_step(broke_in_step, damage_grew))
-            break;
-          if (dt <= minimum_step * (1. + 1e-12))
-            {
-              // no shorter step resolves it: the crack runs at this load
-              unstable = true;
-              ++relaxation.unstable_thermal_steps;
-              break;
-            }
-          // re-run from the start of the step, shorter
-          CheckpointReader in(*relaxation.thermal_step_start,
+          CheckpointReader in(*s.relaxation.thermal_step_start,
                               "start of the thermal step");
-          get_state(in);
+          s.get_state(in);
           in.finish();
-          ++relaxation.rejected_thermal_steps;
-          dt =
-            std::max(minimum_step, relaxation.rerun_factor(broke_in_step) * dt);
-          std::cerr << "[tmfdem] t = " << time << " s: thermal step re-run "
-                    << (broke_in_step > 2. * dh.maximum_broken_joints_per_step ?
-                          "(" + std::to_string(broke_in_step) +
-                            " joints broke in it)" :
-                          std::string("(the relaxation did not converge)"))
-                    << " with " << dt << " s\n";
         }
-      relaxation.accept_thermal_step(dt, unstable, broke_in_step);
-      if (dh.maximum_utilisation_change > 0.)
+        void
+        advance_thermal_step(const double dt)
         {
-          // the fastest rise of one joint's utilisation, over the joints
-          // undamaged at both ends of the step
-          std::vector<double> utilisation_end;
-          joint_utilisations(model, utilisation_end);
-          double rise = 0., highest = 0.;
-          for (unsigned int j = 0; j < model.n_joints; ++j)
-            if (utilisation_end[j] >= 0.)
-              {
-                highest = std::max(highest, utilisation_end[j]);
-                if (utilisation_start[j] >= 0.)
-                  rise =
-                    std::max(rise, utilisation_end[j] - utilisation_start[j]);
-              }
-          relaxation.joint_utilisation_rate = unstable ? 0. : rise / dt;
-          relaxation.joint_utilisation      = highest;
+          s.advance_thermal_step(dt);
         }
-      if (!relaxation.last_relaxation_converged)
+        double
+        time() const
         {
-          ++relaxation.relaxations_at_cap;
-          if (relaxation.relaxations_at_cap == 1)
-            std::cerr << "[tmfdem] warning: at t = " << time
-                      << " s the relaxation reached its cap of "
-                      << steps_per_thermal_step
-                      << " mechanical steps (Discrete heat/Mechanical steps "
-                         "per thermal step) with kinetic / strain energy "
-                      << relaxation.last_kinetic_to_strain
-                      << " above Relaxation tolerance = "
-                      << dh.relaxation_tolerance
-                      << " or the out-of-balance force "
-                      << relative_unbalanced_force
-                      << " above Relaxation force tolerance: the state is not "
-                         "in equilibrium. Raise the cap or add Mass damping "
-                         "(summary.json counts these steps: "
-                         "relaxations_at_cap).\n";
-          if (dh.relaxation_cap_is_error)
-            guard_failure(
-              "guard: the relaxation at t = " + Utilities::to_string(time) +
-              " s reached its cap of " +
-              std::to_string(steps_per_thermal_step) +
-              " mechanical steps without reaching Relaxation tolerance "
-              "(Discrete heat/Relaxation cap is error = true).");
+          return s.time;
         }
+        bool
+        writes_files() const
+        {
+          return true;
+        }
+        unsigned int
+        cap() const
+        {
+          return s.steps_per_thermal_step;
+        }
+        double
+        relative_unbalanced_force() const
+        {
+          return s.relative_unbalanced_force;
+        }
+        void
+        guard_failure(const std::string &message)
+        {
+          s.guard_failure(message);
+        }
+      } step{*this};
+      relaxation.thermal_step(step, dt, relaxation.control(time_step));
     }
 
     namespace

@@ -15,8 +15,10 @@
 #define tmfdem_coupling_quasi_static_relaxation_h
 
 #include <algorithm>
+#include <iostream>
 #include <memory>
 #include <optional>
+#include <string>
 #include <tmfdem/base/parameters.h>
 #include <vector>
 
@@ -140,6 +142,12 @@ namespace tmfdem
         /** Relaxation tolerance (kinetic / strain energy) and Relaxation
          *  force tolerance (out-of-balance force) [-]. */
         double tolerance = 0., force_tolerance = 0.;
+        /** Maximum broken joints per step (0: no re-runs) and Maximum
+         *  utilisation change (0: off). */
+        unsigned int maximum_broken_joints      = 0;
+        double       maximum_utilisation_change = 0.;
+        /** Relaxation cap is error. */
+        bool cap_is_error = false;
       };
       /** The Control of the run's Discrete heat for the mechanical step
        *  @p time_step [s]. */
@@ -258,6 +266,97 @@ namespace tmfdem
         if (had_event)
           ++fracture_events;
         return relaxed;
+      }
+
+      /**
+       * One thermal step of the quasi-static coupling from the step dt
+       * [s] that next_thermal_step() chose, written once for triangles and
+       * tetrahedra: the joints' utilisation and damage at its start, the
+       * step (the heat and relax()) re-run shorter from its start while
+       * too many joints break in it or its relaxation does not converge
+       * where damage grew (down to minimum_thermal_step(): unstable), then
+       * accept_thermal_step(), the rise of the utilisation and the cap
+       * warning (or error). @p solver provides
+       *   void joint_damages(std::vector<double> &),
+       *   void joint_utilisations(std::vector<double> &),
+       *   void keep_thermal_step_start(), restore_thermal_step_start(),
+       *   void advance_thermal_step(double dt)   the heat, then relax(),
+       *   double time(), bool writes_files(), unsigned int cap(),
+       *   double relative_unbalanced_force(),
+       *   void guard_failure(const std::string &).
+       */
+      template <typename Solver>
+      void
+      thermal_step(Solver &solver, double dt, const Control &c)
+      {
+        const bool          control_breaks = c.maximum_broken_joints > 0;
+        std::vector<double> utilisation_start, damage_start, damage_end;
+        if (c.maximum_utilisation_change > 0.)
+          solver.joint_utilisations(utilisation_start);
+        if (control_breaks)
+          {
+            solver.joint_damages(damage_start);
+            solver.keep_thermal_step_start();
+          }
+        const double minimum_step  = minimum_thermal_step();
+        bool         unstable      = false;
+        unsigned int broke_in_step = 0;
+        while (true)
+          {
+            solver.advance_thermal_step(dt);
+            if (!control_breaks)
+              break;
+            // joints that broke in this step (their onset of damage is
+            // resolved by the utilisation control)
+            solver.joint_damages(damage_end);
+            bool damage_grew = false;
+            count_breaks(damage_start, damage_end, broke_in_step, damage_grew);
+            // an unconverged relaxation is re-run only where damage grew in
+            // the step (a crack that runs): without fracture, a shorter
+            // step does not help a cap that is too low for the load, which
+            // the count of relaxations at the cap reports
+            if (resolves_thermal_step(broke_in_step, damage_grew))
+              break;
+            if (dt <= minimum_step * (1. + 1e-12))
+              {
+                // no shorter step resolves it: the crack runs at this load
+                // (unstable propagation, with inertia where Fracture event
+                // duration says so)
+                unstable = true;
+                ++unstable_thermal_steps;
+                break;
+              }
+            // re-run from the start of the step, shorter
+            solver.restore_thermal_step_start();
+            ++rejected_thermal_steps;
+            dt = std::max(minimum_step, rerun_factor(broke_in_step) * dt);
+            if (solver.writes_files())
+              std::cerr << rerun_message(solver.time(), broke_in_step, dt, c);
+          }
+        // the next step shrinks by allowed / broke_in_step where more broke
+        // than allowed
+        accept_thermal_step(dt, unstable, broke_in_step);
+        if (c.maximum_utilisation_change > 0.)
+          {
+            std::vector<double> utilisation_end;
+            solver.joint_utilisations(utilisation_end);
+            record_utilisation(utilisation_start,
+                               utilisation_end,
+                               dt,
+                               unstable);
+          }
+        if (!last_relaxation_converged)
+          {
+            ++relaxations_at_cap;
+            if (relaxations_at_cap == 1)
+              std::cerr << cap_warning(solver.time(),
+                                       solver.cap(),
+                                       solver.relative_unbalanced_force(),
+                                       control_breaks,
+                                       c);
+            if (c.cap_is_error)
+              solver.guard_failure(cap_error(solver.time(), solver.cap()));
+          }
       }
 
       // -------------------- the predictor (Relaxation predictor = extrapolate)
@@ -381,6 +480,41 @@ namespace tmfdem
 
     private:
       const Parameters &parameters;
+
+      /** The joints that broke between @p start and @p end (damage
+       *  reached 1) into @p broken, whether any damage grew into
+       *  @p grew. */
+      static void
+      count_breaks(const std::vector<double> &start,
+                   const std::vector<double> &end,
+                   unsigned int              &broken,
+                   bool                      &grew);
+      /** The fastest rise of one joint's utilisation over the step @p dt
+       *  [s] among the joints undamaged at both ends (a joint that became
+       *  damaged leaves the set; the most loaded one before it does not
+       *  stand for the others), 0 for an @p unstable step, and the highest
+       *  utilisation at its end. */
+      void
+      record_utilisation(const std::vector<double> &start,
+                         const std::vector<double> &end,
+                         const double               dt,
+                         const bool                 unstable);
+      /** The line that says a thermal step is re-run. */
+      static std::string
+      rerun_message(const double       time,
+                    const unsigned int broken,
+                    const double       dt,
+                    const Control     &c);
+      /** The warning of the first relaxation at its cap of @p cap steps. */
+      std::string
+      cap_warning(const double       time,
+                  const unsigned int cap,
+                  const double       unbalanced_force,
+                  const bool         control_breaks,
+                  const Control     &c) const;
+      /** The error of Relaxation cap is error. */
+      static std::string
+      cap_error(const double time, const unsigned int cap);
     };
   } // namespace coupling
 } // namespace tmfdem
