@@ -20,6 +20,7 @@
 #include <array>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/threads.h>
 #include <tmfdem/discrete/discrete_parameters.h>
@@ -78,19 +79,28 @@ namespace tmfdem
                                     steps_per_thermal_step * time_step;
       if (quasi_static)
         {
-          if (!velocity_functions.empty())
+          // velocities imposed in thermal time are ramped in over the
+          // first relaxation steps of each thermal step (as in 2D)
+          const bool imposed = !velocity_functions.empty();
+          relaxation.quasi_static_ramp_steps =
+            imposed ? coupling::QuasiStaticRelaxation::ramp_steps : 0;
+          if (imposed &&
+              steps_per_thermal_step <= 2 * relaxation.quasi_static_ramp_steps)
             throw InputError(
-              "Discrete heat/Coupling = quasi-static: imposed velocities "
-              "(velocity conditions, driven bodies) in the relaxations are "
-              "not modelled in 3D yet; allowed are fixed and roller "
-              "conditions and fixed or free bodies.");
+              "Discrete heat/Mechanical steps per thermal step = " +
+              std::to_string(steps_per_thermal_step) +
+              " is too few for quasi-static coupling with imposed "
+              "velocities, which are ramped in over " +
+              std::to_string(relaxation.quasi_static_ramp_steps) +
+              " relaxation steps; allowed is more than " +
+              std::to_string(2 * relaxation.quasi_static_ramp_steps) +
+              " (or 0: automatic).");
           // an unloaded body relaxes at once (strains below 1e-10)
           double EV = 0.;
           for (unsigned int e = 0; e < model.n_elements; ++e)
             EV += parameters.materials[model.material[e]].youngs_modulus *
                   model.reference_area[e];
-          relaxation.unloaded_energy         = 1e-20 * EV;
-          relaxation.quasi_static_ramp_steps = 0;
+          relaxation.unloaded_energy = 1e-20 * EV;
         }
       if (!heat->implicit() && thermal_step > heat->stable_time_step())
         throw InputError("Discrete heat/Mechanical steps per thermal step = " +
@@ -166,6 +176,20 @@ namespace tmfdem
     bool
     TetrahedralSolver::relaxation_step()
     {
+      // imposed velocities: v (at the middle of the thermal step) times
+      // dt_thermal / (ramp dt) during the ramp, 0 after it
+      if (!velocity_functions.empty())
+        {
+          const double scale = relaxation.imposed_velocity_scale(time_step);
+          if (!(scale == imposed_velocity_scale))
+            {
+              evaluate_imposed_velocities(time -
+                                            0.5 *
+                                              relaxation.current_thermal_step,
+                                          scale);
+              imposed_velocity_scale = scale;
+            }
+        }
       const bool broke = compute_joint_forces();
       update_nodes(time_step);
       ++step_number;
@@ -278,6 +302,7 @@ namespace tmfdem
       update_thermal_stretch();
       // ... then the mechanics relaxes at these temperatures (no clock)
       relaxation.current_thermal_step = dt;
+      imposed_velocity_scale = std::numeric_limits<double>::quiet_NaN();
       // the relaxation (QuasiStaticRelaxation::relax(), written once for
       // triangles and tetrahedra) on this solver's steps and energies
       struct Steps

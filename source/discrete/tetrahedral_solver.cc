@@ -424,7 +424,8 @@ namespace tmfdem
     }
 
     void
-    TetrahedralSolver::evaluate_imposed_velocities(const double t)
+    TetrahedralSolver::evaluate_imposed_velocities(const double t,
+                                                   const double scale)
     {
       for (auto &function : velocity_functions)
         function->set_time(t);
@@ -432,10 +433,10 @@ namespace tmfdem
         for (unsigned int i = 0; i < 3; ++i)
           c.velocity[i] = c.function[i] < 0 ?
                             0. :
-                            velocity_functions[c.function[i]]->value(
-                              Point<3>(model.x_ref[c.node],
-                                       model.y_ref[c.node],
-                                       model.z_ref[c.node]));
+                            scale * velocity_functions[c.function[i]]->value(
+                                      Point<3>(model.x_ref[c.node],
+                                               model.y_ref[c.node],
+                                               model.z_ref[c.node]));
     }
 
     void

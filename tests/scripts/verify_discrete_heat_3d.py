@@ -45,9 +45,21 @@
    duration = 0.1 ms: joints break, the velocity resets pause for a
    fracture event of at least 0.1 ms of mechanical steps, and the
    relaxations converge (none at the cap).
+10. Imposed velocities in quasi-static coupling: the restrained cube heated
+   100 C, its face x = L pulled with v = c t in thermal time (three thermal
+   steps of 0.1 ms, each relaxation ramping the motion in): the face at
+   u_x = c t^2 / 2 at every output (the step's velocity taken at its middle
+   integrates a linear v exactly; to 1e-6 of the final pull, the vtu files
+   hold float32); the uniaxial
+   strain closed form sigma_xx = M eps - 3K alpha dT, sigma_yy = sigma_zz =
+   lambda eps - 3K alpha dT (M = lambda + 2 mu) for the mean stresses, each
+   within 3 % of the sum of its two terms' magnitudes (the 3 % of 3 and 4
+   on each part); the reaction of the face x = 0 balances the mean
+   sigma_xx over the section to 1 %; no relaxation at the cap.
 
 usage: verify_discrete_heat_3d.py TMFDEM OUT
 """
+import csv
 import json
 import os
 import re
@@ -312,6 +324,56 @@ ok &= check(f["broken_joints"] > 0 and f["fracture_events"] >= 1 and
             f"relaxation at the cap; energy balance error {f['energy']['balance_error']:.4g} J "
             f"of the thermal work {f['energy']['thermal_work']:.4g} J (printed: the resets "
             f"of a state released at once)")
+
+# 10. imposed velocities in quasi-static coupling
+c_pull = 2000.0
+folder = os.path.join(out, "cube_pulled_quasi_static")
+run(binary, cube, folder, "Mechanical boundary conditions/Condition 1/Boundary ids=0",
+    "Mechanical boundary conditions/Condition 2/Boundary ids=2, 3",
+    "Mechanical boundary conditions/Condition 3/Boundary ids=4, 5",
+    "Mechanical boundary conditions/Condition 4/Boundary ids=1",
+    "Mechanical boundary conditions/Condition 4/Type=velocity",
+    f"Mechanical boundary conditions/Condition 4/Velocity x={c_pull:g}*t",
+    "Discrete heat/Coupling=quasi-static", "Time stepping/Time step=1e-4",
+    "Time stepping/End time=3e-4", "Output/Times=1e-4, 2e-4, 3e-4",
+    "Discrete heat/Mechanical steps per thermal step=20000")
+p = summary(folder)
+pull_error = 0.0
+for t, arrays in outputs(folder):
+    X = reference_points(arrays)
+    u = arrays[("PointData", "displacement")].reshape(-1, 3)
+    # the condition holds the nodes of the tetrahedra that own a face on
+    # x = L (three nodes there); others touch it along an edge or at a
+    # vertex and follow through their joints
+    on_face = (np.abs(X[:, 0] - L) < 1e-6).reshape(-1, 4)
+    face = (on_face & (on_face.sum(axis=1) == 3)[:, None]).reshape(-1)
+    pull_error = max(pull_error, np.max(np.abs(u[face, 0] - 0.5 * c_pull * t * t)))
+t_end = 3e-4
+eps = 0.5 * c_pull * t_end ** 2 / L
+# (the vtu files hold float32: 6e-8 of the pull)
+ok &= check(pull_error <= 1e-6 * eps * L and p["relaxations_at_cap"] == 0,
+            f"pulled cube: the face x = L at c t^2 / 2 to {pull_error:.3g} m at "
+            f"every output (<= 1e-6 of the pull {eps * L:.3g} m: the vtu files hold float32); "
+            f"{p['thermal_steps']} thermal steps, none at the relaxation cap")
+arrays = outputs(folder)[-1][1]
+lam = E * nu / ((1 + nu) * (1 - 2 * nu))
+M = E * (1 - nu) / ((1 + nu) * (1 - 2 * nu))
+thermal = E * alpha * dT / (1 - 2 * nu)
+for c, stiffness in (("sxx", M), ("syy", lam), ("szz", lam)):
+    mean = np.mean(arrays[("CellData", c)])
+    reference = stiffness * eps - thermal
+    scale = stiffness * eps + thermal
+    ok &= check(abs(mean - reference) <= 0.03 * scale,
+                f"pulled cube: mean {c} {mean:.5g} Pa against {reference:.5g} Pa "
+                f"= {stiffness / 1e9:.4g} GPa x {eps:.3g} - {thermal:.5g}: off by "
+                f"{100 * abs(mean - reference) / scale:.2f} % of {scale:.5g} Pa (3 %)")
+with open(os.path.join(folder, "history.csv")) as f:
+    rows = list(csv.DictReader(f))
+reaction = float(rows[-1]["condition1_fx"])
+sxx = np.mean(arrays[("CellData", "sxx")])
+ok &= check(abs(reaction + sxx * L * L) <= 0.01 * abs(sxx) * L * L,
+            f"pulled cube: reaction at x = 0 {reaction:.6g} N against -mean sigma_xx "
+            f"L^2 = {-sxx * L * L:.6g} N (1 %)")
 
 parallel = check_parallel(runs[2], 2, load_before)
 if parallel == "fail":

@@ -122,9 +122,11 @@ namespace tmfdem
       setup_constraints();
       void
       setup_time_step();
-      /** The imposed velocities at @p time [s] (conditions and bodies). */
+      /** The imposed velocities at @p time [s] (conditions and bodies),
+       *  times @p scale [-] (quasi-static coupling: the relaxation's ramp,
+       *  QuasiStaticRelaxation::imposed_velocity_scale()). */
       void
-      evaluate_imposed_velocities(const double time);
+      evaluate_imposed_velocities(const double time, const double scale = 1.);
       /** The joint forces into DiscreteModel::node_joint_force; true if a
        *  joint broke. */
       bool
@@ -312,6 +314,10 @@ namespace tmfdem
       std::vector<std::string>           owner_names;
       std::vector<std::array<double, 3>> owner_reaction;
       bool                               imposed_depend_on_time = false;
+      /** Quasi-static coupling: the scale of the imposed velocities now
+       *  (the ramp of the relaxation under way); NaN: not yet evaluated in
+       *  this thermal step [-]. */
+      double imposed_velocity_scale = 1.;
 
       // time
       double time             = 0.;
