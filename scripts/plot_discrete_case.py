@@ -6,7 +6,7 @@
 CASE is one of joint_pull, joint_pull-3d, block_on_incline, two_blocks_collision,
 brazilian_disc, plate_traction, plate_transient, plate_transient-discrete-3d,
 contact_conduction,
-sheet_free_expansion, sheet_restrained_expansion. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
+sheet_free_expansion, sheet_restrained_expansion, thermal_shock_disc-3d. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
 probes.csv, summary.json, solution_*.vtu, cracks_*.vtu). Cases that compare
 several runs read one sub-folder per run, the layout the verification
 scripts write:
@@ -20,6 +20,8 @@ scripts write:
     plate_transient-discrete-3d: OUTPUT_FOLDER/{plate,plate_beta_{100,10000}}/
                        (verify_discrete_heat_3d.py)
     contact_conduction: OUTPUT_FOLDER/{steady,equilibrate}/  (verify_discrete_contact_heat.py)
+    thermal_shock_disc-3d: OUTPUT_FOLDER/{disc-3d,disc-2d}/
+                       (verify_discrete_thermal_shock_3d.py)
     sheet_*_expansion: OUTPUT_FOLDER/free_{+100,-100}/,
                        OUTPUT_FOLDER/restrained_plane_{stress,strain}_{+100,-100}/
                        (verify_discrete_sheets.py)
@@ -786,6 +788,79 @@ def plot_sheet_restrained_expansion(folder, png):
     print(f"wrote {png}")
 
 
+# ------------------------------------------------ thermal_shock_disc-3d
+def plot_thermal_shock_disc_3d(folder, png):
+    """OUTPUT_FOLDER as written by verify_discrete_thermal_shock_3d.py:
+    disc-3d/ (prm/thermal_shock_disc-3d.prm at 400 C) and disc-2d/ (the 2D
+    case at 400 C over the same span)."""
+    sys.path.insert(0, os.path.join(ROOT, "tests", "scripts"))
+    import verify_discrete_thermal_shock_3d as v
+    run3, run2 = os.path.join(folder, "disc-3d"), os.path.join(folder, "disc-2d")
+    if not os.path.exists(os.path.join(run3, "summary.json")):
+        v.run_case(BINARY, folder)
+    series = v.outputs(run3)
+    fig, (ax_z, ax_t) = plt.subplots(1, 2, figsize=(12.5, 5), dpi=150)
+    # left: each rim tetrahedron's hoop stress over the plane-stress value
+    # averaged over it, against the height of its centroid
+    intact = [(t, a) for t, a in series if t > 0 and not np.any(a[("CellData", "joint_damage")] > 0)]
+    for i, (t, arrays) in enumerate(intact[1::2]):
+        tet = v.tetrahedra(arrays)
+        rim = tet["on_mantle"] == 3
+        ratio = tet["hoop"][rim] / v.element_mean(v.plane_stress_hoop(t), tet["vertices"][rim])
+        ax_z.plot(tet["z"][rim] * 1e3, ratio, ".", ms=2, color=f"C{i}", alpha=0.6,
+                  label=f"t = {t * 1e3:g} ms (rim tetrahedra)")
+    ax_z.axhline(1.0, color="k", lw=1, label="plane stress (thin disc)")
+    ax_z.axhline(1 / (1 - v.NU), color="k", ls="--", lw=1,
+                 label="generalised plane strain (long cylinder): 1 / (1 - nu)")
+    ax_z.set_xlabel("z of the centroid [mm] (faces at -0.5 and 0.5 mm)")
+    ax_z.set_ylabel("hoop stress / plane-stress closed form (mean over the tetrahedron)")
+    ax_z.set_title("before cracking: the rim carries more than plane stress, less as the layer deepens", fontsize=9)
+    ax_z.legend(fontsize=7, loc="lower center")
+    ax_z.grid(alpha=0.3)
+    # right: the largest rim hoop stress against time, the closed forms'
+    # element means, and the first damage in 3D and 2D
+    tet0 = v.tetrahedra(series[0][1])
+    rim0 = tet0["on_mantle"] == 3
+    times = np.linspace(0.5e-3, max(t for t, _ in series), 60)
+    ps = np.array([v.element_mean(v.plane_stress_hoop(t), tet0["vertices"][rim0]).max()
+                   for t in times])
+    ax_t.plot(times * 1e3, ps / 1e6, "k-", lw=1, label="plane stress, largest rim element mean")
+    ax_t.plot(times * 1e3, ps / (1 - v.NU) / 1e6, "k--", lw=1,
+              label="generalised plane strain, the same")
+    measured = [(t, v.tetrahedra(a)["hoop"][rim0].max()) for t, a in series if t > 0]
+    ax_t.plot([m[0] * 1e3 for m in measured], [m[1] / 1e6 for m in measured], "o", color="C3",
+              label="3D discrete: largest rim hoop stress")
+    ax_t.axhline(v.F_T / 1e6, color="C7", lw=0.8)
+    ax_t.annotate("f_t", (times[0] * 1e3, v.F_T / 1e6), fontsize=8, xytext=(2, 3),
+                  textcoords="offset points")
+    onset = v.first_damage(run3)
+    if onset:
+        ax_t.axvspan(onset[0] * 1e3, onset[1] * 1e3, color="C3", alpha=0.4)
+        ax_t.axvline(onset[1] * 1e3, color="C3", lw=1,
+                     label=f"3D first damage: {onset[1] * 1e3:.2f} ms")
+    if os.path.exists(os.path.join(run2, "history.csv")):
+        onset2 = v.first_damage(run2)
+        if onset2:
+            ax_t.axvline(onset2[1] * 1e3, color="C0", lw=1,
+                         label=f"2D plane stress (0.4 mm triangles): {onset2[1] * 1e3:.2f} ms")
+    t1, t2 = v.window(series[0][1])
+    ax_t.axvspan(t1 * 1e3, t2 * 1e3, color="C2", alpha=0.12, label="window of the closed forms")
+    print(f"thermal_shock_disc-3d: window {t1 * 1e3:.3f} .. {t2 * 1e3:.3f} ms, first damage "
+          f"{onset}")
+    ax_t.set_xlabel("t [ms]")
+    ax_t.set_ylabel("hoop stress at the rim [MPa]")
+    ax_t.set_title("cracking starts earlier than plane stress predicts",
+                   fontsize=9)
+    ax_t.legend(fontsize=7, loc="lower right")
+    ax_t.grid(alpha=0.3)
+    fig.suptitle("Paper 5.6 in 3D: 13 x 1 mm alumina disc quenched at the rim from 400 C, "
+                 "faces insulated (tetrahedra 0.25 mm at the rim)", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(png)
+    print(f"wrote {png}")
+
+
+
 CASES = {"joint_pull": plot_joint_pull,
          "joint_pull-3d": plot_joint_pull_3d,
          "block_on_incline": plot_block_on_incline,
@@ -796,7 +871,8 @@ CASES = {"joint_pull": plot_joint_pull,
          "plate_transient-discrete-3d": plot_plate_transient_3d,
          "contact_conduction": plot_contact_conduction,
          "sheet_free_expansion": plot_sheet_free_expansion,
-         "sheet_restrained_expansion": plot_sheet_restrained_expansion}
+         "sheet_restrained_expansion": plot_sheet_restrained_expansion,
+         "thermal_shock_disc-3d": plot_thermal_shock_disc_3d}
 
 
 def main():

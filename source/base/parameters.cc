@@ -74,8 +74,8 @@ namespace tmfdem
       "radius above 0.29 Outer radius) "
       "about Center, cylinder (1 mantle, 2 bottom z = z_c - Length / 2, 3 "
       "top) or hollow cylinder (0 inner, 1 outer mantle, 2 bottom, 3 top) "
-      "with its axis along z through Center, or a gmsh .msh file with "
-      "tetrahedra or hexahedra "
+      "with its axis along z through Center, or a gmsh .msh/.geo file "
+      "with tetrahedra or hexahedra "
       "(physical surfaces -> boundary ids, physical volumes -> material "
       "ids).");
     prm.declare_entry(
@@ -137,7 +137,8 @@ namespace tmfdem
                       Patterns::Anything(),
                       "Source = file: gmsh .msh file (format 2 or 4, ASCII), "
                       "or a gmsh .geo script that tmfdem meshes with the "
-                      "gmsh program (2D, into <output>/mesh.msh); relative "
+                      "gmsh program (gmsh -2 in 2D, -3 in 3D, into "
+                      "<output>/mesh.msh); relative "
                       "to the folder of the prm file.");
     prm.declare_entry(
       "Gmsh time limit",

@@ -161,7 +161,8 @@ namespace tmfdem
              const std::string &work_folder,
              const std::string &msh_file,
              const double       time_limit,
-             MPI_Comm           communicator)
+             MPI_Comm           communicator,
+             const unsigned int dim = 2)
     {
       std::string error;
       bool        bad_input = false;
@@ -183,9 +184,9 @@ namespace tmfdem
               // timeout(1): TERM at the limit, KILL 5 s later
               const std::string command =
                 "command -v gmsh > /dev/null 2>&1 || exit 127; timeout -k 5 " +
-                limit.str() + " gmsh \"" + geo_file +
-                "\" -2 -format msh22 -nt 1 -v 2 -o \"" + msh_file + "\" > \"" +
-                log + "\" 2>&1";
+                limit.str() + " gmsh \"" + geo_file + "\" -" +
+                std::to_string(dim) + " -format msh22 -nt 1 -v 2 -o \"" +
+                msh_file + "\" > \"" + log + "\" 2>&1";
               const int         status = std::system(command.c_str());
               const int         code   = status == -1 ?
                                            -1 :
@@ -425,6 +426,27 @@ namespace tmfdem
     }
   } // namespace
 
+  std::string
+  mesh_geo_file(const std::string &geo_file,
+                const std::string &work_folder,
+                const unsigned int dim,
+                const double       time_limit,
+                MPI_Comm           communicator)
+  {
+    if (!std::filesystem::exists(geo_file))
+      throw InputError("Mesh/File name: cannot open '" + geo_file +
+                       "' (missing or unreadable).");
+    const std::string msh_file = work_folder + "/mesh.msh";
+    run_gmsh("",
+             geo_file,
+             work_folder,
+             msh_file,
+             time_limit,
+             communicator,
+             dim);
+    return msh_file;
+  }
+
   template <int dim>
   void
   read_gmsh_file(const std::string  &file_name,
@@ -539,19 +561,12 @@ namespace tmfdem
       {
         const std::string &name = parameters.file_name;
         if (name.size() > 4 && name.substr(name.size() - 4) == ".geo")
-          {
-            if (!std::filesystem::exists(name))
-              throw InputError("Mesh/File name: cannot open '" + name +
-                               "' (missing or unreadable).");
-            const std::string msh_file = work_folder + "/mesh.msh";
-            run_gmsh("",
-                     name,
-                     work_folder,
-                     msh_file,
-                     parameters.gmsh_time_limit,
-                     communicator);
-            read_gmsh_file(msh_file, triangulation);
-          }
+          read_gmsh_file(mesh_geo_file(name,
+                                       work_folder,
+                                       2,
+                                       parameters.gmsh_time_limit,
+                                       communicator),
+                         triangulation);
         else
           read_gmsh_file(name, triangulation);
         attach_circular_boundaries(parameters, triangulation);

@@ -191,11 +191,14 @@ namespace tmfdem
       {
         const std::string &name = parameters.file_name;
         if (name.size() > 4 && name.substr(name.size() - 4) == ".geo")
-          throw InputError("Mesh/File name = '" + name +
-                           "': tmfdem meshes .geo scripts in 2D only; for "
-                           "Mesh/Dimension = 3 mesh it with gmsh (gmsh -3 " +
-                           "file.geo -format msh22) and give the .msh file.");
-        read_gmsh_file(name, triangulation);
+          read_gmsh_file(mesh_geo_file(name,
+                                       work_folder,
+                                       3,
+                                       parameters.gmsh_time_limit,
+                                       communicator),
+                         triangulation);
+        else
+          read_gmsh_file(name, triangulation);
         return;
       }
 
