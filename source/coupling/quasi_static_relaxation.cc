@@ -259,6 +259,7 @@ namespace tmfdem
     {
       out.put(relaxed_x);
       out.put(relaxed_y);
+      out.put(relaxed_z);
       out.put(relaxed_thermal_step);
       out.put(damaged_before_relaxation);
       out.put(damaged_after_relaxation);
@@ -275,6 +276,7 @@ namespace tmfdem
     {
       in.get(relaxed_x);
       in.get(relaxed_y);
+      in.get(relaxed_z);
       in.get(relaxed_thermal_step);
       in.get(damaged_before_relaxation);
       in.get(damaged_after_relaxation);

@@ -196,6 +196,70 @@ namespace tmfdem
       return broke;
     }
 
+    void
+    TetrahedralSolver::predict_relaxation(const double dt)
+    {
+      // the last relaxation took the state from relaxed_x/y/z to x/y/z over
+      // the thermal step relaxed_thermal_step; a response linear in time
+      // goes on by the same increment per unit time (where
+      // QuasiStaticRelaxation::extrapolates() says it does)
+      std::vector<double> *relaxed[3]  = {&relaxation.relaxed_x,
+                                          &relaxation.relaxed_y,
+                                          &relaxation.relaxed_z};
+      std::vector<double> *position[3] = {&model.x, &model.y, &model.z};
+      const unsigned int   damaged     = n_damaged_or_broken_joints(model);
+      if (relaxation.extrapolates(model.n_nodes, damaged))
+        {
+          // the jump's energy: the strain energy exactly (before and
+          // after), the intact joints' by the trapezoidal rule on their
+          // forces along the jump (the joint kernel gives forces, not a
+          // stored energy; the jump is small against a joint's opening)
+          compute_state_energies();
+          const double strain_before = energies.strain;
+          compute_joint_forces();
+          const std::vector<double> joint_force_before = model.node_joint_force;
+          const double        ratio = dt / relaxation.relaxed_thermal_step;
+          std::vector<double> jump(3 * model.n_nodes, 0.);
+          for (unsigned int n = 0; n < model.n_nodes; ++n)
+            {
+              const int ci = node_constraint[n];
+              for (unsigned int i = 0; i < 3; ++i)
+                {
+                  const double d   = (*position[i])[n] - (*relaxed[i])[n];
+                  (*relaxed[i])[n] = (*position[i])[n];
+                  if (ci >= 0 && constraints[ci].prescribed[i])
+                    continue;
+                  jump[3 * n + i] = ratio * d;
+                  (*position[i])[n] += ratio * d;
+                }
+            }
+          compute_joint_forces();
+          double joint_jump = 0.;
+          for (unsigned int n = 0; n < model.n_nodes; ++n)
+            for (unsigned int i = 0; i < 3; ++i)
+              {
+                const double *before = &joint_force_before[9 * n];
+                const double *after  = &model.node_joint_force[9 * n];
+                const double  f_before =
+                  before[i] + before[3 + i] + before[6 + i];
+                const double f_after = after[i] + after[3 + i] + after[6 + i];
+                // the forces act on the nodes: the joints store minus
+                // their work
+                joint_jump -= 0.5 * (f_before + f_after) * jump[3 * n + i];
+              }
+          compute_state_energies();
+          energies.relaxation_work +=
+            energies.strain - strain_before + joint_jump;
+          energies.joint_work += joint_jump;
+          ++relaxation.predicted_relaxations;
+        }
+      else
+        for (unsigned int i = 0; i < 3; ++i)
+          *relaxed[i] = *position[i];
+      relaxation.relaxed_thermal_step      = dt;
+      relaxation.damaged_before_relaxation = damaged;
+    }
+
     double
     TetrahedralSolver::kinetic_energy() const
     {
@@ -300,7 +364,13 @@ namespace tmfdem
       thermal_time = time;
       ++n_thermal_steps;
       update_thermal_stretch();
-      // ... then the mechanics relaxes at these temperatures (no clock)
+      // ... then the mechanics relaxes at these temperatures (no clock),
+      // from the extrapolated state where asked for
+      const bool predictor =
+        parameters.get<DiscreteHeatParameters>().relaxation_predictor ==
+        DiscreteHeatParameters::RelaxationPredictor::extrapolate;
+      if (predictor)
+        predict_relaxation(dt);
       relaxation.current_thermal_step = dt;
       imposed_velocity_scale = std::numeric_limits<double>::quiet_NaN();
       // the relaxation (QuasiStaticRelaxation::relax(), written once for
@@ -339,6 +409,8 @@ namespace tmfdem
       relaxation.relax(steps,
                        steps_per_thermal_step,
                        relaxation.control(time_step));
+      if (predictor)
+        relaxation.damaged_after_relaxation = n_damaged_or_broken_joints(model);
     }
 
     void

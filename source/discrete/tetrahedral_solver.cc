@@ -64,17 +64,6 @@ namespace tmfdem
             throw InputError(
               "Discrete heat/Temperature source = " + dh.temperature_source +
               in_3d + "allowed is discrete heat.");
-          if (physics == Physics::thermo_mechanics &&
-              dh.coupling == DiscreteHeatParameters::Coupling::quasi_static)
-            {
-              const std::string in_3d_quasi_static =
-                " is not modelled in 3D quasi-static coupling yet; ";
-              if (dh.relaxation_predictor !=
-                  DiscreteHeatParameters::RelaxationPredictor::none)
-                throw InputError("Discrete heat/Relaxation predictor = "
-                                 "extrapolate" +
-                                 in_3d_quasi_static + "allowed is none.");
-            }
           if (parameters.time.mode != TimeSteppingParameters::Mode::transient)
             throw InputError("Time stepping/Mode = steady: the discrete heat "
                              "is transient only; allowed is transient.");
@@ -993,6 +982,7 @@ namespace tmfdem
       energy.add("damping", energies.damping);
       energy.add("external_work", energies.external_work);
       energy.add("thermal_work", energies.thermal_work);
+      energy.add("relaxation_work", energies.relaxation_work);
       energy.add("balance_error", energy_balance_error());
       summary.add("energy", energy);
       if (heat)
@@ -1023,6 +1013,8 @@ namespace tmfdem
                           relative_unbalanced_force);
               summary.add("velocity_resets",
                           static_cast<long long>(relaxation.velocity_resets));
+              summary.add("predicted_relaxations",
+                          relaxation.predicted_relaxations);
               summary.add("fracture_events",
                           static_cast<long long>(relaxation.fracture_events));
               summary.add("fracture_event_steps",

@@ -56,6 +56,9 @@
    within 3 % of the sum of its two terms' magnitudes (the 3 % of 3 and 4
    on each part); the reaction of the face x = 0 balances the mean
    sigma_xx over the section to 1 %; no relaxation at the cap.
+11. The relaxation predictor on the run of 10: the strain energy of 10 to
+   1e-3, the energy balance with the jumps' work to 1e-4 of the energy put
+   in, no relaxation at the cap.
 
 usage: verify_discrete_heat_3d.py TMFDEM OUT
 """
@@ -374,6 +377,32 @@ sxx = np.mean(arrays[("CellData", "sxx")])
 ok &= check(abs(reaction + sxx * L * L) <= 0.01 * abs(sxx) * L * L,
             f"pulled cube: reaction at x = 0 {reaction:.6g} N against -mean sigma_xx "
             f"L^2 = {-sxx * L * L:.6g} N (1 %)")
+
+# 11. the relaxation predictor (each relaxation starts from the last one's
+# increment extrapolated) on the pulled cube: the same end state, the jumps'
+# energy booked
+folder = os.path.join(out, "cube_pulled_predictor")
+run(binary, cube, folder, "Mechanical boundary conditions/Condition 1/Boundary ids=0",
+    "Mechanical boundary conditions/Condition 2/Boundary ids=2, 3",
+    "Mechanical boundary conditions/Condition 3/Boundary ids=4, 5",
+    "Mechanical boundary conditions/Condition 4/Boundary ids=1",
+    "Mechanical boundary conditions/Condition 4/Type=velocity",
+    f"Mechanical boundary conditions/Condition 4/Velocity x={c_pull:g}*t",
+    "Discrete heat/Coupling=quasi-static", "Time stepping/Time step=1e-4",
+    "Time stepping/End time=3e-4", "Output/Times=1e-4, 2e-4, 3e-4",
+    "Discrete heat/Mechanical steps per thermal step=20000",
+    "Discrete heat/Relaxation predictor=extrapolate")
+q = summary(folder)
+strain_difference = abs(q["energy"]["strain"] / p["energy"]["strain"] - 1)
+put_in = q["energy"]["external_work"] + q["energy"]["thermal_work"] + q["energy"]["relaxation_work"]
+ok &= check(q["predicted_relaxations"] > 0 and strain_difference < 1e-3 and
+            abs(q["energy"]["balance_error"]) < 1e-4 * abs(put_in) and
+            q["relaxations_at_cap"] == 0,
+            f"relaxation predictor: {q['predicted_relaxations']} extrapolated starts, strain "
+            f"energy {q['energy']['strain']:.8g} J against {p['energy']['strain']:.8g} J without "
+            f"({strain_difference:.2g}, < 1e-3), energy balance {q['energy']['balance_error']:.3g} J "
+            f"of {put_in:.6g} J put in (relaxation work {q['energy']['relaxation_work']:.4g} J; "
+            f"< 1e-4), no relaxation at the cap")
 
 parallel = check_parallel(runs[2], 2, load_before)
 if parallel == "fail":

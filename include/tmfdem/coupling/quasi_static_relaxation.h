@@ -361,8 +361,9 @@ namespace tmfdem
 
       // -------------------- the predictor (Relaxation predictor = extrapolate)
 
-      /** Node positions at the end of the last relaxation [m]. */
-      std::vector<double> relaxed_x, relaxed_y;
+      /** Node positions at the end of the last relaxation [m] (relaxed_z:
+       *  tetrahedra only, empty for triangles). */
+      std::vector<double> relaxed_x, relaxed_y, relaxed_z;
       /** The thermal step of the last relaxation [s]; 0 before the first. */
       double relaxed_thermal_step = 0.;
       /** Joints damaged or broken at the start of the last relaxation and

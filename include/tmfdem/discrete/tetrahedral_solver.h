@@ -94,6 +94,10 @@ namespace tmfdem
         /** Work of the thermal stretch: the change of the strain energy
          *  each new stretch makes at fixed geometry. */
         double thermal_work = 0.;
+        /** Relaxation predictor = extrapolate: the strain and intact-joint
+         *  energy the extrapolated starts put in (their jumps are no
+         *  motion the steps integrate). */
+        double relaxation_work = 0.;
       };
 
       /** A node's imposed velocity components. */
@@ -160,7 +164,8 @@ namespace tmfdem
       double
       energy_balance_error() const
       {
-        return energies.external_work + energies.thermal_work -
+        return energies.external_work + energies.thermal_work +
+               energies.relaxation_work -
                (energies.kinetic + energies.strain + energies.joint_work +
                 energies.damping);
       }
@@ -199,6 +204,13 @@ namespace tmfdem
        *  a joint broke in it. */
       bool
       relaxation_step();
+      /** Relaxation predictor = extrapolate: moves the free nodes on by
+       *  the last relaxation's increment scaled to the thermal step @p dt
+       *  [s] where QuasiStaticRelaxation::extrapolates() says so (the jump's
+       *  energy to relaxation_work), and records the start of the next
+       *  extrapolation. */
+      void
+      predict_relaxation(const double dt);
       /** The kinetic energy of the nodes, summed in node order [J]. */
       double
       kinetic_energy() const;
