@@ -117,6 +117,22 @@ def read_arrays(path):
     return out
 
 
+def read_series(folder, name="solution"):
+    """[(time, {(section, array name): values})] of every file <name>.pvd in
+    folder lists (one-rank vtu files), in its order: read_arrays() of each,
+    keyed by the section (Points, Cells, PointData, CellData) and the
+    DataArray's Name (None for the points)."""
+    with open(os.path.join(folder, name + ".pvd")) as f:
+        pvd = f.read()
+    result = []
+    for t, file in re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', pvd):
+        arrays = {}
+        for section, attributes, values in read_arrays(os.path.join(folder, file)):
+            arrays[(section, _attribute(attributes, "Name"))] = values
+        result.append((float(t), arrays))
+    return result
+
+
 def _document(head, n_points, n_cells, sections):
     """The bytes of a vtu file in tmfdem's layout: @p head (up to
     <UnstructuredGrid>; binary if it names a compressor) and the arrays of

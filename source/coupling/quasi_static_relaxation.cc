@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <sstream>
+#include <tmfdem/base/exceptions.h>
 #include <tmfdem/coupling/quasi_static_relaxation.h>
 #include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/io/checkpoint.h>
@@ -252,6 +253,23 @@ namespace tmfdem
       rejected_thermal_steps = count;
       in.get(count);
       unstable_thermal_steps = count;
+    }
+
+    void
+    QuasiStaticRelaxation::set_ramp(const bool         imposes,
+                                    const unsigned int steps_per_thermal_step,
+                                    const std::string &what)
+    {
+      quasi_static_ramp_steps = imposes ? ramp_steps : 0;
+      if (imposes && steps_per_thermal_step <= 2 * quasi_static_ramp_steps)
+        throw InputError("Discrete heat/Mechanical steps per thermal step = " +
+                         std::to_string(steps_per_thermal_step) +
+                         " is too few for quasi-static coupling with imposed " +
+                         what + ", which are ramped in over " +
+                         std::to_string(quasi_static_ramp_steps) +
+                         " relaxation steps; allowed is more than " +
+                         std::to_string(2 * quasi_static_ramp_steps) +
+                         " (or 0: automatic).");
     }
 
     void

@@ -81,20 +81,9 @@ namespace tmfdem
         {
           // velocities imposed in thermal time are ramped in over the
           // first relaxation steps of each thermal step (as in 2D)
-          const bool imposed = !velocity_functions.empty();
-          relaxation.quasi_static_ramp_steps =
-            imposed ? coupling::QuasiStaticRelaxation::ramp_steps : 0;
-          if (imposed &&
-              steps_per_thermal_step <= 2 * relaxation.quasi_static_ramp_steps)
-            throw InputError(
-              "Discrete heat/Mechanical steps per thermal step = " +
-              std::to_string(steps_per_thermal_step) +
-              " is too few for quasi-static coupling with imposed "
-              "velocities, which are ramped in over " +
-              std::to_string(relaxation.quasi_static_ramp_steps) +
-              " relaxation steps; allowed is more than " +
-              std::to_string(2 * relaxation.quasi_static_ramp_steps) +
-              " (or 0: automatic).");
+          relaxation.set_ramp(!velocity_functions.empty(),
+                              steps_per_thermal_step,
+                              "velocities");
           // an unloaded body relaxes at once (strains below 1e-10)
           double EV = 0.;
           for (unsigned int e = 0; e < model.n_elements; ++e)
@@ -263,11 +252,28 @@ namespace tmfdem
     double
     TetrahedralSolver::kinetic_energy() const
     {
+      // per chunk of tetrahedra (their nodes) on the solver's threads, the
+      // chunks added in order: the same on any number of threads
+      const std::size_t n_chunks =
+        (model.n_elements + chunk_size - 1) / chunk_size;
+      chunk_kinetic.assign(n_chunks, 0.);
+      const DiscreteModel &m = model;
+      for_each_chunk(arena_for(n_threads),
+                     m.n_elements,
+                     chunk_size,
+                     [&](const std::size_t begin,
+                         const std::size_t end,
+                         const std::size_t c) {
+                       double kinetic = 0.;
+                       for (std::size_t n = 4 * begin; n < 4 * end; ++n)
+                         kinetic += 0.5 * m.mass[n] *
+                                    (m.vx[n] * m.vx[n] + m.vy[n] * m.vy[n] +
+                                     m.vz[n] * m.vz[n]);
+                       chunk_kinetic[c] = kinetic;
+                     });
       double kinetic = 0.;
-      for (std::size_t n = 0; n < model.n_nodes; ++n)
-        kinetic += 0.5 * model.mass[n] *
-                   (model.vx[n] * model.vx[n] + model.vy[n] * model.vy[n] +
-                    model.vz[n] * model.vz[n]);
+      for (const double k : chunk_kinetic)
+        kinetic += k;
       return kinetic;
     }
 

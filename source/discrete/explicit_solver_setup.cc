@@ -149,20 +149,9 @@ namespace tmfdem
               relaxation.unloaded_energy = 1e-20 * EA;
               // motions imposed in thermal time are ramped in over the
               // first relaxation steps of each thermal step
-              const bool imposed = drivers.imposes_motion();
-              relaxation.quasi_static_ramp_steps =
-                imposed ? coupling::QuasiStaticRelaxation::ramp_steps : 0;
-              if (imposed && steps_per_thermal_step <=
-                               2 * relaxation.quasi_static_ramp_steps)
-                throw InputError(
-                  "Discrete heat/Mechanical steps per thermal step = " +
-                  std::to_string(steps_per_thermal_step) +
-                  " is too few for quasi-static coupling with imposed "
-                  "velocities or displacements, which are ramped in over " +
-                  std::to_string(relaxation.quasi_static_ramp_steps) +
-                  " relaxation steps; allowed is more than " +
-                  std::to_string(2 * relaxation.quasi_static_ramp_steps) +
-                  " (or 0: automatic).");
+              relaxation.set_ramp(drivers.imposes_motion(),
+                                  steps_per_thermal_step,
+                                  "velocities or displacements");
             }
           // the stress-free temperature of each element
           const Vector<double> &T = heat->temperature();

@@ -847,35 +847,26 @@ namespace tmfdem
       if (!with_mechanics())
         return;
       const DiscreteModel &m = model;
-      // per chunk of elements (their nodes), summed in chunk order: the
-      // same on any number of threads
+      // per chunk of elements, summed in chunk order: the same on any
+      // number of threads (the kinetic energy per chunk of their nodes)
       const std::size_t n_chunks = (m.n_elements + chunk_size - 1) / chunk_size;
-      chunk_energies.assign(n_chunks, {{0., 0.}});
+      chunk_strain.assign(n_chunks, 0.);
       for_each_chunk(arena_for(n_threads),
                      m.n_elements,
                      chunk_size,
                      [&](const std::size_t begin,
                          const std::size_t end,
                          const std::size_t c) {
-                       double kinetic = 0., strain = 0.;
+                       double strain = 0.;
                        for (std::size_t e = begin; e < end; ++e)
-                         {
-                           for (std::size_t n = 4 * e; n < 4 * e + 4; ++n)
-                             kinetic += 0.5 * m.mass[n] *
-                                        (m.vx[n] * m.vx[n] + m.vy[n] * m.vy[n] +
-                                         m.vz[n] * m.vz[n]);
-                           strain +=
-                             element_strain_energy(e, m.thermal_stretch[e]);
-                         }
-                       chunk_energies[c] = {{kinetic, strain}};
+                         strain +=
+                           element_strain_energy(e, m.thermal_stretch[e]);
+                       chunk_strain[c] = strain;
                      });
-      double kinetic = 0., strain = 0.;
-      for (const auto &c : chunk_energies)
-        {
-          kinetic += c[0];
-          strain += c[1];
-        }
-      energies.kinetic = kinetic;
+      double strain = 0.;
+      for (const double c : chunk_strain)
+        strain += c;
+      energies.kinetic = kinetic_energy();
       energies.strain  = strain;
     }
 

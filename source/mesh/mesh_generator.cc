@@ -426,27 +426,6 @@ namespace tmfdem
     }
   } // namespace
 
-  std::string
-  mesh_geo_file(const std::string &geo_file,
-                const std::string &work_folder,
-                const unsigned int dim,
-                const double       time_limit,
-                MPI_Comm           communicator)
-  {
-    if (!std::filesystem::exists(geo_file))
-      throw InputError("Mesh/File name: cannot open '" + geo_file +
-                       "' (missing or unreadable).");
-    const std::string msh_file = work_folder + "/mesh.msh";
-    run_gmsh("",
-             geo_file,
-             work_folder,
-             msh_file,
-             time_limit,
-             communicator,
-             dim);
-    return msh_file;
-  }
-
   template <int dim>
   void
   read_gmsh_file(const std::string  &file_name,
@@ -532,6 +511,33 @@ namespace tmfdem
                        " in a physical group?).");
   }
 
+  template <int dim>
+  void
+  read_mesh_file(const MeshParameters &parameters,
+                 const std::string    &work_folder,
+                 Triangulation<dim>   &triangulation,
+                 MPI_Comm              communicator)
+  {
+    const std::string &name = parameters.file_name;
+    if (name.size() > 4 && name.substr(name.size() - 4) == ".geo")
+      {
+        if (!std::filesystem::exists(name))
+          throw InputError("Mesh/File name: cannot open '" + name +
+                           "' (missing or unreadable).");
+        const std::string msh_file = work_folder + "/mesh.msh";
+        run_gmsh("",
+                 name,
+                 work_folder,
+                 msh_file,
+                 parameters.gmsh_time_limit,
+                 communicator,
+                 dim);
+        read_gmsh_file(msh_file, triangulation);
+      }
+    else
+      read_gmsh_file(name, triangulation);
+  }
+
   void
   create_coarse_mesh(const MeshParameters &parameters,
                      const std::string    &work_folder,
@@ -559,16 +565,7 @@ namespace tmfdem
 
     if (parameters.source == Source::file)
       {
-        const std::string &name = parameters.file_name;
-        if (name.size() > 4 && name.substr(name.size() - 4) == ".geo")
-          read_gmsh_file(mesh_geo_file(name,
-                                       work_folder,
-                                       2,
-                                       parameters.gmsh_time_limit,
-                                       communicator),
-                         triangulation);
-        else
-          read_gmsh_file(name, triangulation);
+        read_mesh_file(parameters, work_folder, triangulation, communicator);
         attach_circular_boundaries(parameters, triangulation);
         return;
       }
@@ -791,6 +788,16 @@ namespace tmfdem
     return triangulation;
   }
 
+  template void
+  read_mesh_file<2>(const MeshParameters &,
+                    const std::string &,
+                    Triangulation<2> &,
+                    MPI_Comm);
+  template void
+  read_mesh_file<3>(const MeshParameters &,
+                    const std::string &,
+                    Triangulation<3> &,
+                    MPI_Comm);
   template void
   read_gmsh_file<2>(const std::string &, Triangulation<2> &);
   template void

@@ -189,16 +189,7 @@ namespace tmfdem
     using Source = MeshParameters::Source;
     if (parameters.source == Source::file)
       {
-        const std::string &name = parameters.file_name;
-        if (name.size() > 4 && name.substr(name.size() - 4) == ".geo")
-          read_gmsh_file(mesh_geo_file(name,
-                                       work_folder,
-                                       3,
-                                       parameters.gmsh_time_limit,
-                                       communicator),
-                         triangulation);
-        else
-          read_gmsh_file(name, triangulation);
+        read_mesh_file(parameters, work_folder, triangulation, communicator);
         return;
       }
 

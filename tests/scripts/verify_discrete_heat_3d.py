@@ -65,7 +65,6 @@ usage: verify_discrete_heat_3d.py TMFDEM OUT
 import csv
 import json
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -84,18 +83,7 @@ cube = os.path.join(here, "..", "data", "discrete", "cube_heated-3d.prm")
 ok = True
 
 
-def outputs(folder):
-    """[(time, {(section, name): values})] of solution.pvd in folder."""
-    with open(os.path.join(folder, "solution.pvd")) as f:
-        pvd = f.read()
-    result = []
-    for t, name in re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', pvd):
-        arrays = {}
-        for section, attributes, values in vtu_pieces.read_arrays(
-                os.path.join(folder, name)):
-            arrays[(section, vtu_pieces._attribute(attributes, "Name"))] = values
-        result.append((float(t), arrays))
-    return result
+outputs = vtu_pieces.read_series  # [(time, {(section, name): values})]
 
 
 def reference_points(arrays):
@@ -331,15 +319,16 @@ ok &= check(f["broken_joints"] > 0 and f["fracture_events"] >= 1 and
 # 10. imposed velocities in quasi-static coupling
 c_pull = 2000.0
 folder = os.path.join(out, "cube_pulled_quasi_static")
-run(binary, cube, folder, "Mechanical boundary conditions/Condition 1/Boundary ids=0",
-    "Mechanical boundary conditions/Condition 2/Boundary ids=2, 3",
-    "Mechanical boundary conditions/Condition 3/Boundary ids=4, 5",
-    "Mechanical boundary conditions/Condition 4/Boundary ids=1",
-    "Mechanical boundary conditions/Condition 4/Type=velocity",
-    f"Mechanical boundary conditions/Condition 4/Velocity x={c_pull:g}*t",
-    "Discrete heat/Coupling=quasi-static", "Time stepping/Time step=1e-4",
-    "Time stepping/End time=3e-4", "Output/Times=1e-4, 2e-4, 3e-4",
-    "Discrete heat/Mechanical steps per thermal step=20000")
+pulled = ["Mechanical boundary conditions/Condition 1/Boundary ids=0",
+          "Mechanical boundary conditions/Condition 2/Boundary ids=2, 3",
+          "Mechanical boundary conditions/Condition 3/Boundary ids=4, 5",
+          "Mechanical boundary conditions/Condition 4/Boundary ids=1",
+          "Mechanical boundary conditions/Condition 4/Type=velocity",
+          f"Mechanical boundary conditions/Condition 4/Velocity x={c_pull:g}*t",
+          "Discrete heat/Coupling=quasi-static", "Time stepping/Time step=1e-4",
+          "Time stepping/End time=3e-4", "Output/Times=1e-4, 2e-4, 3e-4",
+          "Discrete heat/Mechanical steps per thermal step=20000"]
+run(binary, cube, folder, *pulled)
 p = summary(folder)
 pull_error = 0.0
 for t, arrays in outputs(folder):
@@ -382,16 +371,7 @@ ok &= check(abs(reaction + sxx * L * L) <= 0.01 * abs(sxx) * L * L,
 # increment extrapolated) on the pulled cube: the same end state, the jumps'
 # energy booked
 folder = os.path.join(out, "cube_pulled_predictor")
-run(binary, cube, folder, "Mechanical boundary conditions/Condition 1/Boundary ids=0",
-    "Mechanical boundary conditions/Condition 2/Boundary ids=2, 3",
-    "Mechanical boundary conditions/Condition 3/Boundary ids=4, 5",
-    "Mechanical boundary conditions/Condition 4/Boundary ids=1",
-    "Mechanical boundary conditions/Condition 4/Type=velocity",
-    f"Mechanical boundary conditions/Condition 4/Velocity x={c_pull:g}*t",
-    "Discrete heat/Coupling=quasi-static", "Time stepping/Time step=1e-4",
-    "Time stepping/End time=3e-4", "Output/Times=1e-4, 2e-4, 3e-4",
-    "Discrete heat/Mechanical steps per thermal step=20000",
-    "Discrete heat/Relaxation predictor=extrapolate")
+run(binary, cube, folder, *pulled, "Discrete heat/Relaxation predictor=extrapolate")
 q = summary(folder)
 strain_difference = abs(q["energy"]["strain"] / p["energy"]["strain"] - 1)
 put_in = q["energy"]["external_work"] + q["energy"]["thermal_work"] + q["energy"]["relaxation_work"]

@@ -45,7 +45,6 @@ usage: verify_discrete_thermal_shock_3d.py TMFDEM OUT [--rim-size H]
 """
 import csv
 import os
-import re
 import sys
 
 import numpy as np
@@ -67,18 +66,7 @@ END_TIME = 0.012
 OUTPUT_TIMES = "0.001, 0.002, 0.003, 0.004, 0.005, 0.006, 0.007, 0.008, 0.01, 0.012"
 
 
-def outputs(folder, name="solution"):
-    """[(time, {(section, name): values})] of <name>.pvd in folder."""
-    with open(os.path.join(folder, name + ".pvd")) as f:
-        pvd = f.read()
-    result = []
-    for t, file in re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', pvd):
-        arrays = {}
-        for section, attributes, values in vtu_pieces.read_arrays(
-                os.path.join(folder, file)):
-            arrays[(section, vtu_pieces._attribute(attributes, "Name"))] = values
-        result.append((float(t), arrays))
-    return result
+outputs = vtu_pieces.read_series  # [(time, {(section, name): values})]
 
 
 def history(folder):

@@ -18,7 +18,7 @@ time) and verify.discrete_thermal_shock (300 C, the prm's own temperature,
 and 500 C, to 50 ms); prm/thermal_shock_disc-3d.prm to
 verify.discrete_thermal_shock_3d (the same check, on tetrahedra of 0.4 mm at
 the rim instead of 0.25 mm and to 5 ms instead of 12 ms: the shipped run
-takes about N minutes, doc/cases/thermal_shock_disc-3d.md).
+takes 16 minutes on two cores, doc/cases/thermal_shock_disc-3d.md).
 """
 import glob
 import os

@@ -48,10 +48,18 @@ namespace tmfdem
        * The motion imposed over one thermal step (velocity conditions and
        * driven bodies: v dt_thermal; displacement conditions:
        * u(t) - u(t - dt_thermal)) is spread evenly over the first this many
-       * relaxation steps; 0 where nothing is imposed (set by
-       * ExplicitSolver::check_input()).
+       * relaxation steps; 0 where nothing is imposed (set_ramp()).
        */
       unsigned int quasi_static_ramp_steps = 0;
+      /** Sets quasi_static_ramp_steps: ramp_steps where the run @p imposes
+       *  motion (@p what: "velocities" or "velocities or displacements",
+       *  for the message), else 0; throws InputError where the relaxation
+       *  cap @p steps_per_thermal_step (Discrete heat/Mechanical steps per
+       *  thermal step) leaves too few steps after the ramp. */
+      void
+      set_ramp(const bool         imposes,
+               const unsigned int steps_per_thermal_step,
+               const std::string &what);
       /** Length of the current thermal step [s]. */
       double current_thermal_step = 0.;
       /** Index of the relaxation step under way; quasi_static_ramp_steps + 1

@@ -211,7 +211,8 @@ namespace tmfdem
        *  extrapolation. */
       void
       predict_relaxation(const double dt);
-      /** The kinetic energy of the nodes, summed in node order [J]. */
+      /** The kinetic energy of the nodes, summed per chunk of tetrahedra
+       *  on the solver's threads, the chunks in order [J]. */
       double
       kinetic_energy() const;
       /** Kinetic damping: every free velocity component to 0, the node
@@ -357,8 +358,10 @@ namespace tmfdem
       /** Per chunk of elements: the first inverted element and the first
        *  node with a non-finite velocity of the step, or -1 (guards). */
       std::vector<std::array<long long, 2>> chunk_guard;
-      /** Per chunk of elements: kinetic and strain energy [J]. */
-      std::vector<std::array<double, 2>> chunk_energies;
+      /** Per chunk of elements: strain energy [J]. */
+      std::vector<double> chunk_strain;
+      /** kinetic_energy(): the sum per chunk of tetrahedra [J]. */
+      mutable std::vector<double> chunk_kinetic;
       /** Kinetic energy at the start [J]. */
       double initial_kinetic = 0.;
       /** Why the run stopped early (summary.json); empty otherwise. */

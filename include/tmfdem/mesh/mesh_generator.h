@@ -51,19 +51,20 @@ namespace tmfdem
                      MPI_Comm              communicator);
 
   /**
-   * Meshes the user's gmsh script @p geo_file in @p dim dimensions (gmsh
-   * -2 or -3, format 2.2) into <@p work_folder>/mesh.msh and returns that
-   * path, stopping gmsh after @p time_limit seconds (Mesh/Gmsh time limit).
+   * Reads Mesh/File name of @p parameters into @p triangulation: a gmsh
+   * .msh file (read_gmsh_file()), or a .geo script that gmsh meshes in
+   * @p dim dimensions (gmsh -2 or -3, format 2.2) into
+   * <@p work_folder>/mesh.msh first, stopped after Mesh/Gmsh time limit.
    * gmsh's errors in the script and a mesh that takes longer than the limit
    * are InputError with gmsh's own error lines; a missing file is
    * InputError naming Mesh/File name.
    */
-  std::string
-  mesh_geo_file(const std::string &geo_file,
-                const std::string &work_folder,
-                const unsigned int dim,
-                const double       time_limit,
-                MPI_Comm           communicator);
+  template <int dim>
+  void
+  read_mesh_file(const MeshParameters &parameters,
+                 const std::string    &work_folder,
+                 Triangulation<dim>   &triangulation,
+                 MPI_Comm              communicator);
 
   /**
    * Reads a gmsh .msh file (ASCII format 2 or 4): in 2D physical curves
