@@ -1,0 +1,560 @@
+/**
+ * @file
+ * Contact between tetrahedra: Munjiza's potential in 3D (theory manual 5.13),
+ * phi = 4 min(lambda_0, ..., lambda_3) (1 at the centroid, 0 on the faces),
+ * and the normal contact energy of a contactor c in a target t,
+ *
+ *   E_t = p int_{c cap t} phi_t dV,
+ *
+ * whose exact gradient gives the forces on all eight nodes:
+ *  - on the contactor's nodes, f_a = -p int_{dc cap t} phi_t N_a n dA over
+ *    its faces inside the target (n the face's outward normal, N_a the
+ *    face's shape functions): moving a contactor node moves only that part
+ *    of the overlap's boundary (Munjiza's force, Eq. 5 by the divergence
+ *    theorem);
+ *  - on the target's nodes, f_j = 4 p sum_m grad(lambda_m) int_{V_m}
+ *    lambda_j dV, V_m the part of the overlap where lambda_m is the
+ *    smallest (the sub-tetrahedron of the target's centroid and face m):
+ *    moving target node j changes lambda_m at a fixed point by
+ *    -lambda_j grad(lambda_m), and the target's moving boundary adds
+ *    nothing (phi_t = 0 there).
+ * The pair's energy is E_t + E_c (each tetrahedron once the contactor), so
+ * the normal force is conservative for any motion of the eight nodes,
+ * deformation included; it keeps linear and angular momentum (E does not
+ * change under rigid motions of the pair).
+ *
+ * Every integrand is a polynomial of degree at most two on a polygon or a
+ * polyhedron where the potential is linear, integrated exactly: the face
+ * clipped by the four planes of a sub-tetrahedron (Sutherland-Hodgman with
+ * the linear functions carried at the vertices, the edge-midpoint rule on
+ * a fan of triangles), the contactor clipped by the same planes as a set
+ * of tetrahedra (one plane cuts a tetrahedron into at most three).
+ *
+ * Header-only, allocation-free (fixed arrays on the stack), double only:
+ * it runs per contact pair per step, on the solver's threads.
+ */
+#ifndef tmfdem_discrete_tetrahedron_contact_h
+#define tmfdem_discrete_tetrahedron_contact_h
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    /**
+     * The barycentric coordinates of a tetrahedron as linear functions of
+     * position, lambda_k(x) = g_k . (x - o) + c_k, with o its node 0.
+     */
+    struct TetrahedronCoordinates
+    {
+      double gradient[4][3]; ///< grad(lambda_k) [1/m]
+      double offset[4];      ///< lambda_k at the origin o [-]
+      double origin[3];      ///< node 0 [m]
+      double volume = 0.;    ///< [m^3]
+
+      /**
+       * From the nodes @p t (t[k][i]: component i of node k) [m]. Returns
+       * false for a degenerate or inverted tetrahedron (volume <= 0).
+       */
+      bool
+      set(const double (&t)[4][3])
+      {
+        double e[3][3]; // edges from node 0
+        for (unsigned int k = 0; k < 3; ++k)
+          for (unsigned int i = 0; i < 3; ++i)
+            e[k][i] = t[k + 1][i] - t[0][i];
+        // rows of the inverse of [e1 e2 e3] (columns): the gradients of
+        // lambda_1..3
+        const double c0[3] = {e[1][1] * e[2][2] - e[1][2] * e[2][1],
+                              e[1][2] * e[2][0] - e[1][0] * e[2][2],
+                              e[1][0] * e[2][1] - e[1][1] * e[2][0]};
+        const double c1[3] = {e[2][1] * e[0][2] - e[2][2] * e[0][1],
+                              e[2][2] * e[0][0] - e[2][0] * e[0][2],
+                              e[2][0] * e[0][1] - e[2][1] * e[0][0]};
+        const double c2[3] = {e[0][1] * e[1][2] - e[0][2] * e[1][1],
+                              e[0][2] * e[1][0] - e[0][0] * e[1][2],
+                              e[0][0] * e[1][1] - e[0][1] * e[1][0]};
+        const double det = e[0][0] * c0[0] + e[0][1] * c0[1] + e[0][2] * c0[2];
+        if (!(det > 0.))
+          return false;
+        volume           = det / 6.;
+        const double inv = 1. / det;
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            gradient[1][i] = c0[i] * inv;
+            gradient[2][i] = c1[i] * inv;
+            gradient[3][i] = c2[i] * inv;
+            gradient[0][i] =
+              -(gradient[1][i] + gradient[2][i] + gradient[3][i]);
+            origin[i] = t[0][i];
+          }
+        offset[0] = 1.;
+        offset[1] = offset[2] = offset[3] = 0.;
+        return true;
+      }
+
+      /** lambda_k at the point @p x [m]. */
+      double
+      operator()(const unsigned int k, const double *x) const
+      {
+        return gradient[k][0] * (x[0] - origin[0]) +
+               gradient[k][1] * (x[1] - origin[1]) +
+               gradient[k][2] * (x[2] - origin[2]) + offset[k];
+      }
+    };
+
+    /**
+     * The potential integrals of one contactor face inside one target:
+     * I_a = int phi_t N_a dA over the part of the face inside the target
+     * (a = 0, 1, 2: the face's nodes) [m^2], J_k = int phi_t lambda_k dA
+     * (k = 0..3: the target's nodes) [m^2], and the area of that part
+     * [m^2].
+     */
+    struct FacePotentialIntegrals
+    {
+      std::array<double, 3> face{{0., 0., 0.}};
+      std::array<double, 4> target{{0., 0., 0., 0.}};
+      double                clipped_area = 0.;
+
+      /** int phi_t dA [m^2]. */
+      double
+      total() const
+      {
+        return face[0] + face[1] + face[2];
+      }
+    };
+
+    namespace tetrahedron_contact_internal
+    {
+      /** A vertex of a clipped face: the face's shape functions and the
+       *  target's barycentric coordinates there (all linear in position,
+       *  so an intersection interpolates them all). */
+      struct FaceVertex
+      {
+        double value[7]; // N_0, N_1, N_2, lambda_0..3
+      };
+
+      /** Room for a face clipped by four planes: 7 vertices in exact
+       *  arithmetic, the rest for round-off. */
+      constexpr unsigned int max_face_vertices = 12;
+
+      /**
+       * Sutherland-Hodgman step on a convex polygon of @p n FaceVertex:
+       * keeps the part where g = value[i] - value[j] >= 0 (@p j = 7: g =
+       * value[i]). Returns the number of vertices written to @p out (0 if
+       * fewer than three).
+       */
+      inline unsigned int
+      clip_face(const FaceVertex  *in,
+                const unsigned int n,
+                const unsigned int i,
+                const unsigned int j,
+                FaceVertex        *out)
+      {
+        double g[max_face_vertices];
+        for (unsigned int v = 0; v < n; ++v)
+          g[v] = in[v].value[i] - (j < 7 ? in[v].value[j] : 0.);
+        unsigned int m = 0;
+        for (unsigned int v = 0; v < n && m < max_face_vertices; ++v)
+          {
+            const unsigned int w = v + 1 == n ? 0 : v + 1;
+            if (g[v] >= 0.)
+              out[m++] = in[v];
+            if (((g[v] > 0. && g[w] < 0.) || (g[v] < 0. && g[w] > 0.)) &&
+                m < max_face_vertices)
+              {
+                const double s = g[v] / (g[v] - g[w]);
+                for (unsigned int q = 0; q < 7; ++q)
+                  out[m].value[q] =
+                    in[v].value[q] + s * (in[w].value[q] - in[v].value[q]);
+                ++m;
+              }
+          }
+        return m < 3 ? 0 : m;
+      }
+
+      /** A tetrahedron of a clipped polyhedron: positions and the target's
+       *  barycentric coordinates at its four vertices. */
+      struct SoupTetrahedron
+      {
+        double value[4][7]; // vertex: x, y, z, lambda_0..3
+      };
+
+      /** Room for the contactor cut by four planes (at most three pieces
+       *  per plane and piece: 81). */
+      constexpr unsigned int max_soup = 81;
+
+      /** The point on the edge from @p a to @p b where g = 0. */
+      inline void
+      soup_point(const double *a,
+                 const double *b,
+                 const double  ga,
+                 const double  gb,
+                 double       *out)
+      {
+        const double s = ga / (ga - gb);
+        for (unsigned int q = 0; q < 7; ++q)
+          out[q] = a[q] + s * (b[q] - a[q]);
+      }
+
+      /**
+       * The part of the tetrahedra @p in (@p n of them) where g =
+       * value[i] - value[j] >= 0 (@p j = 7: g = value[i]) as tetrahedra in
+       * @p out; returns their number. A tetrahedron with one vertex inside
+       * gives one, with two or three inside a prism, split into three.
+       */
+      inline unsigned int
+      clip_soup(const SoupTetrahedron *in,
+                const unsigned int     n,
+                const unsigned int     i,
+                const unsigned int     j,
+                SoupTetrahedron       *out)
+      {
+        unsigned int m = 0;
+        for (unsigned int t = 0; t < n; ++t)
+          {
+            const SoupTetrahedron &T = in[t];
+            double                 g[4];
+            unsigned int           inside[4], outside[4], n_in = 0, n_out = 0;
+            for (unsigned int v = 0; v < 4; ++v)
+              {
+                g[v] = T.value[v][i] - (j < 7 ? T.value[v][j] : 0.);
+                if (g[v] >= 0.)
+                  inside[n_in++] = v;
+                else
+                  outside[n_out++] = v;
+              }
+            if (n_in == 0)
+              continue;
+            if (n_in == 4)
+              {
+                if (m < max_soup)
+                  out[m++] = T;
+                continue;
+              }
+            // the prism of bottom (p0, p1, p2) and top (q0, q1, q2) with
+            // edges p_k q_k, as three tetrahedra
+            auto add_prism = [&](const double *p0,
+                                 const double *p1,
+                                 const double *p2,
+                                 const double *q0,
+                                 const double *q1,
+                                 const double *q2) {
+              const double *pieces[3][4] = {{p0, p1, p2, q0},
+                                            {p1, p2, q0, q1},
+                                            {p2, q0, q1, q2}};
+              for (const auto &piece : pieces)
+                if (m < max_soup)
+                  {
+                    for (unsigned int v = 0; v < 4; ++v)
+                      std::copy(piece[v], piece[v] + 7, out[m].value[v]);
+                    ++m;
+                  }
+            };
+            if (n_in == 1)
+              {
+                const unsigned int a = inside[0];
+                if (m < max_soup)
+                  {
+                    std::copy(T.value[a], T.value[a] + 7, out[m].value[0]);
+                    for (unsigned int k = 0; k < 3; ++k)
+                      soup_point(T.value[a],
+                                 T.value[outside[k]],
+                                 g[a],
+                                 g[outside[k]],
+                                 out[m].value[k + 1]);
+                    ++m;
+                  }
+              }
+            else if (n_in == 3)
+              {
+                // the corner of the one outside vertex d cut off
+                const unsigned int d = outside[0];
+                double             cut[3][7];
+                for (unsigned int k = 0; k < 3; ++k)
+                  soup_point(T.value[inside[k]],
+                             T.value[d],
+                             g[inside[k]],
+                             g[d],
+                             cut[k]);
+                add_prism(T.value[inside[0]],
+                          T.value[inside[1]],
+                          T.value[inside[2]],
+                          cut[0],
+                          cut[1],
+                          cut[2]);
+              }
+            else
+              {
+                // inside a, b; the wedge of (a, ac, ad) and (b, bc, bd)
+                const unsigned int a = inside[0], b = inside[1];
+                const unsigned int c = outside[0], d = outside[1];
+                double             ac[7], ad[7], bc[7], bd[7];
+                soup_point(T.value[a], T.value[c], g[a], g[c], ac);
+                soup_point(T.value[a], T.value[d], g[a], g[d], ad);
+                soup_point(T.value[b], T.value[c], g[b], g[c], bc);
+                soup_point(T.value[b], T.value[d], g[b], g[d], bd);
+                add_prism(T.value[a], ac, ad, T.value[b], bc, bd);
+              }
+          }
+        return m;
+      }
+
+      /** |volume| of a soup tetrahedron [m^3]. */
+      inline double
+      soup_volume(const SoupTetrahedron &T)
+      {
+        double e[3][3];
+        for (unsigned int k = 0; k < 3; ++k)
+          for (unsigned int i = 0; i < 3; ++i)
+            e[k][i] = T.value[k + 1][i] - T.value[0][i];
+        const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                           e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                           e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+        return std::abs(det) / 6.;
+      }
+
+      /** Whether no point of the tetrahedron @p c (nodes c[k]) can lie
+       *  inside the target: all its nodes on the outside of one face. */
+      inline bool
+      separated(const TetrahedronCoordinates &target, const double (&c)[4][3])
+      {
+        for (unsigned int k = 0; k < 4; ++k)
+          if (target(k, c[0]) < 0. && target(k, c[1]) < 0. &&
+              target(k, c[2]) < 0. && target(k, c[3]) < 0.)
+            return true;
+        return false;
+      }
+    } // namespace tetrahedron_contact_internal
+
+    /** The three nodes of the face of a tetrahedron opposite node @p f,
+     *  in ascending order. */
+    inline std::array<unsigned int, 3>
+    tetrahedron_face_nodes(const unsigned int f)
+    {
+      static constexpr unsigned int faces[4][3] = {{1, 2, 3},
+                                                   {0, 2, 3},
+                                                   {0, 1, 3},
+                                                   {0, 1, 2}};
+      return {{faces[f][0], faces[f][1], faces[f][2]}};
+    }
+
+    /**
+     * The potential integrals of the face opposite node @p f of the
+     * contactor @p c (nodes c[k][i]) [m] inside the target of coordinates
+     * @p target (FacePotentialIntegrals). Returns false if the face does
+     * not enter the target.
+     */
+    inline bool
+    face_potential_integrals(const double (&c)[4][3],
+                             const unsigned int            f,
+                             const TetrahedronCoordinates &target,
+                             FacePotentialIntegrals       &result)
+    {
+      using namespace tetrahedron_contact_internal;
+      const std::array<unsigned int, 3> face = tetrahedron_face_nodes(f);
+      FaceVertex                        base[3];
+      for (unsigned int v = 0; v < 3; ++v)
+        {
+          for (unsigned int a = 0; a < 3; ++a)
+            base[v].value[a] = a == v ? 1. : 0.;
+          for (unsigned int k = 0; k < 4; ++k)
+            base[v].value[3 + k] = target(k, c[face[v]]);
+        }
+      // quick rejection: the whole face outside one target face
+      for (unsigned int k = 0; k < 4; ++k)
+        if (base[0].value[3 + k] <= 0. && base[1].value[3 + k] <= 0. &&
+            base[2].value[3 + k] <= 0.)
+          return false;
+      double e1[3], e2[3];
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          e1[i] = c[face[1]][i] - c[face[0]][i];
+          e2[i] = c[face[2]][i] - c[face[0]][i];
+        }
+      const double nx        = e1[1] * e2[2] - e1[2] * e2[1];
+      const double ny        = e1[2] * e2[0] - e1[0] * e2[2];
+      const double nz        = e1[0] * e2[1] - e1[1] * e2[0];
+      const double face_area = 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
+      result                 = FacePotentialIntegrals();
+      bool entered           = false;
+      for (unsigned int m = 0; m < 4; ++m)
+        {
+          // the sub-tetrahedron of face m: lambda_m >= 0, lambda_j >=
+          // lambda_m
+          FaceVertex   buffer[2][max_face_vertices];
+          unsigned int n       = clip_face(base, 3, 3 + m, 7, buffer[0]);
+          unsigned int current = 0;
+          for (unsigned int j = 0; j < 4 && n > 0; ++j)
+            if (j != m)
+              {
+                n       = clip_face(buffer[current],
+                              n,
+                              3 + j,
+                              3 + m,
+                              buffer[1 - current]);
+                current = 1 - current;
+              }
+          if (n == 0)
+            continue;
+          const FaceVertex *P = buffer[current];
+          // fan from vertex 0; the area from the face coordinates N_1, N_2
+          for (unsigned int v = 1; v + 1 < n; ++v)
+            {
+              const double *p0 = P[0].value, *p1 = P[v].value,
+                           *p2 = P[v + 1].value;
+              const double area =
+                face_area * std::abs((p1[1] - p0[1]) * (p2[2] - p0[2]) -
+                                     (p1[2] - p0[2]) * (p2[1] - p0[1]));
+              if (!(area > 0.))
+                continue;
+              entered = true;
+              result.clipped_area += area;
+              // edge midpoints: exact for the quadratic phi N
+              const double *ends[3][2] = {{p0, p1}, {p1, p2}, {p2, p0}};
+              for (const auto &edge : ends)
+                {
+                  double mid[7];
+                  for (unsigned int q = 0; q < 7; ++q)
+                    mid[q] = 0.5 * (edge[0][q] + edge[1][q]);
+                  const double phi = 4. * std::max(mid[3 + m], 0.) * area / 3.;
+                  for (unsigned int a = 0; a < 3; ++a)
+                    result.face[a] += phi * mid[a];
+                  for (unsigned int k = 0; k < 4; ++k)
+                    result.target[k] += phi * mid[3 + k];
+                }
+            }
+        }
+      return entered;
+    }
+
+    /**
+     * Adds to @p ft (twelve components, node k component i at 3 k + i) the
+     * forces on the target's nodes of the normal contact energy E_t = p
+     * int_{c cap t} phi_t dV of the contactor @p c in the target @p t
+     * (nodes [k][i], positively oriented) [m], @p penalty p [Pa]: exactly
+     * minus its gradient with respect to the target's nodes [N]. Returns
+     * E_t [J].
+     */
+    inline double
+    add_target_potential_forces_3d(const double (&c)[4][3],
+                                   const TetrahedronCoordinates &target,
+                                   const double                  penalty,
+                                   double                       *ft)
+    {
+      using namespace tetrahedron_contact_internal;
+      if (separated(target, c))
+        return 0.;
+      SoupTetrahedron base;
+      for (unsigned int v = 0; v < 4; ++v)
+        {
+          for (unsigned int i = 0; i < 3; ++i)
+            base.value[v][i] = c[v][i];
+          for (unsigned int k = 0; k < 4; ++k)
+            base.value[v][3 + k] = target(k, c[v]);
+        }
+      double energy = 0.;
+      for (unsigned int m = 0; m < 4; ++m)
+        {
+          SoupTetrahedron buffer[2][max_soup];
+          unsigned int    n       = clip_soup(&base, 1, 3 + m, 7, buffer[0]);
+          unsigned int    current = 0;
+          for (unsigned int j = 0; j < 4 && n > 0; ++j)
+            if (j != m)
+              {
+                n       = clip_soup(buffer[current],
+                              n,
+                              3 + j,
+                              3 + m,
+                              buffer[1 - current]);
+                current = 1 - current;
+              }
+          if (n == 0)
+            continue;
+          // int_{V_m} lambda_k dV: volume times the mean at the vertices
+          double lambda_integral[4] = {0., 0., 0., 0.};
+          for (unsigned int t = 0; t < n; ++t)
+            {
+              const SoupTetrahedron &T = buffer[current][t];
+              const double           w = 0.25 * soup_volume(T);
+              for (unsigned int k = 0; k < 4; ++k)
+                lambda_integral[k] +=
+                  w * (T.value[0][3 + k] + T.value[1][3 + k] +
+                       T.value[2][3 + k] + T.value[3][3 + k]);
+            }
+          const double g = 4. * penalty;
+          for (unsigned int j = 0; j < 4; ++j)
+            for (unsigned int i = 0; i < 3; ++i)
+              ft[3 * j + i] += g * target.gradient[m][i] * lambda_integral[j];
+          energy += g * lambda_integral[m];
+        }
+      return energy;
+    }
+
+    /**
+     * The normal contact energy p int_{c cap t} phi_t dV of the contactor
+     * @p c in the target @p t [J] (@p penalty [Pa], nodes [m]), computed
+     * as add_target_potential_forces_3d() computes it.
+     */
+    inline double
+    contact_energy_3d(const double (&c)[4][3],
+                      const TetrahedronCoordinates &target,
+                      const double                  penalty)
+    {
+      double unused[12] = {};
+      return add_target_potential_forces_3d(c, target, penalty, unused);
+    }
+
+    /**
+     * Adds to @p fc (twelve components) the normal forces on the
+     * contactor's nodes of E_t = p int_{c cap t} phi_t dV: for each face of
+     * @p c, -p n_f I_a on its node a (face_potential_integrals()) [N].
+     * The face integrals go to @p integrals (one per face, zero where the
+     * face does not enter) for the friction and the target's reaction.
+     */
+    inline void
+    add_contactor_potential_forces_3d(
+      const double (&c)[4][3],
+      const TetrahedronCoordinates          &target,
+      const double                           penalty,
+      double                                *fc,
+      std::array<FacePotentialIntegrals, 4> &integrals)
+    {
+      for (unsigned int f = 0; f < 4; ++f)
+        {
+          if (!face_potential_integrals(c, f, target, integrals[f]))
+            {
+              integrals[f] = FacePotentialIntegrals();
+              continue;
+            }
+          const std::array<unsigned int, 3> face = tetrahedron_face_nodes(f);
+          double                            e1[3], e2[3];
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              e1[i] = c[face[1]][i] - c[face[0]][i];
+              e2[i] = c[face[2]][i] - c[face[0]][i];
+            }
+          double n[3] = {e1[1] * e2[2] - e1[2] * e2[1],
+                         e1[2] * e2[0] - e1[0] * e2[2],
+                         e1[0] * e2[1] - e1[1] * e2[0]};
+          // outward: away from the node opposite the face
+          const double towards_opposite = n[0] * (c[f][0] - c[face[0]][0]) +
+                                          n[1] * (c[f][1] - c[face[0]][1]) +
+                                          n[2] * (c[f][2] - c[face[0]][2]);
+          const double length =
+            (towards_opposite > 0. ? -1. : 1.) *
+            std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+          for (double &component : n)
+            component /= length;
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int i = 0; i < 3; ++i)
+              fc[3 * face[a] + i] -= penalty * integrals[f].face[a] * n[i];
+        }
+    }
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif

@@ -1,0 +1,169 @@
+// Unit tests of the contact kernel between tetrahedra
+// (include/tmfdem/discrete/tetrahedron_contact.h): the forces on all eight
+// nodes are minus the gradient of the pair's energy (central finite
+// differences), they keep linear and angular momentum, and the energy of a
+// contactor that coincides with its target is the closed form p V / 4.
+
+#include <cmath>
+#include <gtest/gtest.h>
+#include <random>
+#include <tmfdem/discrete/tetrahedron_contact.h>
+
+using namespace tmfdem::discrete;
+
+namespace
+{
+  using Nodes = double[4][3];
+
+  /** The pair's energy E_t + E_c [J] (each tetrahedron the contactor in
+   *  the other). */
+  double
+  pair_energy(const Nodes &a, const Nodes &b, const double p)
+  {
+    TetrahedronCoordinates ta, tb;
+    if (!ta.set(a) || !tb.set(b))
+      return 0.;
+    return contact_energy_3d(a, tb, p) + contact_energy_3d(b, ta, p);
+  }
+
+  /** The pair's forces: f[0..11] on a, f[12..23] on b [N]. */
+  void
+  pair_forces(const Nodes &a, const Nodes &b, const double p, double *f)
+  {
+    std::fill(f, f + 24, 0.);
+    TetrahedronCoordinates ta, tb;
+    ASSERT_TRUE(ta.set(a) && tb.set(b));
+    std::array<FacePotentialIntegrals, 4> integrals;
+    // a the contactor in b, then b in a
+    add_contactor_potential_forces_3d(a, tb, p, f, integrals);
+    add_target_potential_forces_3d(a, tb, p, f + 12);
+    add_contactor_potential_forces_3d(b, ta, p, f + 12, integrals);
+    add_target_potential_forces_3d(b, ta, p, f);
+  }
+
+  void
+  positive(Nodes &t)
+  {
+    TetrahedronCoordinates c;
+    if (!c.set(t))
+      for (unsigned int i = 0; i < 3; ++i)
+        std::swap(t[1][i], t[2][i]);
+  }
+
+  /** Two random tetrahedra of size ~1 m whose centroids are @p distance
+   *  apart. */
+  void
+  random_pair(std::mt19937 &rng, const double distance, Nodes &a, Nodes &b)
+  {
+    std::uniform_real_distribution<double> u(-0.5, 0.5);
+    for (unsigned int k = 0; k < 4; ++k)
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          a[k][i] = u(rng) + (k == i + 1 ? 1. : 0.);
+          b[k][i] = u(rng) + (k == i + 1 ? 1. : 0.) + (i == 0 ? distance : 0.);
+        }
+    positive(a);
+    positive(b);
+  }
+} // namespace
+
+TEST(TetrahedronContact, EnergyOfCoincidentTetrahedraIsPVolumeOverFour)
+{
+  // int_t 4 min(lambda) dV = 4 * 4 (V / 4) (1 / 16) = V / 4 per direction
+  Nodes t = {{0.1, -0.2, 0.3},
+             {1.3, 0.1, 0.2},
+             {0.2, 0.9, -0.1},
+             {0.4, 0.3, 1.1}};
+  positive(t);
+  TetrahedronCoordinates c;
+  ASSERT_TRUE(c.set(t));
+  const double p = 7.;
+  EXPECT_NEAR(contact_energy_3d(t, c, p),
+              p * c.volume / 4.,
+              1e-12 * p * c.volume);
+}
+
+TEST(TetrahedronContact, ForcesAreMinusTheGradientOfTheEnergy)
+{
+  std::mt19937 rng(11);
+  const double p      = 3.;
+  unsigned int tested = 0;
+  for (unsigned int trial = 0; trial < 200 && tested < 20; ++trial)
+    {
+      Nodes a, b;
+      random_pair(rng, 0.6, a, b);
+      const double E = pair_energy(a, b, p);
+      if (!(E > 1e-4))
+        continue;
+      ++tested;
+      double f[24];
+      pair_forces(a, b, p, f);
+      double largest = 0.;
+      for (double v : f)
+        largest = std::max(largest, std::abs(v));
+      const double h = 1e-6;
+      for (unsigned int q = 0; q < 24; ++q)
+        {
+          Nodes       &t  = q < 12 ? a : b;
+          double      &x  = t[(q % 12) / 3][q % 3];
+          const double x0 = x;
+          x               = x0 + h;
+          const double Ep = pair_energy(a, b, p);
+          x               = x0 - h;
+          const double Em = pair_energy(a, b, p);
+          x               = x0;
+          EXPECT_NEAR(f[q], -(Ep - Em) / (2. * h), 1e-5 * largest)
+            << "trial " << trial << " component " << q;
+        }
+    }
+  EXPECT_GE(tested, 10u);
+}
+
+TEST(TetrahedronContact, ForcesKeepLinearAndAngularMomentum)
+{
+  std::mt19937 rng(5);
+  const double p      = 1e9;
+  unsigned int tested = 0;
+  for (unsigned int trial = 0; trial < 200 && tested < 30; ++trial)
+    {
+      Nodes a, b;
+      random_pair(rng, 0.5, a, b);
+      if (!(pair_energy(a, b, p) > 0.))
+        continue;
+      ++tested;
+      double f[24];
+      pair_forces(a, b, p, f);
+      double sum[3] = {0., 0., 0.}, torque[3] = {0., 0., 0.}, largest = 0.;
+      for (unsigned int n = 0; n < 8; ++n)
+        {
+          const double *x  = n < 4 ? a[n] : b[n - 4];
+          const double *fn = &f[3 * n];
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              sum[i] += fn[i];
+              largest = std::max(largest, std::abs(fn[i]));
+            }
+          torque[0] += x[1] * fn[2] - x[2] * fn[1];
+          torque[1] += x[2] * fn[0] - x[0] * fn[2];
+          torque[2] += x[0] * fn[1] - x[1] * fn[0];
+        }
+      ASSERT_GT(largest, 0.);
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          EXPECT_LT(std::abs(sum[i]), 1e-10 * largest) << "trial " << trial;
+          EXPECT_LT(std::abs(torque[i]), 1e-10 * largest) << "trial " << trial;
+        }
+    }
+  EXPECT_GE(tested, 10u);
+}
+
+TEST(TetrahedronContact, SeparatedTetrahedraHaveNoForce)
+{
+  Nodes  a = {{0., 0., 0.}, {1., 0., 0.}, {0., 1., 0.}, {0., 0., 1.}};
+  Nodes  b = {{2., 0., 0.}, {3., 0., 0.}, {2., 1., 0.}, {2., 0., 1.}};
+  double f[24];
+  pair_forces(a, b, 1., f);
+  for (double v : f)
+    EXPECT_EQ(v, 0.);
+  EXPECT_EQ(pair_energy(a, b, 1.), 0.);
+}
