@@ -303,6 +303,35 @@ namespace tmfdem
         return m;
       }
 
+      /**
+       * The part of @p base (@p n_base items: a face polygon of FaceVertex
+       * or a set of SoupTetrahedron, the target's coordinates at index
+       * 3 + k of their values) inside the target's sub-tetrahedron @p m
+       * (lambda_m >= 0, lambda_j >= lambda_m), cut with @p clip
+       * (clip_face() or clip_soup()) through the two @p buffers. Returns
+       * the number of items and points @p result at them.
+       */
+      template <typename Item, std::size_t room, typename Clip>
+      inline unsigned int
+      clip_to_subtetrahedron(const Item        *base,
+                             const unsigned int n_base,
+                             const unsigned int m,
+                             Item (&buffers)[2][room],
+                             const Clip  &clip,
+                             const Item *&result)
+      {
+        unsigned int n       = clip(base, n_base, 3 + m, 7, buffers[0]);
+        unsigned int current = 0;
+        for (unsigned int j = 0; j < 4 && n > 0; ++j)
+          if (j != m)
+            {
+              n = clip(buffers[current], n, 3 + j, 3 + m, buffers[1 - current]);
+              current = 1 - current;
+            }
+        result = buffers[current];
+        return n;
+      }
+
       /** |volume| of a soup tetrahedron [m^3]. */
       inline double
       soup_volume(const SoupTetrahedron &T)
@@ -385,22 +414,12 @@ namespace tmfdem
         {
           // the sub-tetrahedron of face m: lambda_m >= 0, lambda_j >=
           // lambda_m
-          FaceVertex   buffer[2][max_face_vertices];
-          unsigned int n       = clip_face(base, 3, 3 + m, 7, buffer[0]);
-          unsigned int current = 0;
-          for (unsigned int j = 0; j < 4 && n > 0; ++j)
-            if (j != m)
-              {
-                n       = clip_face(buffer[current],
-                              n,
-                              3 + j,
-                              3 + m,
-                              buffer[1 - current]);
-                current = 1 - current;
-              }
+          FaceVertex         buffer[2][max_face_vertices];
+          const FaceVertex  *P = nullptr;
+          const unsigned int n =
+            clip_to_subtetrahedron(base, 3, m, buffer, clip_face, P);
           if (n == 0)
             continue;
-          const FaceVertex *P = buffer[current];
           // fan from vertex 0; the area from the face coordinates N_1, N_2
           for (unsigned int v = 1; v + 1 < n; ++v)
             {
@@ -459,26 +478,17 @@ namespace tmfdem
       double energy = 0.;
       for (unsigned int m = 0; m < 4; ++m)
         {
-          SoupTetrahedron buffer[2][max_soup];
-          unsigned int    n       = clip_soup(&base, 1, 3 + m, 7, buffer[0]);
-          unsigned int    current = 0;
-          for (unsigned int j = 0; j < 4 && n > 0; ++j)
-            if (j != m)
-              {
-                n       = clip_soup(buffer[current],
-                              n,
-                              3 + j,
-                              3 + m,
-                              buffer[1 - current]);
-                current = 1 - current;
-              }
+          SoupTetrahedron        buffer[2][max_soup];
+          const SoupTetrahedron *pieces = nullptr;
+          const unsigned int     n =
+            clip_to_subtetrahedron(&base, 1, m, buffer, clip_soup, pieces);
           if (n == 0)
             continue;
           // int_{V_m} lambda_k dV: volume times the mean at the vertices
           double lambda_integral[4] = {0., 0., 0., 0.};
           for (unsigned int t = 0; t < n; ++t)
             {
-              const SoupTetrahedron &T = buffer[current][t];
+              const SoupTetrahedron &T = pieces[t];
               const double           w = 0.25 * soup_volume(T);
               for (unsigned int k = 0; k < 4; ++k)
                 lambda_integral[k] +=
