@@ -167,3 +167,79 @@ TEST(TetrahedronContact, SeparatedTetrahedraHaveNoForce)
     EXPECT_EQ(v, 0.);
   EXPECT_EQ(pair_energy(a, b, 1.), 0.);
 }
+
+TEST(TetrahedronContact, FrictionSticksElasticallyThenSlidesAtMuN)
+{
+  // a contactor pressed into a target, its face sliding along x
+  Nodes t = {{0., 0., 0.}, {1., 0., 0.}, {0., 1., 0.}, {0., 0., 1.}};
+  Nodes c = {{0.1, 0.1, 0.95},
+             {0.6, 0.1, 0.95},
+             {0.1, 0.6, 0.95},
+             {0.2, 0.2, 0.1}};
+  positive(t);
+  positive(c);
+  TetrahedronCoordinates target;
+  ASSERT_TRUE(target.set(t));
+  const double p = 1e9, p_t = 1e9, mu = 0.5, dt = 1e-6;
+  Nodes        vc = {}, vt = {};
+  for (auto &v : vc)
+    v[0] = 1.; // 1 m/s along x
+  unsigned int tested = 0;
+  for (unsigned int f = 0; f < 4; ++f)
+    {
+      FacePotentialIntegrals I;
+      if (!face_potential_integrals(c, f, target, I))
+        continue;
+      ++tested;
+      FaceFriction h;
+      double       fc[12] = {}, ft[12] = {};
+      // one step: elastic, force -k v dt along x
+      const double w1 =
+        add_face_friction_3d(c, vc, vt, f, I, p, p_t, mu, dt, h, fc, ft);
+      EXPECT_EQ(w1, 0.);
+      double sum[3] = {0., 0., 0.}, contactor_x = 0.;
+      for (unsigned int n = 0; n < 4; ++n)
+        {
+          contactor_x += fc[3 * n];
+          for (unsigned int i = 0; i < 3; ++i)
+            sum[i] += fc[3 * n + i] + ft[3 * n + i];
+        }
+      EXPECT_LT(contactor_x, 0.) << "face " << f;
+      for (double s : sum)
+        EXPECT_LT(std::abs(s), 1e-12 * std::abs(contactor_x));
+      // both act at the centroid of the normal force: no torque
+      double torque[3] = {0., 0., 0.};
+      for (unsigned int n = 0; n < 8; ++n)
+        {
+          const double *x  = n < 4 ? c[n] : t[n - 4];
+          const double *fn = n < 4 ? &fc[3 * n] : &ft[3 * (n - 4)];
+          torque[0] += x[1] * fn[2] - x[2] * fn[1];
+          torque[1] += x[2] * fn[0] - x[0] * fn[2];
+          torque[2] += x[0] * fn[1] - x[1] * fn[0];
+        }
+      for (double m : torque)
+        EXPECT_LT(std::abs(m), 1e-12 * std::abs(contactor_x)) << "face " << f;
+      // many steps: sliding, the force is mu N
+      double dissipated = 0.;
+      for (unsigned int step = 0; step < 1000; ++step)
+        {
+          std::fill(fc, fc + 12, 0.);
+          std::fill(ft, ft + 12, 0.);
+          dissipated +=
+            add_face_friction_3d(c, vc, vt, f, I, p, p_t, mu, 1e-3, h, fc, ft);
+        }
+      // (the contactor's whole tangential force; the face may be slanted
+      // to x)
+      double force[3] = {0., 0., 0.};
+      for (unsigned int n = 0; n < 4; ++n)
+        for (unsigned int i = 0; i < 3; ++i)
+          force[i] += fc[3 * n + i];
+      const double magnitude = std::sqrt(
+        force[0] * force[0] + force[1] * force[1] + force[2] * force[2]);
+      EXPECT_LT(force[0], 0.);
+      EXPECT_NEAR(magnitude, mu * p * I.total(), 1e-9 * mu * p * I.total())
+        << "face " << f;
+      EXPECT_GT(dissipated, 0.);
+    }
+  EXPECT_GE(tested, 1u);
+}

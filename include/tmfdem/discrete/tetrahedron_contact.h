@@ -372,6 +372,38 @@ namespace tmfdem
     }
 
     /**
+     * The unit outward normal @p n of the face opposite node @p f of the
+     * tetrahedron @p c (nodes [k][i]) [m]; returns the face's area [m^2].
+     */
+    inline double
+    outward_face_normal(const double (&c)[4][3],
+                        const unsigned int f,
+                        double            *n)
+    {
+      const std::array<unsigned int, 3> face = tetrahedron_face_nodes(f);
+      double                            e1[3], e2[3], to_opposite[3];
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          e1[i]          = c[face[1]][i] - c[face[0]][i];
+          e2[i]          = c[face[2]][i] - c[face[0]][i];
+          to_opposite[i] = c[f][i] - c[face[0]][i];
+        }
+      n[0]                = e1[1] * e2[2] - e1[2] * e2[1];
+      n[1]                = e1[2] * e2[0] - e1[0] * e2[2];
+      n[2]                = e1[0] * e2[1] - e1[1] * e2[0];
+      const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      // outward: away from the node opposite the face
+      const double sign =
+        n[0] * to_opposite[0] + n[1] * to_opposite[1] + n[2] * to_opposite[2] >
+            0. ?
+          -1. :
+          1.;
+      for (unsigned int i = 0; i < 3; ++i)
+        n[i] *= sign / length;
+      return 0.5 * length;
+    }
+
+    /**
      * The potential integrals of the face opposite node @p f of the
      * contactor @p c (nodes c[k][i]) [m] inside the target of coordinates
      * @p target (FacePotentialIntegrals). Returns false if the face does
@@ -398,16 +430,8 @@ namespace tmfdem
         if (base[0].value[3 + k] <= 0. && base[1].value[3 + k] <= 0. &&
             base[2].value[3 + k] <= 0.)
           return false;
-      double e1[3], e2[3];
-      for (unsigned int i = 0; i < 3; ++i)
-        {
-          e1[i] = c[face[1]][i] - c[face[0]][i];
-          e2[i] = c[face[2]][i] - c[face[0]][i];
-        }
-      const double nx        = e1[1] * e2[2] - e1[2] * e2[1];
-      const double ny        = e1[2] * e2[0] - e1[0] * e2[2];
-      const double nz        = e1[0] * e2[1] - e1[1] * e2[0];
-      const double face_area = 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
+      double       normal[3];
+      const double face_area = outward_face_normal(c, f, normal);
       result                 = FacePotentialIntegrals();
       bool entered           = false;
       for (unsigned int m = 0; m < 4; ++m)
@@ -541,28 +565,105 @@ namespace tmfdem
               continue;
             }
           const std::array<unsigned int, 3> face = tetrahedron_face_nodes(f);
-          double                            e1[3], e2[3];
-          for (unsigned int i = 0; i < 3; ++i)
-            {
-              e1[i] = c[face[1]][i] - c[face[0]][i];
-              e2[i] = c[face[2]][i] - c[face[0]][i];
-            }
-          double n[3] = {e1[1] * e2[2] - e1[2] * e2[1],
-                         e1[2] * e2[0] - e1[0] * e2[2],
-                         e1[0] * e2[1] - e1[1] * e2[0]};
-          // outward: away from the node opposite the face
-          const double towards_opposite = n[0] * (c[f][0] - c[face[0]][0]) +
-                                          n[1] * (c[f][1] - c[face[0]][1]) +
-                                          n[2] * (c[f][2] - c[face[0]][2]);
-          const double length =
-            (towards_opposite > 0. ? -1. : 1.) *
-            std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-          for (double &component : n)
-            component /= length;
+          double                            n[3];
+          outward_face_normal(c, f, n);
           for (unsigned int a = 0; a < 3; ++a)
             for (unsigned int i = 0; i < 3; ++i)
               fc[3 * face[a] + i] -= penalty * integrals[f].face[a] * n[i];
         }
+    }
+    /** The friction history of one contactor face inside one target: the
+     *  elastic slip of its tangential spring, a vector in the face plane
+     *  [m]. */
+    struct FaceFriction
+    {
+      double slip[3] = {0., 0., 0.};
+    };
+
+    /**
+     * Coulomb friction of the face opposite node @p f of the contactor
+     * @p c inside the target (@p integrals of that face,
+     * face_potential_integrals()): a tangential spring of stiffness
+     * p_t A_clipped / sqrt(A_face) [N/m] on the elastic slip @p history
+     * (projected onto the current face plane, advanced by the tangential
+     * relative velocity over @p dt [s]), capped at mu times the normal force
+     * p int phi_t dA. The velocities are those of the contactor's face
+     * (@p vc, weights I_a / sum I) and of the target (@p vt, weights
+     * J_k / sum J) at the centroid of the normal force, where both
+     * tangential forces act (no torque). Adds the forces to @p fc and
+     * @p ft (twelve components each) [N]; returns the energy dissipated
+     * over the step [J].
+     */
+    inline double
+    add_face_friction_3d(const double (&c)[4][3],
+                         const double (&vc)[4][3],
+                         const double (&vt)[4][3],
+                         const unsigned int            f,
+                         const FacePotentialIntegrals &integrals,
+                         const double                  normal_penalty,
+                         const double                  tangential_penalty,
+                         const double                  friction,
+                         const double                  dt,
+                         FaceFriction                 &history,
+                         double                       *fc,
+                         double                       *ft)
+    {
+      const double total = integrals.total();
+      if (!(total > 0.) || !(friction > 0.))
+        {
+          history = FaceFriction();
+          return 0.;
+        }
+      const std::array<unsigned int, 3> face = tetrahedron_face_nodes(f);
+      double                            n[3];
+      const double face_area = outward_face_normal(c, f, n);
+      double       u[3], l[4];
+      for (unsigned int a = 0; a < 3; ++a)
+        u[a] = integrals.face[a] / total;
+      const double target_total = integrals.target[0] + integrals.target[1] +
+                                  integrals.target[2] + integrals.target[3];
+      for (unsigned int k = 0; k < 4; ++k)
+        l[k] = integrals.target[k] / target_total;
+      double relative[3] = {0., 0., 0.};
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          for (unsigned int a = 0; a < 3; ++a)
+            relative[i] += u[a] * vc[face[a]][i];
+          for (unsigned int k = 0; k < 4; ++k)
+            relative[i] -= l[k] * vt[k][i];
+        }
+      // trial slip: the old one projected onto the plane, plus the
+      // tangential relative motion of the step
+      double       trial[3];
+      const double old_normal = history.slip[0] * n[0] +
+                                history.slip[1] * n[1] + history.slip[2] * n[2];
+      const double rate_normal =
+        relative[0] * n[0] + relative[1] * n[1] + relative[2] * n[2];
+      for (unsigned int i = 0; i < 3; ++i)
+        trial[i] = history.slip[i] - old_normal * n[i] +
+                   (relative[i] - rate_normal * n[i]) * dt;
+      const double trial_length = std::sqrt(
+        trial[0] * trial[0] + trial[1] * trial[1] + trial[2] * trial[2]);
+      const double stiffness =
+        tangential_penalty * integrals.clipped_area / std::sqrt(face_area);
+      const double limit      = friction * normal_penalty * total;
+      double       scale      = 1.;
+      double       dissipated = 0.;
+      if (stiffness * trial_length > limit)
+        {
+          scale      = limit / (stiffness * trial_length);
+          dissipated = limit * (1. - scale) * trial_length;
+        }
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          history.slip[i]         = scale * trial[i];
+          const double tangential = -stiffness * history.slip[i];
+          for (unsigned int a = 0; a < 3; ++a)
+            fc[3 * face[a] + i] += u[a] * tangential;
+          for (unsigned int k = 0; k < 4; ++k)
+            ft[3 * k + i] -= l[k] * tangential;
+        }
+      return dissipated;
     }
   } // namespace discrete
 } // namespace tmfdem
