@@ -182,20 +182,22 @@ TEST(TetrahedronContact, FrictionSticksElasticallyThenSlidesAtMuN)
   ASSERT_TRUE(target.set(t));
   const double p = 1e9, p_t = 1e9, mu = 0.5, dt = 1e-6;
   Nodes        vc = {}, vt = {};
+  double       g[4][3];
+  scaled_gradients(c, g);
   for (auto &v : vc)
     v[0] = 1.; // 1 m/s along x
   unsigned int tested = 0;
   for (unsigned int f = 0; f < 4; ++f)
     {
       FacePotentialIntegrals I;
-      if (!face_potential_integrals(c, f, target, I))
+      if (!face_potential_integrals(c, g, f, target, I))
         continue;
       ++tested;
       FaceFriction h;
       double       fc[12] = {}, ft[12] = {};
       // one step: elastic, force -k v dt along x
       const double w1 =
-        add_face_friction_3d(c, vc, vt, f, I, p, p_t, mu, dt, h, fc, ft);
+        add_face_friction_3d(g, vc, vt, f, I, p, p_t, mu, dt, h, fc, ft);
       EXPECT_EQ(w1, 0.);
       double sum[3] = {0., 0., 0.}, contactor_x = 0.;
       for (unsigned int n = 0; n < 4; ++n)
@@ -226,7 +228,7 @@ TEST(TetrahedronContact, FrictionSticksElasticallyThenSlidesAtMuN)
           std::fill(fc, fc + 12, 0.);
           std::fill(ft, ft + 12, 0.);
           dissipated +=
-            add_face_friction_3d(c, vc, vt, f, I, p, p_t, mu, 1e-3, h, fc, ft);
+            add_face_friction_3d(g, vc, vt, f, I, p, p_t, mu, 1e-3, h, fc, ft);
         }
       // (the contactor's whole tangential force; the face may be slanted
       // to x)

@@ -39,11 +39,31 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tmfdem/discrete/solid.h>
 
 namespace tmfdem
 {
   namespace discrete
   {
+    /**
+     * 6 V grad(lambda_k) of the tetrahedron with nodes @p t (t[k][i]:
+     * component i of node k) [m^2]: solid.h's scaled_shape_gradients() on
+     * this layout. g[k] is twice the area vector of the face opposite node
+     * k, pointing into a positively oriented tetrahedron.
+     */
+    inline void
+    scaled_gradients(const double (&t)[4][3], double (&g)[4][3])
+    {
+      double by_component[3][4];
+      for (unsigned int k = 0; k < 4; ++k)
+        for (unsigned int i = 0; i < 3; ++i)
+          by_component[i][k] = t[k][i];
+      const double *const x[3] = {by_component[0],
+                                  by_component[1],
+                                  by_component[2]};
+      scaled_shape_gradients<3, double>(x, g);
+    }
+
     /**
      * The barycentric coordinates of a tetrahedron as linear functions of
      * position, lambda_k(x) = g_k . (x - o) + c_k, with o its node 0.
@@ -62,35 +82,21 @@ namespace tmfdem
       bool
       set(const double (&t)[4][3])
       {
-        double e[3][3]; // edges from node 0
-        for (unsigned int k = 0; k < 3; ++k)
-          for (unsigned int i = 0; i < 3; ++i)
-            e[k][i] = t[k + 1][i] - t[0][i];
-        // rows of the inverse of [e1 e2 e3] (columns): the gradients of
-        // lambda_1..3
-        const double c0[3] = {e[1][1] * e[2][2] - e[1][2] * e[2][1],
-                              e[1][2] * e[2][0] - e[1][0] * e[2][2],
-                              e[1][0] * e[2][1] - e[1][1] * e[2][0]};
-        const double c1[3] = {e[2][1] * e[0][2] - e[2][2] * e[0][1],
-                              e[2][2] * e[0][0] - e[2][0] * e[0][2],
-                              e[2][0] * e[0][1] - e[2][1] * e[0][0]};
-        const double c2[3] = {e[0][1] * e[1][2] - e[0][2] * e[1][1],
-                              e[0][2] * e[1][0] - e[0][0] * e[1][2],
-                              e[0][0] * e[1][1] - e[0][1] * e[1][0]};
-        const double det = e[0][0] * c0[0] + e[0][1] * c0[1] + e[0][2] * c0[2];
+        double g[4][3];
+        scaled_gradients(t, g);
+        // 6 V = (x3 - x0) . (x1 - x0) x (x2 - x0), g[3] the cross product
+        const double det = g[3][0] * (t[3][0] - t[0][0]) +
+                           g[3][1] * (t[3][1] - t[0][1]) +
+                           g[3][2] * (t[3][2] - t[0][2]);
         if (!(det > 0.))
           return false;
         volume           = det / 6.;
         const double inv = 1. / det;
+        for (unsigned int k = 0; k < 4; ++k)
+          for (unsigned int i = 0; i < 3; ++i)
+            gradient[k][i] = g[k][i] * inv;
         for (unsigned int i = 0; i < 3; ++i)
-          {
-            gradient[1][i] = c0[i] * inv;
-            gradient[2][i] = c1[i] * inv;
-            gradient[3][i] = c2[i] * inv;
-            gradient[0][i] =
-              -(gradient[1][i] + gradient[2][i] + gradient[3][i]);
-            origin[i] = t[0][i];
-          }
+          origin[i] = t[0][i];
         offset[0] = 1.;
         offset[1] = offset[2] = offset[3] = 0.;
         return true;
@@ -372,45 +378,32 @@ namespace tmfdem
     }
 
     /**
-     * The unit outward normal @p n of the face opposite node @p f of the
-     * tetrahedron @p c (nodes [k][i]) [m]; returns the face's area [m^2].
+     * The unit outward normal @p n of the face opposite node @p f of a
+     * positively oriented tetrahedron with scaled gradients @p g
+     * (scaled_gradients()); returns the face's area [m^2].
      */
     inline double
-    outward_face_normal(const double (&c)[4][3],
+    outward_face_normal(const double (&g)[4][3],
                         const unsigned int f,
                         double            *n)
     {
-      const std::array<unsigned int, 3> face = tetrahedron_face_nodes(f);
-      double                            e1[3], e2[3], to_opposite[3];
+      const double length =
+        std::sqrt(g[f][0] * g[f][0] + g[f][1] * g[f][1] + g[f][2] * g[f][2]);
       for (unsigned int i = 0; i < 3; ++i)
-        {
-          e1[i]          = c[face[1]][i] - c[face[0]][i];
-          e2[i]          = c[face[2]][i] - c[face[0]][i];
-          to_opposite[i] = c[f][i] - c[face[0]][i];
-        }
-      n[0]                = e1[1] * e2[2] - e1[2] * e2[1];
-      n[1]                = e1[2] * e2[0] - e1[0] * e2[2];
-      n[2]                = e1[0] * e2[1] - e1[1] * e2[0];
-      const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      // outward: away from the node opposite the face
-      const double sign =
-        n[0] * to_opposite[0] + n[1] * to_opposite[1] + n[2] * to_opposite[2] >
-            0. ?
-          -1. :
-          1.;
-      for (unsigned int i = 0; i < 3; ++i)
-        n[i] *= sign / length;
+        n[i] = -g[f][i] / length;
       return 0.5 * length;
     }
 
     /**
      * The potential integrals of the face opposite node @p f of the
-     * contactor @p c (nodes c[k][i]) [m] inside the target of coordinates
+     * contactor @p c (nodes c[k][i]) [m], scaled gradients @p g
+     * (scaled_gradients()), inside the target of coordinates
      * @p target (FacePotentialIntegrals). Returns false if the face does
      * not enter the target.
      */
     inline bool
     face_potential_integrals(const double (&c)[4][3],
+                             const double (&g)[4][3],
                              const unsigned int            f,
                              const TetrahedronCoordinates &target,
                              FacePotentialIntegrals       &result)
@@ -430,10 +423,11 @@ namespace tmfdem
         if (base[0].value[3 + k] <= 0. && base[1].value[3 + k] <= 0. &&
             base[2].value[3 + k] <= 0.)
           return false;
-      double       normal[3];
-      const double face_area = outward_face_normal(c, f, normal);
-      result                 = FacePotentialIntegrals();
-      bool entered           = false;
+      const double face_area =
+        0.5 *
+        std::sqrt(g[f][0] * g[f][0] + g[f][1] * g[f][1] + g[f][2] * g[f][2]);
+      result       = FacePotentialIntegrals();
+      bool entered = false;
       for (unsigned int m = 0; m < 4; ++m)
         {
           // the sub-tetrahedron of face m: lambda_m >= 0, lambda_j >=
@@ -557,16 +551,18 @@ namespace tmfdem
       double                                *fc,
       std::array<FacePotentialIntegrals, 4> &integrals)
     {
+      double g[4][3];
+      scaled_gradients(c, g);
       for (unsigned int f = 0; f < 4; ++f)
         {
-          if (!face_potential_integrals(c, f, target, integrals[f]))
+          if (!face_potential_integrals(c, g, f, target, integrals[f]))
             {
               integrals[f] = FacePotentialIntegrals();
               continue;
             }
           const std::array<unsigned int, 3> face = tetrahedron_face_nodes(f);
           double                            n[3];
-          outward_face_normal(c, f, n);
+          outward_face_normal(g, f, n);
           for (unsigned int a = 0; a < 3; ++a)
             for (unsigned int i = 0; i < 3; ++i)
               fc[3 * face[a] + i] -= penalty * integrals[f].face[a] * n[i];
@@ -581,13 +577,14 @@ namespace tmfdem
     };
 
     /**
-     * Coulomb friction of the face opposite node @p f of the contactor
-     * @p c inside the target (@p integrals of that face,
-     * face_potential_integrals()): a tangential spring of stiffness
-     * p_t A_clipped / sqrt(A_face) [N/m] on the elastic slip @p history
-     * (projected onto the current face plane, advanced by the tangential
-     * relative velocity over @p dt [s]), capped at mu times the normal force
-     * p int phi_t dA. The velocities are those of the contactor's face
+     * Coulomb friction of the face opposite node @p f of the contactor of
+     * scaled gradients @p g (scaled_gradients()) inside the target (@p
+     * integrals of that face, face_potential_integrals()): a tangential spring
+     * of stiffness p_t A_clipped / sqrt(A_face) [N/m] on the elastic slip @p
+     * history (projected onto the current face plane, advanced by the
+     * tangential relative velocity over @p dt [s]), capped at mu times the
+     * normal force p int phi_t dA. The velocities are those of the contactor's
+     * face
      * (@p vc, weights I_a / sum I) and of the target (@p vt, weights
      * J_k / sum J) at the centroid of the normal force, where both
      * tangential forces act (no torque). Adds the forces to @p fc and
@@ -595,7 +592,7 @@ namespace tmfdem
      * over the step [J].
      */
     inline double
-    add_face_friction_3d(const double (&c)[4][3],
+    add_face_friction_3d(const double (&g)[4][3],
                          const double (&vc)[4][3],
                          const double (&vt)[4][3],
                          const unsigned int            f,
@@ -616,7 +613,7 @@ namespace tmfdem
         }
       const std::array<unsigned int, 3> face = tetrahedron_face_nodes(f);
       double                            n[3];
-      const double face_area = outward_face_normal(c, f, n);
+      const double face_area = outward_face_normal(g, f, n);
       double       u[3], l[4];
       for (unsigned int a = 0; a < 3; ++a)
         u[a] = integrals.face[a] / total;
