@@ -4,6 +4,7 @@
     plot_discrete_case.py CASE OUTPUT_FOLDER PNG
 
 CASE is one of joint_pull, joint_pull-3d, block_on_incline, two_blocks_collision,
+two_blocks_collision-3d,
 brazilian_disc, plate_traction, plate_transient, plate_transient-discrete-3d,
 contact_conduction,
 sheet_free_expansion, sheet_restrained_expansion, thermal_shock_disc-3d. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
@@ -20,6 +21,8 @@ scripts write:
     plate_transient-discrete-3d: OUTPUT_FOLDER/{plate,plate_beta_{100,10000}}/
                        (verify_discrete_heat_3d.py)
     contact_conduction: OUTPUT_FOLDER/{steady,equilibrate}/  (verify_discrete_contact_heat.py)
+    two_blocks_collision-3d: OUTPUT_FOLDER/collision_threads_1/
+                       (verify_discrete_contact_3d.py)
     thermal_shock_disc-3d: OUTPUT_FOLDER/{disc-3d,disc-2d}/
                        (verify_discrete_thermal_shock_3d.py)
     sheet_*_expansion: OUTPUT_FOLDER/free_{+100,-100}/,
@@ -318,6 +321,63 @@ def plot_two_blocks_collision(folder, png):
               "relative_balance_error"):
         print(f"  {k:>24}: {e[k]:.6g}")
     print(f"  momentum change: {dp:.3e} kg m/s per m; max |balance error| / E0 over the "
+          f"run: {np.max(np.abs(rel)):.3e}")
+    print(f"wrote {png}")
+
+
+# ---------------------------------------------- two_blocks_collision-3d
+def plot_two_blocks_collision_3d(folder, png):
+    """Reads OUTPUT_FOLDER/collision_threads_1 (verify_discrete_contact_3d.py)."""
+    folder = os.path.join(folder, "collision_threads_1")
+    ensure_run(folder, "two_blocks_collision-3d.prm")
+    h = read_csv(os.path.join(folder, "history.csv"))
+    s = read_summary(folder)
+    e = s["energy"]
+    t = 1e3 * h["time"]
+    E0 = e["initial_kinetic"]
+    fig, (ax_e, ax_b) = plt.subplots(2, 1, figsize=(7.5, 7.5), dpi=150, sharex=True,
+                                     gridspec_kw=dict(height_ratios=[3, 2]))
+    # contact_work already contains friction_dissipation: draw the penalty part
+    terms = [("kinetic", h["kinetic"], "C0"),
+             ("strain", h["strain"], "C1"),
+             ("joint work (stored + dissipated)", h["joint_work"], "C2"),
+             ("contact penalty work", h["contact_work"] - h["friction_dissipation"], "C4"),
+             ("friction dissipation", h["friction_dissipation"], "C5")]
+    total = sum(v for _, v, _ in terms) + h["damping"]
+    for name, v, c in terms:
+        ax_e.plot(t, v, "-", color=c, lw=1.2, label=f"{name}: {v[-1]:.4f} J at the end")
+    ax_e.plot(t, total, "k--", lw=1.0, label=f"sum: {total[-1]:.4f} J")
+    ax_e.axhline(E0, color="gray", lw=0.6, ls=":", label=f"initial kinetic {E0:.4f} J")
+    ax_e.set_ylabel("energy [J]")
+    p0 = (2.5 * (8.0 - 2.0), 2.5 * 0.5, 2.5 * 0.3)
+    p = (s["momentum_x"], s["momentum_y"], s["momentum_z"])
+    dp = math.sqrt(sum((a - b) ** 2 for a, b in zip(p, p0)))
+    ax_e.set_title("Two cubes colliding off-centre (8 m/s and (-2, 0.5, 0.3) m/s): "
+                   "energy terms
+"
+                   f"momentum ({p[0]:.12g}, {p[1]:.12g}, {p[2]:.12g}) kg m/s vs "
+                   f"({p0[0]:g}, {p0[1]:g}, {p0[2]:g}): change {dp:.1e}", fontsize=9)
+    ax_e.legend(fontsize=7, loc="center right")
+    ax_e.set_ylim(-0.05 * E0, 1.08 * E0)
+    ax_e.grid(alpha=0.3)
+    rel = h["balance_error"] / E0
+    ax_b.plot(t, 100 * rel, "-", color="k", lw=1.0)
+    ax_b.axhline(0, color="gray", lw=0.5)
+    ax_b.set_ylabel("balance error / initial kinetic [%]")
+    ax_b.set_xlabel("t [ms]")
+    ax_b.set_title(f"balance error at the end {100 * e['balance_error'] / E0:.5f} % "
+                   f"({s['broken_joints']} broken joints, {s['cracks']} cracks)", fontsize=9)
+    ax_b.grid(alpha=0.3)
+    ax2 = ax_b.twinx()
+    ax2.plot(t, h["broken_joints"], "-", color="C3", lw=0.8)
+    ax2.set_ylabel("broken joints", color="C3")
+    fig.tight_layout()
+    fig.savefig(png)
+    print("two_blocks_collision-3d: energies at the end [J]")
+    for k in ("initial_kinetic", "kinetic", "strain", "joint_work", "contact_work",
+              "contact_penalty", "friction_dissipation", "damping", "balance_error"):
+        print(f"  {k:>24}: {e[k]:.6g}")
+    print(f"  momentum change: {dp:.3e} kg m/s; max |balance error| / E0 over the "
           f"run: {np.max(np.abs(rel)):.3e}")
     print(f"wrote {png}")
 
@@ -865,6 +925,7 @@ CASES = {"joint_pull": plot_joint_pull,
          "joint_pull-3d": plot_joint_pull_3d,
          "block_on_incline": plot_block_on_incline,
          "two_blocks_collision": plot_two_blocks_collision,
+         "two_blocks_collision-3d": plot_two_blocks_collision_3d,
          "brazilian_disc": plot_brazilian_disc,
          "plate_traction": plot_plate_traction,
          "plate_transient": plot_plate_transient,

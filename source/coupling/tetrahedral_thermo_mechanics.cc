@@ -28,6 +28,7 @@
 #include <tmfdem/discrete/joints.h>
 #include <tmfdem/discrete/tetrahedral_heat.h>
 #include <tmfdem/discrete/tetrahedral_solver.h>
+#include <tmfdem/discrete/tetrahedron_contact_system.h>
 #include <tmfdem/io/checkpoint.h>
 
 namespace tmfdem
@@ -534,6 +535,8 @@ namespace tmfdem
       relaxation.save_relaxation(out);
       if (heat)
         heat->save(out);
+      if (contact)
+        contact->save(out);
     }
 
     void
@@ -555,6 +558,13 @@ namespace tmfdem
       relaxation.load_relaxation(in);
       if (heat)
         heat->load(in);
+      if (contact)
+        {
+          contact->load(in, model.n_elements);
+          contact->update_active_elements(model);
+          for (unsigned int e = 0; e < model.n_elements; ++e)
+            element_in_contact[e] = contact->has_pairs(e) ? 1 : 0;
+        }
     }
   } // namespace discrete
 } // namespace tmfdem

@@ -517,10 +517,10 @@ namespace tmfdem
       constexpr unsigned int width = 5;
       std::vector<double>    regions(width * n_ranks);
       {
-        const double mine[width] = {region.x0,
-                                    region.y0,
-                                    region.x1,
-                                    region.y1,
+        const double mine[width] = {region.lo[0],
+                                    region.lo[1],
+                                    region.hi[0],
+                                    region.hi[1],
                                     region.largest};
         AssertThrowMPI(MPI_Allgather(mine,
                                      width,
@@ -538,10 +538,10 @@ namespace tmfdem
       for (unsigned int r = 0; r < n_ranks; ++r)
         {
           const double *R = &regions[width * r];
-          extent.x0       = std::min(extent.x0, R[0]);
-          extent.y0       = std::min(extent.y0, R[1]);
-          extent.x1       = std::max(extent.x1, R[2]);
-          extent.y1       = std::max(extent.y1, R[3]);
+          extent.lo[0]    = std::min(extent.lo[0], R[0]);
+          extent.lo[1]    = std::min(extent.lo[1], R[1]);
+          extent.hi[0]    = std::max(extent.hi[0], R[2]);
+          extent.hi[1]    = std::max(extent.hi[1], R[3]);
           extent.largest  = std::max(extent.largest, R[4]);
         }
       // pairs (a, b), a < b, are made by the owner of a: a rank sends to the

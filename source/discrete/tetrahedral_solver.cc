@@ -27,6 +27,7 @@
 #include <tmfdem/discrete/tetrahedral_heat.h>
 #include <tmfdem/discrete/tetrahedral_solver.h>
 #include <tmfdem/discrete/tetrahedral_update.h>
+#include <tmfdem/discrete/tetrahedron_contact_system.h>
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 #include <tmfdem/io/output_schedule.h>
@@ -56,7 +57,7 @@ namespace tmfdem
       const std::string in_3d =
         " is not modelled in 3D yet (Mesh/Dimension = 3: tetrahedra with "
         "cohesive joints, bodies and boundary conditions, heat with the "
-        "multi-rate and quasi-static coupling, no contact or gravity); ";
+        "multi-rate and quasi-static coupling, contact, no gravity); ";
       if (physics != Physics::mechanics)
         {
           const auto &dh = parameters.get<DiscreteHeatParameters>();
@@ -84,10 +85,13 @@ namespace tmfdem
       if (physics == Physics::heat)
         return;
       parameters.mechanics.check_dimension(3);
-      if (dm.contact)
-        throw InputError("Discrete mechanics/Contact = true: contact between "
-                         "tetrahedra" +
-                         in_3d + "allowed is Contact = false.");
+      if (dm.contact && physics == Physics::thermo_mechanics)
+        throw InputError(
+          "Discrete mechanics/Contact = true with Model = discrete "
+          "thermo-mechanics: the contact heat between tetrahedra and the "
+          "relaxation of their contact" +
+          in_3d +
+          "allowed is Contact = false (or Model = discrete mechanics).");
       for (const double g : dm.gravity)
         if (g != 0.)
           throw InputError("Discrete mechanics/Gravity: gravity" + in_3d +
@@ -445,6 +449,17 @@ namespace tmfdem
             }
           in.lame      = element_lame[e];
           in.node_mass = model.mass[4 * e];
+          if (contact)
+            {
+              double x[4][3];
+              for (unsigned int k = 0; k < 4; ++k)
+                {
+                  x[k][0] = in.x[k];
+                  x[k][1] = in.y[k];
+                  x[k][2] = in.z[k];
+                }
+              in.node_contact_stiffness = contact->node_stiffness_bound(x);
+            }
           if (dm.damping_ratio > 0.)
             viscosity[e] = dm.damping_ratio /
                            highest_mode_damping_per_viscosity(in.x,
@@ -481,8 +496,8 @@ namespace tmfdem
             throw InputError(
               "Discrete mechanics/Time step = " +
               Utilities::to_string(time_step) +
-              " s exceeds the stable step of the tetrahedra, joints and "
-              "damping, " +
+              " s exceeds the stable step of the tetrahedra, joints, "
+              "contact and damping, " +
               Utilities::to_string(stable_time_step) +
               " s; allowed is at most that (or 0: Safety factor times it).");
         }
@@ -499,6 +514,7 @@ namespace tmfdem
         {
           setup_materials();
           setup_constraints();
+          setup_contact();
           setup_time_step();
         }
       const auto &dm    = parameters.get<DiscreteMechanicsParameters>();
@@ -648,7 +664,7 @@ namespace tmfdem
       const std::size_t n_chunks = (m.n_elements + chunk_size - 1) / chunk_size;
       const std::size_t n_owners = owner_names.size();
       // (no allocation after the first step)
-      chunk_works.assign(n_chunks, {{0., 0., 0., 0., 0.}});
+      chunk_works.assign(n_chunks, {{0., 0., 0., 0., 0., 0.}});
       chunk_reaction.assign(n_chunks * n_owners, {{0., 0., 0.}});
       chunk_guard.assign(n_chunks, {{-1, -1}});
       auto &reaction = chunk_reaction;
@@ -673,13 +689,18 @@ namespace tmfdem
         [&](const std::size_t begin,
             const std::size_t end,
             const std::size_t c) {
-          std::array<double, 5> &w = chunk_works[c];
+          std::array<double, 6> &w = chunk_works[c];
           for (std::size_t e = begin; e < end; ++e)
             {
+              // the batches: free nodes, no contact force
               if (batch != nullptr && e + lanes <= end &&
                   std::all_of(&node_constraint[4 * e],
                               &node_constraint[4 * (e + lanes)],
-                              [](const int ci) { return ci < 0; }))
+                              [](const int ci) { return ci < 0; }) &&
+                  (!contact ||
+                   std::none_of(element_in_contact.data() + e,
+                                element_in_contact.data() + e + lanes,
+                                [](const char in) { return in != 0; })))
                 {
                   batch(m, e, batch_input, w.data(), chunk_guard[c].data());
                   e += lanes - 1;
@@ -705,13 +726,16 @@ namespace tmfdem
               if (!(r.det > 0.) && chunk_guard[c][0] < 0)
                 chunk_guard[c][0] = e;
               // xx, yy, zz, xy, yz, xz
-              double *stress = &m.stress[6 * e];
-              stress[0]      = r.stress[0][0] + r.viscous[0][0];
-              stress[1]      = r.stress[1][1] + r.viscous[1][1];
-              stress[2]      = r.stress[2][2] + r.viscous[2][2];
-              stress[3]      = r.stress[0][1] + r.viscous[0][1];
-              stress[4]      = r.stress[1][2] + r.viscous[1][2];
-              stress[5]      = r.stress[0][2] + r.viscous[0][2];
+              double *stress       = &m.stress[6 * e];
+              stress[0]            = r.stress[0][0] + r.viscous[0][0];
+              stress[1]            = r.stress[1][1] + r.viscous[1][1];
+              stress[2]            = r.stress[2][2] + r.viscous[2][2];
+              stress[3]            = r.stress[0][1] + r.viscous[0][1];
+              stress[4]            = r.stress[1][2] + r.viscous[1][2];
+              stress[5]            = r.stress[0][2] + r.viscous[0][2];
+              double f_contact[12] = {};
+              if (contact && element_in_contact[e])
+                contact->add_forces(e, f_contact);
               for (unsigned int k = 0; k < 4; ++k)
                 {
                   const std::size_t node = n0 + k;
@@ -724,8 +748,8 @@ namespace tmfdem
                   for (unsigned int i = 0; i < 3; ++i)
                     {
                       const double f_joint = jf[i] + jf[3 + i] + jf[6 + i];
-                      const double f =
-                        r.f_elastic[k][i] + r.f_viscous[k][i] + f_joint;
+                      const double f = r.f_elastic[k][i] + r.f_viscous[k][i] +
+                                       f_joint + f_contact[3 * k + i];
                       const double v_old = *v[i];
                       double v_new = damped_velocity<double>(a, v_old, b_m, f);
                       double f_reaction = 0.;
@@ -752,6 +776,7 @@ namespace tmfdem
                       w[2] += nw.joint;
                       w[3] += nw.reaction;
                       w[4] += nw.damping;
+                      w[5] += f_contact[3 * k + i] * travel;
                       *v[i] = v_new;
                       *x[i] += dt * v_new;
                       // guards: the first non-finite velocity of the chunk
@@ -767,6 +792,7 @@ namespace tmfdem
       for (std::size_t c = 0; c < n_chunks; ++c)
         {
           energies.joint_work -= chunk_works[c][2];
+          energies.contact_work -= chunk_works[c][5];
           energies.external_work += chunk_works[c][3];
           energies.damping += -chunk_works[c][1] + chunk_works[c][4];
           for (std::size_t o = 0; o < n_owners; ++o)
@@ -815,7 +841,13 @@ namespace tmfdem
         }
       if (imposed_depend_on_time)
         evaluate_imposed_velocities(time + 0.5 * dt);
-      compute_joint_forces();
+      if (compute_joint_forces() && contact)
+        {
+          contact->update_active_elements(model);
+          contact->request_search();
+        }
+      if (contact)
+        compute_contact_forces(dt);
       update_nodes(dt);
       time += dt;
       ++step_number;
@@ -905,6 +937,8 @@ namespace tmfdem
           row << "," << energies.kinetic << "," << energies.strain << ","
               << energies.joint_work << "," << energies.damping << ","
               << energies.external_work << ",";
+          if (contact)
+            row << energies.contact_work << "," << energies.friction << ",";
           if (heat)
             row << energies.thermal_work << ",";
           row << energy_balance_error() << "," << model.n_damaged_joints()
@@ -947,6 +981,31 @@ namespace tmfdem
       summary.add("joints", model.n_joints);
       summary.add("broken_joints", model.n_broken_joints());
       summary.add("damaged_joints", model.n_damaged_joints());
+      if (with_mechanics())
+        {
+          // sum m v and sum m x cross v over the nodes (x at the step, v at
+          // its half step: what the central differences keep exactly when
+          // the internal forces sum to zero and exert no torque)
+          double momentum[3] = {0., 0., 0.}, angular[3] = {0., 0., 0.};
+          for (unsigned int n = 0; n < model.n_nodes; ++n)
+            {
+              const double m    = model.mass[n];
+              const double x[3] = {model.x[n], model.y[n], model.z[n]};
+              const double v[3] = {model.vx[n], model.vy[n], model.vz[n]};
+              for (unsigned int i = 0; i < 3; ++i)
+                {
+                  const unsigned int j = (i + 1) % 3, k = (i + 2) % 3;
+                  momentum[i] += m * v[i];
+                  angular[i] += m * (x[j] * v[k] - x[k] * v[j]);
+                }
+            }
+          summary.add("momentum_x", momentum[0]);
+          summary.add("momentum_y", momentum[1]);
+          summary.add("momentum_z", momentum[2]);
+          summary.add("angular_momentum_x", angular[0]);
+          summary.add("angular_momentum_y", angular[1]);
+          summary.add("angular_momentum_z", angular[2]);
+        }
       unsigned int modes[4]   = {0, 0, 0, 0};
       double       crack_area = 0.;
       for (unsigned int j = 0; j < model.n_joints; ++j)
@@ -967,6 +1026,7 @@ namespace tmfdem
       summary.add("compensation_largest_share", compensation_share);
       summary.add("crack_area", crack_area);
       JsonObject energy;
+      energy.add("initial_kinetic", initial_kinetic);
       energy.add("kinetic", energies.kinetic);
       energy.add("strain", energies.strain);
       energy.add("joint_work", energies.joint_work);
@@ -974,8 +1034,27 @@ namespace tmfdem
       energy.add("external_work", energies.external_work);
       energy.add("thermal_work", energies.thermal_work);
       energy.add("relaxation_work", energies.relaxation_work);
+      if (contact)
+        {
+          energy.add("contact_work", energies.contact_work);
+          energy.add("contact_penalty",
+                     energies.contact_work - energies.friction);
+          // what the overlaps of the current pairs hold (the penalty work
+          // less the energy the faces of joints broken in compression took
+          // over, and the O(dt^2) error of the work)
+          energy.add("contact_stored",
+                     contact->stored_energy(model, arena_for(n_threads)));
+          energy.add("friction_dissipation", energies.friction);
+        }
       energy.add("balance_error", energy_balance_error());
       summary.add("energy", energy);
+      summary.add("contact", contact != nullptr);
+      if (contact)
+        {
+          summary.add("contact_searches",
+                      static_cast<long long>(contact->n_searches()));
+          summary.add("contact_pairs", contact->n_mechanical_pairs());
+        }
       if (heat)
         {
           const auto &dh = parameters.get<DiscreteHeatParameters>();
@@ -1171,6 +1250,8 @@ namespace tmfdem
       if (with_mechanics())
         {
           header += ",kinetic,strain,joint_work,damping,external_work,";
+          if (contact)
+            header += "contact_work,friction_dissipation,";
           if (heat)
             header += "thermal_work,";
           header += "balance_error,damaged_joints,broken_joints";

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <random>
 #include <tmfdem/discrete/tetrahedron_contact.h>
+#include <tmfdem/discrete/tetrahedron_contact_system.h>
 
 using namespace tmfdem::discrete;
 
@@ -180,9 +181,14 @@ TEST(TetrahedronContact, FrictionSticksElasticallyThenSlidesAtMuN)
   positive(c);
   TetrahedronCoordinates target;
   ASSERT_TRUE(target.set(t));
-  const double p = 1e9, p_t = 1e9, mu = 0.5, dt = 1e-6;
-  Nodes        vc = {}, vt = {};
-  double       g[4][3];
+  const double          p = 1e9, p_t = 1e9, mu = 0.5, dt = 1e-6;
+  PenaltyCoulombContact law; // plain Coulomb
+  law.normal_penalty     = p;
+  law.tangential_penalty = p_t;
+  law.friction           = mu;
+  law.memory_slip        = 0.;
+  Nodes  vc = {}, vt = {};
+  double g[4][3];
   scaled_gradients(c, g);
   for (auto &v : vc)
     v[0] = 1.; // 1 m/s along x
@@ -197,7 +203,7 @@ TEST(TetrahedronContact, FrictionSticksElasticallyThenSlidesAtMuN)
       double       fc[12] = {}, ft[12] = {};
       // one step: elastic, force -k v dt along x
       const double w1 =
-        add_face_friction_3d(g, vc, vt, f, I, p, p_t, mu, dt, h, fc, ft);
+        add_face_friction_3d(g, vc, vt, f, I, law, dt, h, fc, ft);
       EXPECT_EQ(w1, 0.);
       double sum[3] = {0., 0., 0.}, contactor_x = 0.;
       for (unsigned int n = 0; n < 4; ++n)
@@ -228,7 +234,7 @@ TEST(TetrahedronContact, FrictionSticksElasticallyThenSlidesAtMuN)
           std::fill(fc, fc + 12, 0.);
           std::fill(ft, ft + 12, 0.);
           dissipated +=
-            add_face_friction_3d(g, vc, vt, f, I, p, p_t, mu, 1e-3, h, fc, ft);
+            add_face_friction_3d(g, vc, vt, f, I, law, 1e-3, h, fc, ft);
         }
       // (the contactor's whole tangential force; the face may be slanted
       // to x)
@@ -244,4 +250,180 @@ TEST(TetrahedronContact, FrictionSticksElasticallyThenSlidesAtMuN)
       EXPECT_GT(dissipated, 0.);
     }
   EXPECT_GE(tested, 1u);
+}
+
+TEST(TetrahedronContact, RegularisedFrictionSlidesAtMuNAndResistsAcceleration)
+{
+  // the contactor of the test above sliding steadily along x at 1 m/s with
+  // the regularised law: after many memory slips the strength is mu N and
+  // the rate term 1 (Coulomb in steady sliding); a jump to 2 m/s over a
+  // slip of L / 50 raises the cap to S (1 + a ln((v0 + 2) / (v0 + V))),
+  // V the remembered rate after that slip (theory manual 5.5)
+  Nodes t = {{0., 0., 0.}, {1., 0., 0.}, {0., 1., 0.}, {0., 0., 1.}};
+  Nodes c = {{0.1, 0.1, 0.95},
+             {0.6, 0.1, 0.95},
+             {0.1, 0.6, 0.95},
+             {0.2, 0.2, 0.1}};
+  positive(t);
+  positive(c);
+  TetrahedronCoordinates target;
+  ASSERT_TRUE(target.set(t));
+  PenaltyCoulombContact law;
+  law.normal_penalty = 1e9;
+  // a stiff spring: every step below reaches the cap, the jump's slip of
+  // L / 50 included (k L / 50 above the rise of the cap)
+  law.tangential_penalty  = 1e17;
+  law.friction            = 0.6;
+  law.memory_slip         = 1e-7;
+  law.rate_effect         = 0.01;
+  law.reference_slip_rate = 1e-6;
+  double g[4][3];
+  scaled_gradients(c, g);
+  Nodes vc = {}, vt = {};
+  for (auto &v : vc)
+    v[0] = 1.;
+  unsigned int tested = 0;
+  for (unsigned int f = 0; f < 4; ++f)
+    {
+      FacePotentialIntegrals I;
+      if (!face_potential_integrals(c, g, f, target, I))
+        continue;
+      ++tested;
+      const double coulomb = law.friction * law.normal_penalty * I.total();
+      FaceFriction h;
+      double       fc[12], ft[12];
+      auto         contactor_force = [&]() {
+        double force[3] = {0., 0., 0.};
+        for (unsigned int n = 0; n < 4; ++n)
+          for (unsigned int i = 0; i < 3; ++i)
+            force[i] += fc[3 * n + i];
+        return std::sqrt(force[0] * force[0] + force[1] * force[1] +
+                         force[2] * force[2]);
+      };
+      // the face's tangential speed (the face may be slanted to x)
+      double n[3];
+      outward_face_normal(g, f, n);
+      const double speed = std::sqrt(1. - n[0] * n[0]);
+      // 1000 steps of 1 ms, 1 m/s: 1e7 memory slips
+      for (unsigned int step = 0; step < 1000; ++step)
+        {
+          std::fill(fc, fc + 12, 0.);
+          std::fill(ft, ft + 12, 0.);
+          add_face_friction_3d(g, vc, vt, f, I, law, 1e-3, h, fc, ft);
+        }
+      EXPECT_NEAR(contactor_force(), coulomb, 1e-9 * coulomb) << "face " << f;
+      EXPECT_NEAR(h.strength, coulomb, 1e-12 * coulomb);
+      EXPECT_NEAR(h.remembered_rate, speed, 1e-12);
+      // a jump to 2 m/s for L / 50 of slip
+      for (auto &v : vc)
+        v[0] = 2.;
+      const double dt       = law.memory_slip / 50. / (2. * speed);
+      const double keep     = std::exp(-1. / 50.);
+      const double remember = 2. * speed + (speed - 2. * speed) * keep;
+      const double expected =
+        coulomb * (1. + law.rate_effect *
+                          std::log((law.reference_slip_rate + 2. * speed) /
+                                   (law.reference_slip_rate + remember)));
+      std::fill(fc, fc + 12, 0.);
+      std::fill(ft, ft + 12, 0.);
+      add_face_friction_3d(g, vc, vt, f, I, law, dt, h, fc, ft);
+      EXPECT_GT(expected, 1.001 * coulomb);
+      EXPECT_NEAR(contactor_force(), expected, 1e-9 * coulomb) << "face " << f;
+      for (auto &v : vc)
+        v[0] = 1.;
+    }
+  EXPECT_GE(tested, 1u);
+}
+
+TEST(TetrahedronContact, PairKernelWithoutFrictionIsTheGradientForces)
+{
+  // add_pair_forces_3d(), the solver's pair kernel, without friction gives
+  // the forces of the test above (minus the gradient of E_t + E_c) to
+  // round-off, with the target's share as the exact gradient
+  std::mt19937 rng(23);
+  for (unsigned int trial = 0; trial < 20; ++trial)
+    {
+      double x[2][4][3], v[2][4][3] = {};
+      random_pair(rng, 0.5, x[0], x[1]);
+      PenaltyCoulombContact law;
+      law.normal_penalty     = 1e9;
+      law.tangential_penalty = 1e9;
+      law.friction           = 0.;
+      TetrahedronPairFriction history{};
+      double                  kernel[24] = {}, reference[24];
+      EXPECT_EQ(add_pair_forces_3d(x, v, law, 1e-6, history, kernel), 0.);
+      pair_forces(x[0], x[1], law.normal_penalty, reference);
+      double largest = 0.;
+      for (const double f : reference)
+        largest = std::max(largest, std::abs(f));
+      for (unsigned int i = 0; i < 24; ++i)
+        EXPECT_NEAR(kernel[i], reference[i], 1e-12 * largest)
+          << "trial " << trial << ", component " << i;
+      EXPECT_NEAR(pair_contact_energy_3d(x, law.normal_penalty),
+                  pair_energy(x[0], x[1], law.normal_penalty),
+                  1e-14 * law.normal_penalty);
+    }
+}
+
+TEST(TetrahedronContact, LinkedCellsFindEveryPairOfOverlappingBoxes)
+{
+  // 1000 small random tetrahedra in a unit cube: the 3D linked cells give
+  // exactly the pairs whose boxes (enlarged by half the buffer) overlap,
+  // sorted, on one and on two threads
+  std::mt19937                           rng(3);
+  std::uniform_real_distribution<double> where(0., 1.), size(0.02, 0.1);
+  const unsigned int                     n = 1000;
+  std::vector<double>                    x(4 * n), y(4 * n), z(4 * n);
+  std::vector<unsigned int>              active;
+  for (unsigned int e = 0; e < n; ++e)
+    {
+      const double c[3] = {where(rng), where(rng), where(rng)};
+      for (unsigned int k = 0; k < 4; ++k)
+        {
+          x[4 * e + k] = c[0] + size(rng);
+          y[4 * e + k] = c[1] + size(rng);
+          z[4 * e + k] = c[2] + size(rng);
+        }
+      if (e % 5 != 0) // some inactive
+        active.push_back(e);
+    }
+  const double                                       buffer = 0.01;
+  std::vector<std::pair<unsigned int, unsigned int>> expected;
+  for (const unsigned int a : active)
+    for (const unsigned int b : active)
+      {
+        if (b <= a)
+          continue;
+        double              box_a[6], box_b[6];
+        const double *const ca[3] = {&x[4 * a], &y[4 * a], &z[4 * a]};
+        const double *const cb[3] = {&x[4 * b], &y[4 * b], &z[4 * b]};
+        search_box<3>(ca, buffer, box_a);
+        search_box<3>(cb, buffer, box_b);
+        bool overlap = true;
+        for (unsigned int d = 0; d < 3; ++d)
+          overlap =
+            overlap && box_a[d] <= box_b[3 + d] && box_b[d] <= box_a[3 + d];
+        if (overlap)
+          expected.emplace_back(a, b);
+      }
+  ASSERT_GT(expected.size(), 50u);
+  const std::vector<double> *const coordinates[3] = {&x, &y, &z};
+  for (const unsigned int threads : {1u, 2u})
+    {
+      LinkedCellSearchT<3, TetrahedronContactPair> search;
+      std::vector<TetrahedronContactPair>          pairs;
+      search.rebuild(
+        coordinates,
+        active,
+        buffer,
+        [](unsigned int, unsigned int) { return false; },
+        pairs,
+        tmfdem::arena_for(threads));
+      ASSERT_EQ(pairs.size(), expected.size()) << threads << " threads";
+      for (std::size_t p = 0; p < pairs.size(); ++p)
+        {
+          EXPECT_EQ(pairs[p].first, expected[p].first);
+          EXPECT_EQ(pairs[p].second, expected[p].second);
+        }
+    }
 }

@@ -348,31 +348,56 @@ namespace tmfdem
                   "EdgeFriction is three doubles, copied as such");
 
     /**
-     * The search box of a triangle with node coordinates @p xe, @p ye (three
-     * each): its bounding box enlarged by half the @p buffer on every side,
-     * written to @p box as xmin, ymin, xmax, ymax [m]. Two triangles are
-     * candidates when their search boxes overlap (closed intervals:
-     * boxes_overlap()). The one expression the search and the exchange of
-     * candidates between ranks (partition.h) use, so both agree bitwise.
+     * The search box of a simplex of dimension @p dim whose node coordinates
+     * are @p coordinates[d][k] (direction d, node k of dim + 1): its bounding
+     * box enlarged by half the @p buffer on every side, written to @p box as
+     * the dim minima, then the dim maxima [m]. Two simplices are candidates
+     * when their search boxes overlap (closed intervals: boxes_overlap()).
+     * The one expression the search and the exchange of candidates between
+     * ranks (partition.h) use, so both agree bitwise.
      */
+    template <int dim>
+    inline void
+    search_box(const double *const (&coordinates)[dim],
+               const double buffer,
+               double      *box)
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double *c  = coordinates[d];
+          double        lo = c[dim], hi = c[dim];
+          for (unsigned int k = dim; k-- > 0;)
+            {
+              lo = std::min(c[k], lo);
+              hi = std::max(c[k], hi);
+            }
+          box[d]       = lo - 0.5 * buffer;
+          box[dim + d] = hi + 0.5 * buffer;
+        }
+    }
+
+    /** The search box of a triangle with node coordinates @p xe, @p ye
+     *  (three each), as xmin, ymin, xmax, ymax [m]. */
     inline void
     search_box(const double *xe,
                const double *ye,
                const double  buffer,
                double       *box)
     {
-      box[0] = std::min(xe[0], std::min(xe[1], xe[2])) - 0.5 * buffer;
-      box[1] = std::min(ye[0], std::min(ye[1], ye[2])) - 0.5 * buffer;
-      box[2] = std::max(xe[0], std::max(xe[1], xe[2])) + 0.5 * buffer;
-      box[3] = std::max(ye[0], std::max(ye[1], ye[2])) + 0.5 * buffer;
+      const double *const coordinates[2] = {xe, ye};
+      search_box<2>(coordinates, buffer, box);
     }
 
-    /** Whether boxes @p a and @p b (xmin, ymin, xmax, ymax) overlap or
+    /** Whether boxes @p a and @p b (dim minima, then dim maxima) overlap or
      *  touch. */
+    template <int dim = 2>
     inline bool
     boxes_overlap(const double *a, const double *b)
     {
-      return !(a[0] > b[2] || b[0] > a[2] || a[1] > b[3] || b[1] > a[3]);
+      for (unsigned int d = 0; d < dim; ++d)
+        if (a[d] > b[dim + d] || b[d] > a[dim + d])
+          return false;
+      return true;
     }
 
     /**
@@ -382,44 +407,72 @@ namespace tmfdem
      * only some of the active elements (partition.h) passes the extent of
      * all of them to get the grid one rank makes.
      */
-    struct SearchExtent
+    template <int dim>
+    struct SearchExtentT
     {
-      double      x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300; ///< [m]
-      double      largest    = 0.; ///< largest box side [m]
-      std::size_t n_elements = 0;  ///< active elements in all
+      double      lo[dim], hi[dim]; ///< corners of the hull [m]
+      double      largest    = 0.;  ///< largest box side [m]
+      std::size_t n_elements = 0;   ///< active elements in all
+
+      SearchExtentT()
+      {
+        std::fill(lo, lo + dim, 1e300);
+        std::fill(hi, hi + dim, -1e300);
+      }
 
       /** Takes in one search @p box. */
       void
       add(const double *box)
       {
-        largest = std::max(largest, std::max(box[2] - box[0], box[3] - box[1]));
-        x0      = std::min(x0, box[0]);
-        y0      = std::min(y0, box[1]);
-        x1      = std::max(x1, box[2]);
-        y1      = std::max(y1, box[3]);
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            largest = std::max(largest, box[dim + d] - box[d]);
+            lo[d]   = std::min(lo[d], box[d]);
+            hi[d]   = std::max(hi[d], box[dim + d]);
+          }
       }
     };
 
+    /** The extent of a grid of triangles. */
+    using SearchExtent = SearchExtentT<2>;
+
     /**
-     * Linked-cell broad phase: candidate pairs of active elements whose
-     * bounding boxes, enlarged by the buffer, overlap.
+     * Linked-cell broad phase: candidate pairs of active simplices (dim + 1
+     * nodes each) whose bounding boxes, enlarged by the buffer, overlap. A
+     * pair is a @p Pair: its elements `first` < `second` and a `friction`
+     * history that a new search keeps for the pairs found again.
      */
-    class LinkedCellSearch
+    template <int dim, typename Pair>
+    class LinkedCellSearchT
     {
     public:
       /**
-       * Rebuilds @p pairs (sorted by (first, second)) from node coordinates
-       * @p x, @p y (node 3e+k is node k of element e), the list of active
-       * elements, and the predicate @p excluded(i, j) (intact joint between
-       * i and j). Friction history of pairs present in the old list is kept.
-       * The pair search runs in @p arena over fixed chunks of the active
-       * elements; the list does not depend on the thread count.
-       * @p excluded must be safe to call from several threads. Only pairs
-       * whose first element lies in [@p first_begin, @p first_end) are
-       * made (one MPI rank's share, partition.h); the default is all.
-       * With @p extent, the grid is made for that extent (the active
-       * elements of all ranks) instead of that of @p active_elements.
+       * Rebuilds @p pairs (sorted by (first, second)) from the node
+       * coordinates @p coordinates[d] of direction d (node (dim + 1) e + k
+       * is node k of element e), the list of active elements, and the
+       * predicate @p excluded(i, j) (intact joint between i and j). Friction
+       * history of pairs present in the old list is kept. The pair search
+       * runs in @p arena over fixed chunks of the active elements; the list
+       * does not depend on the thread count. @p excluded must be safe to
+       * call from several threads. Only pairs whose first element lies in
+       * [@p first_begin, @p first_end) are made (one MPI rank's share,
+       * partition.h); the default is all. With @p extent, the grid is made
+       * for that extent (the active elements of all ranks) instead of that
+       * of @p active_elements.
        */
+      template <typename Excluded>
+      void
+      rebuild(const std::vector<double> *const (&coordinates)[dim],
+              const std::vector<unsigned int> &active_elements,
+              const double                     buffer,
+              const Excluded                  &excluded,
+              std::vector<Pair>               &pairs,
+              tbb::task_arena                 &arena,
+              const unsigned int               first_begin = 0,
+              const unsigned int first_end     = static_cast<unsigned int>(-1),
+              const SearchExtentT<dim> *extent = nullptr);
+
+      /** The same for triangles, from their x and y coordinates. */
       template <typename Excluded>
       void
       rebuild(const std::vector<double>       &x,
@@ -427,11 +480,24 @@ namespace tmfdem
               const std::vector<unsigned int> &active_elements,
               const double                     buffer,
               const Excluded                  &excluded,
-              std::vector<ContactPair>        &pairs,
+              std::vector<Pair>               &pairs,
               tbb::task_arena                 &arena,
               const unsigned int               first_begin = 0,
-              const unsigned int  first_end = static_cast<unsigned int>(-1),
-              const SearchExtent *extent    = nullptr);
+              const unsigned int first_end     = static_cast<unsigned int>(-1),
+              const SearchExtentT<dim> *extent = nullptr)
+      {
+        static_assert(dim == 2, "x and y: triangles");
+        const std::vector<double> *const coordinates[dim] = {&x, &y};
+        rebuild(coordinates,
+                active_elements,
+                buffer,
+                excluded,
+                pairs,
+                arena,
+                first_begin,
+                first_end,
+                extent);
+      }
 
       /** The same on one thread. */
       template <typename Excluded>
@@ -441,71 +507,86 @@ namespace tmfdem
               const std::vector<unsigned int> &active_elements,
               const double                     buffer,
               const Excluded                  &excluded,
-              std::vector<ContactPair>        &pairs)
+              std::vector<Pair>               &pairs)
       {
         rebuild(x, y, active_elements, buffer, excluded, pairs, arena_for(1));
       }
 
     private:
-      std::vector<double>       box;        // xmin, ymin, xmax, ymax per active
+      std::vector<double>       box;        // 2 dim per active element
       std::vector<unsigned int> cell_start; // counting sort
       std::vector<unsigned int> cell_items;
       std::vector<unsigned int> item_cell;
-      std::vector<ContactPair>  new_pairs;
+      std::vector<Pair>         new_pairs;
       /// pairs found per chunk of active elements, joined in chunk order
-      std::vector<std::vector<ContactPair>> chunk_pairs;
+      std::vector<std::vector<Pair>> chunk_pairs;
     };
 
+    /** The broad phase of the triangles. */
+    using LinkedCellSearch = LinkedCellSearchT<2, ContactPair>;
+
+    template <int dim, typename Pair>
     template <typename Excluded>
     void
-    LinkedCellSearch::rebuild(const std::vector<double>       &x,
-                              const std::vector<double>       &y,
-                              const std::vector<unsigned int> &active,
-                              const double                     buffer,
-                              const Excluded                  &excluded,
-                              std::vector<ContactPair>        &pairs,
-                              tbb::task_arena                 &arena,
-                              const unsigned int               first_begin,
-                              const unsigned int               first_end,
-                              const SearchExtent              *extent)
+    LinkedCellSearchT<dim, Pair>::rebuild(
+      const std::vector<double> *const (&coordinates)[dim],
+      const std::vector<unsigned int> &active,
+      const double                     buffer,
+      const Excluded                  &excluded,
+      std::vector<Pair>               &pairs,
+      tbb::task_arena                 &arena,
+      const unsigned int               first_begin,
+      const unsigned int               first_end,
+      const SearchExtentT<dim>        *extent)
     {
-      const std::size_t n = active.size();
+      constexpr unsigned int nodes = dim + 1, width = 2 * dim;
+      const std::size_t      n = active.size();
       new_pairs.clear();
       if (n < 2)
         {
           pairs.swap(new_pairs);
           return;
         }
-      box.resize(4 * n);
-      SearchExtent local;
+      box.resize(width * n);
+      SearchExtentT<dim> local;
       local.n_elements = n;
       for (std::size_t i = 0; i < n; ++i)
         {
           const unsigned int e = active[i];
-          search_box(&x[3 * e], &y[3 * e], buffer, &box[4 * i]);
-          local.add(&box[4 * i]);
+          const double      *c[dim];
+          for (unsigned int d = 0; d < dim; ++d)
+            c[d] = &(*coordinates[d])[nodes * e];
+          search_box<dim>(c, buffer, &box[width * i]);
+          local.add(&box[width * i]);
         }
-      const SearchExtent &g   = extent != nullptr ? *extent : local;
-      const double        gx0 = g.x0, gy0 = g.y0, gx1 = g.x1, gy1 = g.y1;
-      double              cell = g.largest;
-      auto                dims = [&](const double c) {
-        return std::array<std::size_t, 2>{
-          {static_cast<std::size_t>((gx1 - gx0) / c) + 1,
-           static_cast<std::size_t>((gy1 - gy0) / c) + 1}};
+      const SearchExtentT<dim>    &g    = extent != nullptr ? *extent : local;
+      double                       cell = g.largest;
+      std::array<std::size_t, dim> nc;
+      auto                         set_dims = [&](const double c) {
+        std::size_t product = 1;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            nc[d] = static_cast<std::size_t>((g.hi[d] - g.lo[d]) / c) + 1;
+            product *= nc[d];
+          }
+        return product;
       };
       // keep the grid at most 4 cells per element (bodies far apart)
-      while (dims(cell)[0] * dims(cell)[1] > 4 * g.n_elements + 16)
-        cell *= 2.;
-      const auto nc = dims(cell);
-      cell_start.assign(nc[0] * nc[1] + 1, 0);
+      std::size_t n_cells = set_dims(cell);
+      while (n_cells > 4 * g.n_elements + 16)
+        {
+          cell *= 2.;
+          n_cells = set_dims(cell);
+        }
+      cell_start.assign(n_cells + 1, 0);
       item_cell.resize(n);
       for (std::size_t i = 0; i < n; ++i)
         {
-          const std::size_t cx =
-            static_cast<std::size_t>((box[4 * i] - gx0) / cell);
-          const std::size_t cy =
-            static_cast<std::size_t>((box[4 * i + 1] - gy0) / cell);
-          item_cell[i] = static_cast<unsigned int>(cy * nc[0] + cx);
+          std::size_t index = 0;
+          for (unsigned int d = dim; d-- > 0;)
+            index = index * nc[d] + static_cast<std::size_t>(
+                                      (box[width * i + d] - g.lo[d]) / cell);
+          item_cell[i] = static_cast<unsigned int>(index);
           ++cell_start[item_cell[i] + 1];
         }
       for (std::size_t c = 0; c + 1 < cell_start.size(); ++c)
@@ -517,8 +598,8 @@ namespace tmfdem
         for (std::size_t i = 0; i < n; ++i)
           cell_items[fill[item_cell[i]]++] = static_cast<unsigned int>(i);
       }
-      // boxes start in their own cell (lower-left corner) and span at most
-      // two cells per direction: look at the cell and its 8 neighbours.
+      // boxes start in their own cell (lower corner) and span at most two
+      // cells per direction: look at the cell and its 3^dim - 1 neighbours.
       // Pairs (active[i], active[j] > active[i]) of item i, sorted by the
       // second element: with ascending active elements the pairs of
       // consecutive items joined in order are sorted by (first, second).
@@ -534,6 +615,9 @@ namespace tmfdem
           item_end = std::lower_bound(active.begin(), active.end(), first_end) -
                      active.begin();
         }
+      unsigned int neighbourhood = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+        neighbourhood *= 3;
       constexpr std::size_t chunk = 256;
       const std::size_t n_chunks  = (item_end - item_begin + chunk - 1) / chunk;
       if (chunk_pairs.size() < n_chunks)
@@ -545,45 +629,62 @@ namespace tmfdem
         [&](const std::size_t begin,
             const std::size_t end,
             const std::size_t c) {
-          std::vector<ContactPair> &found = chunk_pairs[c];
+          std::vector<Pair> &found = chunk_pairs[c];
           found.clear();
           for (std::size_t i = item_begin + begin; i < item_begin + end; ++i)
             {
               if (active[i] < first_begin || active[i] >= first_end)
                 continue; // (not ascending) another rank's pairs
               const std::size_t first = found.size();
-              const std::size_t cx    = item_cell[i] % nc[0],
-                                cy    = item_cell[i] / nc[0];
-              for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx)
+              long long         own[dim];
+              {
+                std::size_t rest = item_cell[i];
+                for (unsigned int d = 0; d < dim; ++d)
                   {
-                    const long long ncx = static_cast<long long>(cx) + dx;
-                    const long long ncy = static_cast<long long>(cy) + dy;
-                    if (ncx < 0 || ncy < 0 ||
-                        ncx >= static_cast<long long>(nc[0]) ||
-                        ncy >= static_cast<long long>(nc[1]))
-                      continue;
-                    const std::size_t cell_index = ncy * nc[0] + ncx;
-                    for (unsigned int p = cell_start[cell_index];
-                         p < cell_start[cell_index + 1];
-                         ++p)
-                      {
-                        const unsigned int j = cell_items[p];
-                        if (active[j] <= active[i])
-                          continue;
-                        if (!boxes_overlap(&box[4 * i], &box[4 * j]))
-                          continue;
-                        if (excluded(active[i], active[j]))
-                          continue;
-                        ContactPair pair;
-                        pair.first  = active[i];
-                        pair.second = active[j];
-                        found.push_back(pair);
-                      }
+                    own[d] = static_cast<long long>(rest % nc[d]);
+                    rest /= nc[d];
                   }
+              }
+              for (unsigned int offset = 0; offset < neighbourhood; ++offset)
+                {
+                  std::size_t  cell_index = 0;
+                  bool         inside     = true;
+                  unsigned int rest       = offset;
+                  std::size_t  stride     = 1;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      const long long neighbour =
+                        own[d] + static_cast<long long>(rest % 3) - 1;
+                      rest /= 3;
+                      if (neighbour < 0 ||
+                          neighbour >= static_cast<long long>(nc[d]))
+                        inside = false;
+                      cell_index += stride * static_cast<std::size_t>(
+                                               std::max(neighbour, 0LL));
+                      stride *= nc[d];
+                    }
+                  if (!inside)
+                    continue;
+                  for (unsigned int p = cell_start[cell_index];
+                       p < cell_start[cell_index + 1];
+                       ++p)
+                    {
+                      const unsigned int j = cell_items[p];
+                      if (active[j] <= active[i])
+                        continue;
+                      if (!boxes_overlap<dim>(&box[width * i], &box[width * j]))
+                        continue;
+                      if (excluded(active[i], active[j]))
+                        continue;
+                      Pair pair;
+                      pair.first  = active[i];
+                      pair.second = active[j];
+                      found.push_back(pair);
+                    }
+                }
               std::sort(found.begin() + first,
                         found.end(),
-                        [](const ContactPair &a, const ContactPair &b) {
+                        [](const Pair &a, const Pair &b) {
                           return a.second < b.second;
                         });
             }
@@ -599,13 +700,13 @@ namespace tmfdem
       if (!ascending)
         std::sort(new_pairs.begin(),
                   new_pairs.end(),
-                  [](const ContactPair &a, const ContactPair &b) {
+                  [](const Pair &a, const Pair &b) {
                     return a.first < b.first ||
                            (a.first == b.first && a.second < b.second);
                   });
       // keep the friction history of surviving pairs (both lists sorted)
       std::size_t old = 0;
-      for (ContactPair &p : new_pairs)
+      for (Pair &p : new_pairs)
         {
           while (old < pairs.size() &&
                  (pairs[old].first < p.first || (pairs[old].first == p.first &&

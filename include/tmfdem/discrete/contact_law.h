@@ -122,13 +122,16 @@ namespace tmfdem
        * with equal direct and evolution effects), dS = -(S - mu N) |v| dt /
        * L, integrated exactly over the step, and the limit is
        * S (1 + a ln((v0 + |v|) / (v0 + V))): mu N in steady sliding and at
-       * rest, stronger while the slip accelerates.
+       * rest, stronger while the slip accelerates. @p history: an
+       * EdgeFriction (2D) or FaceFriction (3D), whose strength and
+       * remembered_rate it updates.
        */
+      template <typename FrictionHistory>
       double
-      friction_limit(const double  coulomb,
-                     const double  slip_rate,
-                     const double  dt,
-                     EdgeFriction &history) const
+      friction_limit(const double     coulomb,
+                     const double     slip_rate,
+                     const double     dt,
+                     FrictionHistory &history) const
       {
         if (!(memory_slip > 0.))
           return coulomb;

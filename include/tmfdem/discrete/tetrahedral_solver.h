@@ -16,8 +16,12 @@
  * in the multi-rate coupling of 2D (one thermal step every n mechanical
  * steps over the same time: source/coupling/tetrahedral_thermo_mechanics.cc).
  * Quasi-static coupling, checkpoints and --resume as in 2D. Contact
- * between tetrahedra, gravity, monitors and MPI ranks beyond one are
- * refused with a message naming the entry (doc/theory.md 5.12, 7.9).
+ * between tetrahedra (TetrahedronContactSystem: Munjiza's potential and
+ * friction of tetrahedron_contact.h) as in 2D: the contact forces enter the
+ * scalar node update of the tetrahedra in contact, their work the energy
+ * balance, their stiffness the stable step. Gravity, monitors and MPI ranks
+ * beyond one are refused with a message naming the entry (doc/theory.md
+ * 5.12, 5.13, 7.9).
  */
 #ifndef tmfdem_discrete_tetrahedral_solver_h
 #define tmfdem_discrete_tetrahedral_solver_h
@@ -51,6 +55,7 @@ namespace tmfdem
   {
     class VtuSeries;
     class TetrahedralHeat;
+    class TetrahedronContactSystem;
 
     /** Explicit FDEM mechanics of tetrahedra and face joints (3D). */
     class TetrahedralSolver : public Simulation, public ValidationReporter
@@ -98,6 +103,11 @@ namespace tmfdem
          *  energy the extrapolated starts put in (their jumps are no
          *  motion the steps integrate). */
         double relaxation_work = 0.;
+        /** Work done on the contacts by the nodes: the normal contact
+         *  energy stored plus the friction dissipated. */
+        double contact_work = 0.;
+        /** Energy dissipated by friction. */
+        double friction = 0.;
       };
 
       /** A node's imposed velocity components. */
@@ -135,6 +145,16 @@ namespace tmfdem
        *  joint broke. */
       bool
       compute_joint_forces();
+      /** Contact (with Contact = true): a new pair search where one is due
+       *  (travel, broken joints), then the pair forces over the step @p dt
+       *  [s] and which tetrahedra have them. */
+      void
+      compute_contact_forces(const double dt);
+      /** The ruling of the contact settings from Discrete mechanics (the
+       *  penalties from the stiffest material, the buffer a quarter of the
+       *  smallest edge by default). */
+      void
+      setup_contact();
       /** Element forces, node update over the step @p dt [s] and the
        *  step's works. */
       void
@@ -159,15 +179,15 @@ namespace tmfdem
                std::abs(energies.thermal_work);
       }
       /** Energy put in minus the energy in the state and dissipated [J]:
-       *  external + thermal work - (kinetic + strain + joint work +
-       *  damping). */
+       *  initial kinetic + external + thermal (+ relaxation) work -
+       *  (kinetic + strain + joint work + contact work + damping). */
       double
       energy_balance_error() const
       {
-        return energies.external_work + energies.thermal_work +
-               energies.relaxation_work -
+        return initial_kinetic + energies.external_work +
+               energies.thermal_work + energies.relaxation_work -
                (energies.kinetic + energies.strain + energies.joint_work +
-                energies.damping);
+                energies.contact_work + energies.damping);
       }
       /** True if the run has mechanics (not the heat alone). */
       bool
@@ -349,8 +369,17 @@ namespace tmfdem
        *  tetrahedral_update.h). */
       VectorInstructions vector_instructions = VectorInstructions::none;
       /** Per chunk of elements: the works of the step (elastic, viscous,
-       *  joint, external, damping). */
-      std::vector<std::array<double, 5>> chunk_works;
+       *  joint, external, damping, contact). */
+      std::vector<std::array<double, 6>> chunk_works;
+      /** Per chunk of elements: the largest squared node speed of the step
+       *  (the contact search's travel) [m^2/s^2]. */
+      std::vector<double> chunk_max_speed;
+
+      // contact between tetrahedra (Contact = true; nullptr otherwise)
+      std::unique_ptr<TetrahedronContactSystem> contact;
+      /** Per tetrahedron: 1 if it has a contact pair with force (it takes
+       *  the scalar node update, which adds the contact forces). */
+      std::vector<char> element_in_contact;
       /** Per chunk and owner: the reactions of the step [N]. */
       std::vector<std::array<double, 3>> chunk_reaction;
       /** Per chunk of joints: one broke in the step. */

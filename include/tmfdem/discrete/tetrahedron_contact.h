@@ -39,6 +39,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tmfdem/discrete/contact_law.h>
 #include <tmfdem/discrete/solid.h>
 
 namespace tmfdem
@@ -352,15 +353,58 @@ namespace tmfdem
         return std::abs(det) / 6.;
       }
 
-      /** Whether no point of the tetrahedron @p c (nodes c[k]) can lie
-       *  inside the target: all its nodes on the outside of one face. */
+      /** Whether the tetrahedron @p c (nodes c[k]) and the target overlap
+       *  in no volume: all its nodes on the outside of one face's plane or
+       *  on it (a shared vertex, edge or face: the overlap lies in the
+       *  plane, its energy and forces are zero). */
       inline bool
       separated(const TetrahedronCoordinates &target, const double (&c)[4][3])
       {
         for (unsigned int k = 0; k < 4; ++k)
-          if (target(k, c[0]) < 0. && target(k, c[1]) < 0. &&
-              target(k, c[2]) < 0. && target(k, c[3]) < 0.)
+          if (target(k, c[0]) <= 0. && target(k, c[1]) <= 0. &&
+              target(k, c[2]) <= 0. && target(k, c[3]) <= 0.)
             return true;
+        return false;
+      }
+
+      /** Whether a plane along the cross product of an edge of @p a and an
+       *  edge of @p b (nodes [k][i]) separates them, touching counted as
+       *  separated (the edge-edge axes of the separating-axis theorem; the
+       *  face planes are separated()'s). */
+      inline bool
+      separated_by_edge_pair(const double (&a)[4][3], const double (&b)[4][3])
+      {
+        static constexpr unsigned int edges[6][2] =
+          {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+        for (const auto &ea : edges)
+          {
+            const double u[3] = {a[ea[1]][0] - a[ea[0]][0],
+                                 a[ea[1]][1] - a[ea[0]][1],
+                                 a[ea[1]][2] - a[ea[0]][2]};
+            for (const auto &eb : edges)
+              {
+                const double w[3] = {b[eb[1]][0] - b[eb[0]][0],
+                                     b[eb[1]][1] - b[eb[0]][1],
+                                     b[eb[1]][2] - b[eb[0]][2]};
+                const double n[3] = {u[1] * w[2] - u[2] * w[1],
+                                     u[2] * w[0] - u[0] * w[2],
+                                     u[0] * w[1] - u[1] * w[0]};
+                double lo_a = 1e300, hi_a = -1e300, lo_b = 1e300, hi_b = -1e300;
+                for (unsigned int k = 0; k < 4; ++k)
+                  {
+                    const double pa =
+                      n[0] * a[k][0] + n[1] * a[k][1] + n[2] * a[k][2];
+                    const double pb =
+                      n[0] * b[k][0] + n[1] * b[k][1] + n[2] * b[k][2];
+                    lo_a = std::min(lo_a, pa);
+                    hi_a = std::max(hi_a, pa);
+                    lo_b = std::min(lo_b, pb);
+                    hi_b = std::max(hi_b, pb);
+                  }
+                if (hi_a <= lo_b || hi_b <= lo_a)
+                  return true;
+              }
+          }
         return false;
       }
     } // namespace tetrahedron_contact_internal
@@ -537,6 +581,27 @@ namespace tmfdem
     }
 
     /**
+     * Adds to @p fc (twelve components) the normal force -p n_f I_a on the
+     * nodes a of the face opposite node @p f of the contactor of scaled
+     * gradients @p g, whose integrals inside the target are @p integrals
+     * (face_potential_integrals()), @p penalty p [Pa] [N].
+     */
+    inline void
+    add_face_normal_forces_3d(const double (&g)[4][3],
+                              const unsigned int            f,
+                              const FacePotentialIntegrals &integrals,
+                              const double                  penalty,
+                              double                       *fc)
+    {
+      const std::array<unsigned int, 3> face = tetrahedron_face_nodes(f);
+      double                            n[3];
+      outward_face_normal(g, f, n);
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int i = 0; i < 3; ++i)
+          fc[3 * face[a] + i] -= penalty * integrals.face[a] * n[i];
+    }
+
+    /**
      * Adds to @p fc (twelve components) the normal forces on the
      * contactor's nodes of E_t = p int_{c cap t} phi_t dV: for each face of
      * @p c, -p n_f I_a on its node a (face_potential_integrals()) [N].
@@ -560,35 +625,42 @@ namespace tmfdem
               integrals[f] = FacePotentialIntegrals();
               continue;
             }
-          const std::array<unsigned int, 3> face = tetrahedron_face_nodes(f);
-          double                            n[3];
-          outward_face_normal(g, f, n);
-          for (unsigned int a = 0; a < 3; ++a)
-            for (unsigned int i = 0; i < 3; ++i)
-              fc[3 * face[a] + i] -= penalty * integrals[f].face[a] * n[i];
+          add_face_normal_forces_3d(g, f, integrals[f], penalty, fc);
         }
     }
-    /** The friction history of one contactor face inside one target: the
-     *  elastic slip of its tangential spring, a vector in the face plane
-     *  [m]. */
+
+    /**
+     * The friction history of one contactor face inside one target
+     * (add_face_friction_3d()): its elastic slip vector, and with the
+     * regularised law the friction strength and the slip rate it remembers
+     * (PenaltyCoulombContact::friction_limit(), as EdgeFriction in 2D).
+     */
     struct FaceFriction
     {
+      /** Elastic slip of the tangential spring, in the face's plane [m]. */
       double slip[3] = {0., 0., 0.};
+      /** Friction strength S that follows mu N over the memory slip (plain
+       *  Coulomb: unused, 0) [N]. */
+      double strength = 0.;
+      /** Slip rate that the rate effect compares with (plain Coulomb:
+       *  unused, 0) [m/s]. */
+      double remembered_rate = 0.;
     };
 
     /**
-     * Coulomb friction of the face opposite node @p f of the contactor of
-     * scaled gradients @p g (scaled_gradients()) inside the target (@p
-     * integrals of that face, face_potential_integrals()): a tangential spring
-     * of stiffness p_t A_clipped / sqrt(A_face) [N/m] on the elastic slip @p
-     * history (projected onto the current face plane, advanced by the
-     * tangential relative velocity over @p dt [s]), capped at mu times the
-     * normal force p int phi_t dA. The velocities are those of the contactor's
-     * face
-     * (@p vc, weights I_a / sum I) and of the target (@p vt, weights
-     * J_k / sum J) at the centroid of the normal force, where both
-     * tangential forces act (no torque). Adds the forces to @p fc and
-     * @p ft (twelve components each) [N]; returns the energy dissipated
+     * Friction of the face opposite node @p f of the contactor of scaled
+     * gradients @p g (scaled_gradients()) inside the target (@p integrals of
+     * that face, face_potential_integrals()) with the law @p law: a
+     * tangential spring of stiffness p_t A_clipped / sqrt(A_face) [N/m] on
+     * the elastic slip of @p history (projected onto the current face plane,
+     * advanced by the tangential relative velocity over @p dt [s]), capped
+     * at PenaltyCoulombContact::friction_limit() of mu times the normal
+     * force p int phi_t dA (plain Coulomb, or the regularised law with its
+     * strength and remembered rate in @p history). The velocities are those
+     * of the contactor's face (@p vc, weights I_a / sum I) and of the target
+     * (@p vt, weights J_k / sum J) at the centroid of the normal force,
+     * where both tangential forces act (no torque). Adds the forces to @p fc
+     * and @p ft (twelve components each) [N]; returns the energy dissipated
      * over the step [J].
      */
     inline double
@@ -597,16 +669,14 @@ namespace tmfdem
                          const double (&vt)[4][3],
                          const unsigned int            f,
                          const FacePotentialIntegrals &integrals,
-                         const double                  normal_penalty,
-                         const double                  tangential_penalty,
-                         const double                  friction,
+                         const PenaltyCoulombContact  &law,
                          const double                  dt,
                          FaceFriction                 &history,
                          double                       *fc,
                          double                       *ft)
     {
       const double total = integrals.total();
-      if (!(total > 0.) || !(friction > 0.))
+      if (!(total > 0.) || !(law.friction > 0.))
         {
           history = FaceFriction();
           return 0.;
@@ -631,21 +701,32 @@ namespace tmfdem
         }
       // trial slip: the old one projected onto the plane, plus the
       // tangential relative motion of the step
-      double       trial[3];
+      double       trial[3], tangential_rate[3];
       const double old_normal = history.slip[0] * n[0] +
                                 history.slip[1] * n[1] + history.slip[2] * n[2];
       const double rate_normal =
         relative[0] * n[0] + relative[1] * n[1] + relative[2] * n[2];
       for (unsigned int i = 0; i < 3; ++i)
-        trial[i] = history.slip[i] - old_normal * n[i] +
-                   (relative[i] - rate_normal * n[i]) * dt;
+        {
+          tangential_rate[i] = relative[i] - rate_normal * n[i];
+          trial[i] =
+            history.slip[i] - old_normal * n[i] + tangential_rate[i] * dt;
+        }
       const double trial_length = std::sqrt(
         trial[0] * trial[0] + trial[1] * trial[1] + trial[2] * trial[2]);
+      const double slip_rate =
+        std::sqrt(tangential_rate[0] * tangential_rate[0] +
+                  tangential_rate[1] * tangential_rate[1] +
+                  tangential_rate[2] * tangential_rate[2]);
       const double stiffness =
-        tangential_penalty * integrals.clipped_area / std::sqrt(face_area);
-      const double limit      = friction * normal_penalty * total;
-      double       scale      = 1.;
-      double       dissipated = 0.;
+        law.tangential_penalty * integrals.clipped_area / std::sqrt(face_area);
+      const double limit =
+        law.friction_limit(law.friction * law.normal_penalty * total,
+                           slip_rate,
+                           dt,
+                           history);
+      double scale      = 1.;
+      double dissipated = 0.;
       if (stiffness * trial_length > limit)
         {
           scale      = limit / (stiffness * trial_length);
@@ -661,6 +742,131 @@ namespace tmfdem
             ft[3 * k + i] -= l[k] * tangential;
         }
       return dissipated;
+    }
+
+    /** The friction history of a pair of tetrahedra: entry 4 direction +
+     *  face, direction 0 the first tetrahedron the contactor. */
+    using TetrahedronPairFriction = std::array<FaceFriction, 8>;
+
+    /**
+     * All contact forces of a pair of tetrahedra with the law @p law: each
+     * tetrahedron once the contactor in the other (direction 0: @p x[0] in
+     * @p x[1]), the normal forces of the energy E_t + E_c (the contactor's
+     * face forces, and on the target minus the gradient of E_t, or with
+     * PenaltyCoulombContact::potential_gradient_on_target = false the
+     * reaction of each face's force with the weights J_k), and the
+     * friction of every contactor face inside its target
+     * (add_face_friction_3d(), the histories in @p friction, reset where a
+     * face leaves). @p x, @p v: nodes [m] and velocities [m/s] of the two
+     * (x[side][k][i], positively oriented). Adds the forces to @p force
+     * (the first's twelve components, then the second's) [N]; returns the
+     * energy friction dissipated over the step @p dt [s] [J].
+     */
+    inline double
+    add_pair_forces_3d(const double (&x)[2][4][3],
+                       const double (&v)[2][4][3],
+                       const PenaltyCoulombContact &law,
+                       const double                 dt,
+                       TetrahedronPairFriction     &friction,
+                       double                      *force)
+    {
+      using tetrahedron_contact_internal::separated;
+      // boxes that do not overlap in a volume: nothing to do
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          double lo[2], hi[2];
+          for (unsigned int side = 0; side < 2; ++side)
+            {
+              lo[side] = hi[side] = x[side][0][i];
+              for (unsigned int k = 1; k < 4; ++k)
+                {
+                  lo[side] = std::min(lo[side], x[side][k][i]);
+                  hi[side] = std::max(hi[side], x[side][k][i]);
+                }
+            }
+          if (hi[0] <= lo[1] || hi[1] <= lo[0])
+            {
+              friction = TetrahedronPairFriction();
+              return 0.;
+            }
+        }
+      double                 dissipated = 0.;
+      TetrahedronCoordinates coordinates[2];
+      // a plane that separates them (a face of either, or along two edges:
+      // the separating-axis theorem for two convex polyhedra): no overlap
+      if (!coordinates[0].set(x[0]) || !coordinates[1].set(x[1]) ||
+          separated(coordinates[1], x[0]) || separated(coordinates[0], x[1]) ||
+          tetrahedron_contact_internal::separated_by_edge_pair(x[0], x[1]))
+        {
+          friction = TetrahedronPairFriction();
+          return 0.;
+        }
+      for (unsigned int direction = 0; direction < 2; ++direction)
+        {
+          const unsigned int c = direction, t = 1 - direction;
+          double            *fc = force + 12 * c, *ft = force + 12 * t;
+          const TetrahedronCoordinates &target = coordinates[t];
+          double                        g[4][3];
+          scaled_gradients(x[c], g);
+          for (unsigned int f = 0; f < 4; ++f)
+            {
+              FaceFriction          &history = friction[4 * direction + f];
+              FacePotentialIntegrals integrals;
+              if (!face_potential_integrals(x[c], g, f, target, integrals))
+                {
+                  history = FaceFriction(); // the face left the target
+                  continue;
+                }
+              add_face_normal_forces_3d(g,
+                                        f,
+                                        integrals,
+                                        law.normal_penalty,
+                                        fc);
+              if (!law.potential_gradient_on_target)
+                {
+                  double n[3];
+                  outward_face_normal(g, f, n);
+                  for (unsigned int k = 0; k < 4; ++k)
+                    for (unsigned int i = 0; i < 3; ++i)
+                      ft[3 * k + i] +=
+                        law.normal_penalty * integrals.target[k] * n[i];
+                }
+              dissipated += add_face_friction_3d(g,
+                                                 v[c],
+                                                 v[t],
+                                                 f,
+                                                 integrals,
+                                                 law,
+                                                 dt,
+                                                 history,
+                                                 fc,
+                                                 ft);
+            }
+          // the target's share, also where it lies inside the contactor
+          // with no face of the contactor entering it
+          if (law.potential_gradient_on_target)
+            add_target_potential_forces_3d(x[c],
+                                           target,
+                                           law.normal_penalty,
+                                           ft);
+        }
+      return dissipated;
+    }
+
+    /** The normal contact energy E_t + E_c of a pair of tetrahedra (nodes
+     *  @p x as in add_pair_forces_3d()) with the penalty @p penalty [Pa]
+     *  [J]. */
+    inline double
+    pair_contact_energy_3d(const double (&x)[2][4][3], const double penalty)
+    {
+      double energy = 0.;
+      for (unsigned int direction = 0; direction < 2; ++direction)
+        {
+          TetrahedronCoordinates target;
+          if (target.set(x[1 - direction]))
+            energy += contact_energy_3d(x[direction], target, penalty);
+        }
+      return energy;
     }
   } // namespace discrete
 } // namespace tmfdem

@@ -1,0 +1,254 @@
+/**
+ * @file
+ * Contact between tetrahedra as one unit (the 3D counterpart of
+ * contact_system.h): the tetrahedra that take part (those with a free face
+ * and their intact neighbours), the linked-cell broad phase
+ * (LinkedCellSearchT<3>, contact.h) rebuilt when the accumulated travel
+ * passes half the buffer or joints break, the pair forces of
+ * add_pair_forces_3d() (tetrahedron_contact.h) on the solver's threads,
+ * their sum per tetrahedron in pair order, the stored energy and the
+ * stiffness bound the stable step needs.
+ */
+#ifndef tmfdem_discrete_tetrahedron_contact_system_h
+#define tmfdem_discrete_tetrahedron_contact_system_h
+
+#include <tmfdem/base/threads.h>
+#include <tmfdem/discrete/contact_system.h>
+#include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/tetrahedron_contact.h>
+#include <vector>
+
+namespace tmfdem
+{
+  class CheckpointWriter;
+  class CheckpointReader;
+
+  namespace discrete
+  {
+    /** Two tetrahedra that may touch: their indices (first < second) and
+     *  the friction history of each face of each as the contactor in the
+     *  other. */
+    struct TetrahedronContactPair
+    {
+      unsigned int            first = 0, second = 0;
+      TetrahedronPairFriction friction{};
+    };
+
+    /**
+     * Potential contact between the tetrahedra of a DiscreteModel (dim = 3,
+     * one MPI process): the pair list, the pair forces of the last step and
+     * the friction history they carry. The pair list is sorted by (first,
+     * second) and does not depend on the thread count; the forces are
+     * summed per tetrahedron in pair order, so the results do not either.
+     */
+    class TetrahedronContactSystem
+    {
+    public:
+      /**
+       * Takes the settings (ContactSettings: enabled, the penalties and
+       * friction of the law, the buffer, the faces of broken joints); no
+       * pairs yet. @p rigid_group per tetrahedron is the index of its body
+       * if that body is fixed or driven (its tetrahedra never push each
+       * other), or no_body.
+       */
+      void
+      setup(const ContactSettings            &settings,
+            const std::vector<unsigned char> &rigid_group);
+
+      bool
+      enabled() const
+      {
+        return contact.enabled;
+      }
+      const ContactSettings &
+      settings() const
+      {
+        return contact;
+      }
+
+      /**
+       * Bound of the contact stiffness a node of a tetrahedron with nodes
+       * @p x (x[k][i]) can feel [N/m], for the stable step: a face of area A
+       * pressed into a target of altitude H stores 2 p_n A o^2 / H for a
+       * uniform overlap o in each of the two pair directions, a stiffness
+       * 4 p_n A / H that one node may carry alone; the stick spring adds
+       * p_t A / sqrt(A). With A the largest face of the tetrahedron and H
+       * its smallest altitude: 4 p_n A_max / H_min + p_t sqrt(A_max). 0
+       * without contact.
+       */
+      double
+      node_stiffness_bound(const double (&x)[4][3]) const;
+
+      /**
+       * The factor on the normal penalty @p penalty [Pa] of the pair
+       * (@p a, @p b) [-]: for the two faces of a broken joint the one that
+       * gives their overlap the energy the joint stored in compression, so
+       * that the contact takes over a compressed joint at its break without
+       * a jump in energy (doc/theory.md 5.13). A joint of normal stiffness
+       * k_n [Pa/m] stores k_n / 2 int o^2 dA for an overlap o(x) linear over
+       * its face; the potential contact of the same overlap stores
+       * 2 p (1 / H_a + 1 / H_b) int o^2 dA (H = 3 V / A the tetrahedra's
+       * altitudes onto the face, in the reference configuration), so the
+       * factor is k_n / (4 p (1 / H_a + 1 / H_b)), at most 1. 1 for any
+       * other pair.
+       */
+      static double
+      face_penalty_factor(const DiscreteModel &model,
+                          const unsigned int   a,
+                          const unsigned int   b,
+                          const double         penalty);
+
+      /** The tetrahedra of the next search: those with a free face and
+       *  their intact neighbours (DiscreteModel::
+       *  contact_candidate_elements()); call after joints broke. */
+      void
+      update_active_elements(const DiscreteModel &model);
+
+      /**
+       * Rebuilds the pair list from the current geometry of @p model: pairs
+       * of active tetrahedra whose boxes come within the buffer and that no
+       * intact joint joins. Pairs within one rigid group carry no force.
+       * Friction history of pairs found again is kept.
+       */
+      void
+      search(const DiscreteModel &model, tbb::task_arena &arena);
+
+      /** The forces of every pair at the current state of @p model over
+       *  the step @p dt [s] (friction history, and the friction dissipated
+       *  per pair). */
+      void
+      compute_forces(const DiscreteModel &model,
+                     const double         dt,
+                     tbb::task_arena     &arena);
+
+      /** Whether tetrahedron @p e has a pair that carries force. */
+      bool
+      has_pairs(const unsigned int e) const
+      {
+        return element_pair_start[e + 1] > element_pair_start[e];
+      }
+
+      /** Adds the contact forces of all pairs of tetrahedron @p e to its
+       *  twelve nodal components @p f [N] (pair order: deterministic). */
+      void
+      add_forces(const unsigned int e, double *f) const
+      {
+        for (unsigned int p = element_pair_start[e];
+             p < element_pair_start[e + 1];
+             ++p)
+          {
+            const unsigned int entry = element_pair_entries[p];
+            const double *pf = &pair_force[24 * (entry / 2) + 12 * (entry % 2)];
+            for (unsigned int i = 0; i < 12; ++i)
+              f[i] += pf[i];
+          }
+      }
+
+      /** Energy dissipated by friction in the last step by the pairs whose
+       *  first tetrahedron is in [@p begin, @p end), in pair order [J]. */
+      double
+      friction_of_elements(const std::size_t begin, const std::size_t end) const
+      {
+        double sum = 0.;
+        for (unsigned int p = first_pair_start[begin];
+             p < first_pair_start[end];
+             ++p)
+          sum += pair_friction[p];
+        return sum;
+      }
+
+      /** After a step whose fastest node moved @p distance [m]: a search is
+       *  due when the travel since the last one passes half the buffer. */
+      void
+      add_travel(const double distance)
+      {
+        travel_since_search += distance;
+        if (2. * travel_since_search > contact.buffer)
+          search_is_needed = true;
+      }
+      /** Asks for a search before the next force computation (joints
+       *  broke, nodes jumped). */
+      void
+      request_search()
+      {
+        search_is_needed = true;
+      }
+      bool
+      search_needed() const
+      {
+        return search_is_needed;
+      }
+      const std::vector<unsigned int> &
+      active_elements() const
+      {
+        return active;
+      }
+      /** The pairs of the last search, sorted by (first, second). */
+      const std::vector<TetrahedronContactPair> &
+      pairs() const
+      {
+        return pair_list;
+      }
+      /** Pairs that carry contact forces (not within a rigid group). */
+      unsigned int
+      n_mechanical_pairs() const;
+      unsigned long
+      n_searches() const
+      {
+        return searches;
+      }
+
+      /**
+       * The energy stored in the normal contact of the current pairs [J]:
+       * E_t + E_c (pair_contact_energy_3d()) summed over the pairs that
+       * carry force, each with its penalty (face_penalty_factor()), per
+       * chunk of first tetrahedra in chunk order.
+       */
+      double
+      stored_energy(const DiscreteModel &model, tbb::task_arena &arena) const;
+
+      /** Writes the search state and the pairs with their friction history
+       *  to a checkpoint. */
+      void
+      save(CheckpointWriter &out) const;
+      /** Restores what save() wrote, for a model of @p n_elements. */
+      void
+      load(CheckpointReader &in, const unsigned int n_elements);
+
+    private:
+      /** Re-indexes the pairs per tetrahedron and flags the rigid ones
+       *  after the pair list changed. */
+      void
+      index_pairs(const unsigned int n_elements);
+      /** Gathers the nodes (and velocities) of tetrahedron @p e. */
+      static void
+      gather(const DiscreteModel &model,
+             const unsigned int   e,
+             double (&x)[4][3],
+             double (&v)[4][3]);
+
+      ContactSettings            contact;
+      std::vector<unsigned char> rigid_group; ///< per tetrahedron
+      LinkedCellSearchT<3, TetrahedronContactPair> linked_cells;
+      std::vector<TetrahedronContactPair>          pair_list;
+      /** Pairs that carry no force (within one rigid group). */
+      std::vector<char> pair_is_rigid;
+      /** face_penalty_factor() of each pair [-]. */
+      std::vector<double> pair_penalty_factor;
+      std::vector<double> pair_force;    ///< 24 per pair [N]
+      std::vector<double> pair_friction; ///< dissipation this step [J]
+      /** Pairs of tetrahedron e: element_pair_entries[start[e] ..
+       *  start[e+1]), each 2 pair + side (force-carrying pairs only). */
+      std::vector<unsigned int> element_pair_start, element_pair_entries;
+      /** Pairs whose first tetrahedron is e: [first_pair_start[e],
+       *  first_pair_start[e + 1]) of the sorted pair list. */
+      std::vector<unsigned int> first_pair_start;
+      std::vector<unsigned int> active;
+      double                    travel_since_search = 0.; ///< [m]
+      bool                      search_is_needed    = true;
+      unsigned long             searches            = 0;
+    };
+  } // namespace discrete
+} // namespace tmfdem
+
+#endif

@@ -1,0 +1,102 @@
+/**
+ * @file
+ * The contact members of TetrahedralSolver: the settings from Discrete
+ * mechanics and the forces of each step (TetrahedronContactSystem).
+ */
+#include <algorithm>
+#include <cmath>
+#include <tmfdem/base/threads.h>
+#include <tmfdem/discrete/discrete_parameters.h>
+#include <tmfdem/discrete/tetrahedral_solver.h>
+#include <tmfdem/discrete/tetrahedron_contact_system.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    void
+    TetrahedralSolver::setup_contact()
+    {
+      const auto &dm = parameters.get<DiscreteMechanicsParameters>();
+      if (!dm.contact)
+        {
+          contact.reset();
+          return;
+        }
+      ContactSettings settings;
+      settings.enabled = true;
+      settings.law     = ContactLaw::penalty_coulomb;
+      // penalties from the stiffest material of the mesh
+      double E_max = 0.;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        E_max =
+          std::max(E_max,
+                   parameters.materials[model.material[e]].youngs_modulus);
+      PenaltyCoulombContact &law = settings.penalty_coulomb;
+      law.normal_penalty         = dm.contact_penalty_factor * E_max;
+      law.tangential_penalty     = dm.contact_tangential_penalty_factor * E_max;
+      law.friction               = dm.friction_coefficient;
+      law.memory_slip            = dm.friction_memory_slip;
+      law.rate_effect            = dm.friction_rate_effect;
+      law.reference_slip_rate    = dm.friction_reference_slip_rate;
+      law.potential_gradient_on_target =
+        dm.contact_potential_gradient_on_target;
+      settings.match_broken_joints = dm.contact_broken_faces_at_joint_stiffness;
+      // buffer: a quarter of the smallest edge by default
+      double min_h = 1e300;
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        for (unsigned int a = 0; a < 4; ++a)
+          for (unsigned int b = a + 1; b < 4; ++b)
+            {
+              const unsigned int na = 4 * e + a, nb = 4 * e + b;
+              min_h =
+                std::min(min_h,
+                         std::sqrt(
+                           std::pow(model.x_ref[na] - model.x_ref[nb], 2) +
+                           std::pow(model.y_ref[na] - model.y_ref[nb], 2) +
+                           std::pow(model.z_ref[na] - model.z_ref[nb], 2)));
+            }
+      settings.buffer =
+        dm.contact_buffer > 0. ? dm.contact_buffer : 0.25 * min_h;
+      // fixed and driven bodies: their tetrahedra never push each other
+      const auto &bodies = parameters.get<DiscreteBodyParameters>().bodies;
+      std::vector<unsigned char> rigid_group(model.n_elements, no_body);
+      for (unsigned int e = 0; e < model.n_elements; ++e)
+        if (model.body[e] != no_body &&
+            bodies[model.body[e]].motion != DiscreteBody::Motion::free)
+          rigid_group[e] = model.body[e];
+      contact = std::make_unique<TetrahedronContactSystem>();
+      contact->setup(settings, rigid_group);
+      contact->update_active_elements(model);
+      element_in_contact.assign(model.n_elements, 0);
+    }
+
+    void
+    TetrahedralSolver::compute_contact_forces(const double dt)
+    {
+      const DiscreteModel &m = model;
+      // the travel of the last step: the fastest active node
+      if (step_number > 0)
+        {
+          double max_speed = 0.;
+          for (const unsigned int e : contact->active_elements())
+            for (unsigned int node = 4 * e; node < 4 * e + 4; ++node)
+              max_speed =
+                std::max(max_speed,
+                         m.vx[node] * m.vx[node] + m.vy[node] * m.vy[node] +
+                           m.vz[node] * m.vz[node]);
+          contact->add_travel(std::sqrt(max_speed) * dt);
+        }
+      tbb::task_arena &arena = arena_for(n_threads);
+      if (contact->search_needed())
+        {
+          contact->search(model, arena);
+          for (unsigned int e = 0; e < m.n_elements; ++e)
+            element_in_contact[e] = contact->has_pairs(e) ? 1 : 0;
+        }
+      contact->compute_forces(model, dt, arena);
+      const double dissipated = contact->friction_of_elements(0, m.n_elements);
+      energies.friction += dissipated;
+    }
+  } // namespace discrete
+} // namespace tmfdem

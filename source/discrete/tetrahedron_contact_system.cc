@@ -1,0 +1,276 @@
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <tmfdem/base/exceptions.h>
+#include <tmfdem/discrete/tetrahedron_contact_system.h>
+#include <tmfdem/io/checkpoint.h>
+
+namespace tmfdem
+{
+  namespace discrete
+  {
+    void
+    TetrahedronContactSystem::setup(
+      const ContactSettings            &settings,
+      const std::vector<unsigned char> &rigid_groups)
+    {
+      contact     = settings;
+      rigid_group = rigid_groups;
+      pair_list.clear();
+      index_pairs(static_cast<unsigned int>(rigid_group.size()));
+      travel_since_search = 0.;
+      search_is_needed    = true;
+      searches            = 0;
+    }
+
+    double
+    TetrahedronContactSystem::node_stiffness_bound(
+      const double (&x)[4][3]) const
+    {
+      if (!contact.enabled)
+        return 0.;
+      double g[4][3];
+      scaled_gradients(x, g);
+      // |g_f| = 2 A_f; 6 V = g_3 . (x_3 - x_0); H_f = 3 V / A_f
+      double six_volume = 0., largest_area = 0.;
+      for (unsigned int i = 0; i < 3; ++i)
+        six_volume += g[3][i] * (x[3][i] - x[0][i]);
+      for (unsigned int f = 0; f < 4; ++f)
+        largest_area =
+          std::max(largest_area,
+                   0.5 * std::sqrt(g[f][0] * g[f][0] + g[f][1] * g[f][1] +
+                                   g[f][2] * g[f][2]));
+      if (!(six_volume > 0.))
+        return 0.;
+      const double smallest_altitude   = 0.5 * six_volume / largest_area;
+      const PenaltyCoulombContact &law = contact.penalty_coulomb;
+      return 4. * law.normal_penalty * largest_area / smallest_altitude +
+             law.tangential_penalty * std::sqrt(largest_area);
+    }
+
+    double
+    TetrahedronContactSystem::face_penalty_factor(const DiscreteModel &model,
+                                                  const unsigned int   a,
+                                                  const unsigned int   b,
+                                                  const double         penalty)
+    {
+      for (unsigned int f = 0; f < 4; ++f)
+        {
+          const int code = model.edge_joint[4 * a + f];
+          if (code < 0)
+            continue;
+          const unsigned int j = static_cast<unsigned int>(code) / 2;
+          if (model.joint_elements[2 * j + 1 - code % 2] != b)
+            continue;
+          // E_joint = k_n / 2 int o^2 dA, E_contact = 2 p (1 / H_a +
+          // 1 / H_b) int o^2 dA, H = 3 V / A the altitudes onto the face
+          const double A = model.joint_area[j];
+          const double inverse_altitudes =
+            A / 3. *
+            (1. / model.reference_area[a] + 1. / model.reference_area[b]);
+          return std::min(1.,
+                          model.joint_constants[j].normal_stiffness /
+                            (4. * penalty * inverse_altitudes));
+        }
+      return 1.;
+    }
+
+    void
+    TetrahedronContactSystem::update_active_elements(const DiscreteModel &model)
+    {
+      model.contact_candidate_elements(active);
+    }
+
+    void
+    TetrahedronContactSystem::search(const DiscreteModel &model,
+                                     tbb::task_arena     &arena)
+    {
+      const auto skip = [&](const unsigned int a, const unsigned int b) {
+        return model.joined(a, b);
+      };
+      const std::vector<double> *const coordinates[3] = {&model.x,
+                                                         &model.y,
+                                                         &model.z};
+      linked_cells
+        .rebuild(coordinates, active, contact.buffer, skip, pair_list, arena);
+      index_pairs(model.n_elements);
+      pair_penalty_factor.assign(pair_list.size(), 1.);
+      if (contact.match_broken_joints)
+        for (std::size_t p = 0; p < pair_list.size(); ++p)
+          pair_penalty_factor[p] =
+            face_penalty_factor(model,
+                                pair_list[p].first,
+                                pair_list[p].second,
+                                contact.penalty_coulomb.normal_penalty);
+      travel_since_search = 0.;
+      search_is_needed    = false;
+      ++searches;
+    }
+
+    void
+    TetrahedronContactSystem::index_pairs(const unsigned int n_elements)
+    {
+      pair_is_rigid.resize(pair_list.size());
+      for (std::size_t p = 0; p < pair_list.size(); ++p)
+        {
+          const unsigned char a = rigid_group[pair_list[p].first];
+          // no force within one rigid group
+          pair_is_rigid[p] =
+            a != no_body && a == rigid_group[pair_list[p].second];
+        }
+      pair_force.assign(24 * pair_list.size(), 0.);
+      pair_friction.assign(pair_list.size(), 0.);
+      element_pair_start.assign(n_elements + 1, 0);
+      first_pair_start.assign(n_elements + 1, 0);
+      for (std::size_t p = 0; p < pair_list.size(); ++p)
+        {
+          ++first_pair_start[pair_list[p].first + 1];
+          if (pair_is_rigid[p])
+            continue;
+          ++element_pair_start[pair_list[p].first + 1];
+          ++element_pair_start[pair_list[p].second + 1];
+        }
+      for (unsigned int e = 0; e < n_elements; ++e)
+        {
+          element_pair_start[e + 1] += element_pair_start[e];
+          first_pair_start[e + 1] += first_pair_start[e];
+        }
+      element_pair_entries.resize(element_pair_start[n_elements]);
+      std::vector<unsigned int> fill(element_pair_start.begin(),
+                                     element_pair_start.end() - 1);
+      for (unsigned int p = 0; p < pair_list.size(); ++p)
+        if (!pair_is_rigid[p])
+          {
+            element_pair_entries[fill[pair_list[p].first]++]  = 2 * p;
+            element_pair_entries[fill[pair_list[p].second]++] = 2 * p + 1;
+          }
+    }
+
+    void
+    TetrahedronContactSystem::gather(const DiscreteModel &m,
+                                     const unsigned int   e,
+                                     double (&x)[4][3],
+                                     double (&v)[4][3])
+    {
+      for (unsigned int k = 0; k < 4; ++k)
+        {
+          const unsigned int node = 4 * e + k;
+          x[k][0]                 = m.x[node];
+          x[k][1]                 = m.y[node];
+          x[k][2]                 = m.z[node];
+          v[k][0]                 = m.vx[node];
+          v[k][1]                 = m.vy[node];
+          v[k][2]                 = m.vz[node];
+        }
+    }
+
+    void
+    TetrahedronContactSystem::compute_forces(const DiscreteModel &m,
+                                             const double         dt,
+                                             tbb::task_arena     &arena)
+    {
+      if (pair_list.empty())
+        return;
+      for_each_chunk(
+        arena,
+        pair_list.size(),
+        64,
+        [&](const std::size_t begin, const std::size_t end, const std::size_t) {
+          PenaltyCoulombContact law = contact.penalty_coulomb;
+          for (std::size_t p = begin; p < end; ++p)
+            {
+              TetrahedronContactPair &pair  = pair_list[p];
+              double                 *force = &pair_force[24 * p];
+              std::fill(force, force + 24, 0.);
+              pair_friction[p] = 0.;
+              if (pair_is_rigid[p])
+                continue;
+              double x[2][4][3], v[2][4][3];
+              gather(m, pair.first, x[0], v[0]);
+              gather(m, pair.second, x[1], v[1]);
+              // the faces of a broken joint: its compressive stiffness
+              law.normal_penalty =
+                contact.penalty_coulomb.normal_penalty * pair_penalty_factor[p];
+              pair_friction[p] =
+                add_pair_forces_3d(x, v, law, dt, pair.friction, force);
+            }
+        });
+    }
+
+    unsigned int
+    TetrahedronContactSystem::n_mechanical_pairs() const
+    {
+      return static_cast<unsigned int>(
+        std::count(pair_is_rigid.begin(), pair_is_rigid.end(), 0));
+    }
+
+    double
+    TetrahedronContactSystem::stored_energy(const DiscreteModel &m,
+                                            tbb::task_arena     &arena) const
+    {
+      constexpr std::size_t chunk = 64;
+      std::vector<double>   chunk_energy((pair_list.size() + chunk - 1) / chunk,
+                                       0.);
+      for_each_chunk(arena,
+                     pair_list.size(),
+                     chunk,
+                     [&](const std::size_t begin,
+                         const std::size_t end,
+                         const std::size_t c) {
+                       double energy = 0.;
+                       for (std::size_t p = begin; p < end; ++p)
+                         {
+                           if (pair_is_rigid[p])
+                             continue;
+                           double x[2][4][3], v[2][4][3];
+                           gather(m, pair_list[p].first, x[0], v[0]);
+                           gather(m, pair_list[p].second, x[1], v[1]);
+                           energy += pair_contact_energy_3d(
+                             x,
+                             contact.penalty_coulomb.normal_penalty *
+                               pair_penalty_factor[p]);
+                         }
+                       chunk_energy[c] = energy;
+                     });
+      double energy = 0.;
+      for (const double e : chunk_energy)
+        energy += e;
+      return energy;
+    }
+
+    void
+    TetrahedronContactSystem::save(CheckpointWriter &out) const
+    {
+      out.put(travel_since_search);
+      out.put<std::uint8_t>(search_is_needed);
+      out.put<std::uint64_t>(searches);
+      out.put(pair_list);
+      out.put(pair_penalty_factor);
+    }
+
+    void
+    TetrahedronContactSystem::load(CheckpointReader  &in,
+                                   const unsigned int n_elements)
+    {
+      in.get(travel_since_search);
+      std::uint8_t flag = 0;
+      in.get(flag);
+      search_is_needed    = flag != 0;
+      std::uint64_t count = 0;
+      in.get(count);
+      searches = count;
+      in.get(pair_list);
+      in.get(pair_penalty_factor);
+      for (const auto &p : pair_list)
+        if (p.first >= n_elements || p.second >= n_elements)
+          throw InputError("the checkpoint '" + in.name() +
+                           "' is corrupt (contact pair of tetrahedron " +
+                           std::to_string(std::max(p.first, p.second)) + ").");
+      if (pair_penalty_factor.size() != pair_list.size())
+        throw InputError("the checkpoint '" + in.name() +
+                         "' is corrupt (contact pairs and their penalties "
+                         "differ in number).");
+      index_pairs(n_elements);
+    }
+  } // namespace discrete
+} // namespace tmfdem
