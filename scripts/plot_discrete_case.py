@@ -4,7 +4,7 @@
     plot_discrete_case.py CASE OUTPUT_FOLDER PNG
 
 CASE is one of joint_pull, joint_pull-3d, block_on_incline, two_blocks_collision,
-two_blocks_collision-3d,
+two_blocks_collision-3d, block_on_incline-3d,
 brazilian_disc, plate_traction, plate_transient, plate_transient-discrete-3d,
 contact_conduction,
 sheet_free_expansion, sheet_restrained_expansion, thermal_shock_disc-3d. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
@@ -21,6 +21,8 @@ scripts write:
     plate_transient-discrete-3d: OUTPUT_FOLDER/{plate,plate_beta_{100,10000}}/
                        (verify_discrete_heat_3d.py)
     contact_conduction: OUTPUT_FOLDER/{steady,equilibrate}/  (verify_discrete_contact_heat.py)
+    block_on_incline-3d: OUTPUT_FOLDER/incline_mu_{0.3,0.7}/
+                       (verify_discrete_contact_3d.py incline)
     two_blocks_collision-3d: OUTPUT_FOLDER/collision_threads_1/
                        (verify_discrete_contact_3d.py)
     thermal_shock_disc-3d: OUTPUT_FOLDER/{disc-3d,disc-2d}/
@@ -353,8 +355,7 @@ def plot_two_blocks_collision_3d(folder, png):
     p = (s["momentum_x"], s["momentum_y"], s["momentum_z"])
     dp = math.sqrt(sum((a - b) ** 2 for a, b in zip(p, p0)))
     ax_e.set_title("Two cubes colliding off-centre (8 m/s and (-2, 0.5, 0.3) m/s): "
-                   "energy terms
-"
+                   "energy terms\n"
                    f"momentum ({p[0]:.12g}, {p[1]:.12g}, {p[2]:.12g}) kg m/s vs "
                    f"({p0[0]:g}, {p0[1]:g}, {p0[2]:g}): change {dp:.1e}", fontsize=9)
     ax_e.legend(fontsize=7, loc="center right")
@@ -379,6 +380,63 @@ def plot_two_blocks_collision_3d(folder, png):
         print(f"  {k:>24}: {e[k]:.6g}")
     print(f"  momentum change: {dp:.3e} kg m/s; max |balance error| / E0 over the "
           f"run: {np.max(np.abs(rel)):.3e}")
+    print(f"wrote {png}")
+
+
+# ---------------------------------------------------- block_on_incline-3d
+def plot_block_on_incline_3d(folder, png):
+    """Reads OUTPUT_FOLDER/incline_mu_{0.3,0.7} (verify_discrete_contact_3d.py
+    incline)."""
+    with open(os.path.join(ROOT, "prm", "block_on_incline-3d.prm")) as f:
+        text = f.read()
+    ramp = float(re.search(r"Gravity ramp time\s*=\s*([0-9.eE+-]+)", text).group(1))
+    g = [float(v) for v in re.search(r"set Gravity\s*=\s*([^\n]+)", text).group(1).split(",")]
+    g_t, g_n = math.hypot(g[0], g[1]), abs(g[2])
+    d = (g[0] / g_t, g[1] / g_t)
+    fig, (ax_u, ax_s) = plt.subplots(2, 1, figsize=(7, 7), dpi=150, sharex=True,
+                                     gridspec_kw=dict(height_ratios=[3, 2]))
+    # mu = 0.3 slides: the rigid block under the ramp a(t) = a0 min(t / T, 1)
+    mu = 0.3
+    sub = os.path.join(folder, f"incline_mu_{mu}")
+    ensure_run(sub, "block_on_incline-3d.prm", f"Discrete mechanics/Friction coefficient={mu}")
+    h = read_csv(os.path.join(sub, "history.csv"))
+    t = h["time"]
+    down = h["body2_ux"] * d[0] + h["body2_uy"] * d[1]
+    side = -h["body2_ux"] * d[1] + h["body2_uy"] * d[0]
+    a0 = g_t - mu * g_n
+    tt = np.linspace(0, t[-1], 400)
+    exact = np.where(tt <= ramp, a0 * tt ** 3 / (6 * ramp),
+                     a0 * ramp ** 2 / 6 + a0 * ramp / 2 * (tt - ramp)
+                     + a0 / 2 * (tt - ramp) ** 2)
+    late = t >= 0.02
+    a_fit = 2.0 * np.polyfit(t[late], down[late], 2)[0]
+    ax_u.plot(1e3 * tt, 1e3 * exact, "-", color="gray", lw=2.5, alpha=0.6,
+              label=f"rigid block, a = |g_t| - mu |g_n| = {a0:.4f} m/s^2")
+    ax_u.plot(1e3 * t, 1e3 * down, "C0.", ms=2.5,
+              label=f"tmfdem, mu = {mu}: fitted a = {a_fit:.4f} m/s^2 "
+                    f"({100 * abs(a_fit / a0 - 1):.4f} %)")
+    ax_u.plot(1e3 * t, 1e3 * side, "C1-", lw=1, label="tmfdem, sideways")
+    ax_u.set_ylabel("centre of mass along the steepest descent [mm]")
+    ax_u.set_title(f"Block on a base under gravity tilted 30 deg at 30 deg from x "
+                   f"(ramped over {1e3 * ramp:g} ms)", fontsize=9)
+    ax_u.legend(fontsize=7)
+    ax_u.grid(alpha=0.3)
+    mu = 0.7
+    sub = os.path.join(folder, f"incline_mu_{mu}")
+    ensure_run(sub, "block_on_incline-3d.prm", f"Discrete mechanics/Friction coefficient={mu}")
+    h = read_csv(os.path.join(sub, "history.csv"))
+    u = np.hypot(h["body2_ux"], h["body2_uy"])
+    ax_s.plot(1e3 * h["time"], 1e6 * u, "C3-", lw=1,
+              label=f"tmfdem, mu = {mu} >= tan = {g_t / g_n:.3f}: sticks")
+    ax_s.axhline(10, color="gray", ls=":", lw=1, label="test bound 10 um")
+    ax_s.set_ylabel("|tangential displacement| [um]")
+    ax_s.set_xlabel("t [ms]")
+    ax_s.legend(fontsize=7)
+    ax_s.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(png)
+    print(f"block_on_incline-3d: a fit {a_fit:.6f} vs {a0:.6f} m/s^2; "
+          f"sideways max {np.max(np.abs(side)):.3e} m; stick max {np.max(u):.3e} m")
     print(f"wrote {png}")
 
 
@@ -926,6 +984,7 @@ CASES = {"joint_pull": plot_joint_pull,
          "block_on_incline": plot_block_on_incline,
          "two_blocks_collision": plot_two_blocks_collision,
          "two_blocks_collision-3d": plot_two_blocks_collision_3d,
+         "block_on_incline-3d": plot_block_on_incline_3d,
          "brazilian_disc": plot_brazilian_disc,
          "plate_traction": plot_plate_traction,
          "plate_transient": plot_plate_transient,

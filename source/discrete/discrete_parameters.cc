@@ -197,8 +197,10 @@ namespace tmfdem
       "(doc/theory.md 5.6). 1: the physical inertia.");
     prm.declare_entry("Gravity",
                       "0, 0",
-                      Patterns::List(Patterns::Double(), 2, 2, ","),
-                      "Gravitational acceleration g_x, g_y [m/s^2].");
+                      Patterns::List(Patterns::Double(), 2, 3, ","),
+                      "Gravitational acceleration [m/s^2]: g_x, g_y with "
+                      "Mesh/Dimension = 2, g_x, g_y, g_z with Mesh/Dimension "
+                      "= 3 (there the default 0, 0 means no gravity).");
     prm.declare_entry(
       "Gravity ramp time",
       "0",

@@ -31,6 +31,11 @@ namespace tmfdem
 
       const auto &dm = parameters.get<DiscreteMechanicsParameters>();
       parameters.mechanics.check_dimension(2);
+      if (dm.gravity.size() != 2)
+        throw InputError("Discrete mechanics/Gravity has " +
+                         std::to_string(dm.gravity.size()) +
+                         " components: Mesh/Dimension = 2 takes g_x, g_y; "
+                         "allowed are two.");
       for (const auto &body : parameters.get<DiscreteBodyParameters>().bodies)
         for (const auto &[entry, value] :
              {std::make_pair("Velocity z", body.velocity_z),

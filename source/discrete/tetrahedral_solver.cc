@@ -57,7 +57,7 @@ namespace tmfdem
       const std::string in_3d =
         " is not modelled in 3D yet (Mesh/Dimension = 3: tetrahedra with "
         "cohesive joints, bodies and boundary conditions, heat with the "
-        "multi-rate and quasi-static coupling, contact, no gravity); ";
+        "multi-rate and quasi-static coupling, contact, gravity); ";
       if (physics != Physics::mechanics)
         {
           const auto &dh = parameters.get<DiscreteHeatParameters>();
@@ -92,10 +92,27 @@ namespace tmfdem
           "relaxation of their contact" +
           in_3d +
           "allowed is Contact = false (or Model = discrete mechanics).");
-      for (const double g : dm.gravity)
-        if (g != 0.)
-          throw InputError("Discrete mechanics/Gravity: gravity" + in_3d +
-                           "allowed is 0, 0.");
+      const auto as_text = [](const double value) {
+        std::ostringstream text;
+        text << value;
+        return text.str();
+      };
+      if (dm.gravity.size() == 2 &&
+          (dm.gravity[0] != 0. || dm.gravity[1] != 0.))
+        throw InputError(
+          "Discrete mechanics/Gravity = " + as_text(dm.gravity[0]) + ", " +
+          as_text(dm.gravity[1]) +
+          " has two components: Mesh/Dimension = 3 takes g_x, g_y, g_z; "
+          "allowed are three (or the default 0, 0: no gravity).");
+      if (physics == Physics::thermo_mechanics && dm.gravity_ramp_time > 0. &&
+          parameters.get<DiscreteHeatParameters>().coupling ==
+            DiscreteHeatParameters::Coupling::quasi_static)
+        throw InputError(
+          "Discrete mechanics/Gravity ramp time = " +
+          Utilities::to_string(dm.gravity_ramp_time) +
+          " s: a gravity ramp is for dynamic runs; with Discrete "
+          "heat/Coupling = quasi-static every relaxation finds the "
+          "equilibrium under full gravity. Set it to 0.");
       if (!dm.initial_cracks.empty())
         throw InputError("Discrete mechanics/Initial cracks: segments are 2D "
                          "cracks; allowed in 3D is none.");
@@ -682,6 +699,23 @@ namespace tmfdem
       batch_input.damp_a = a;
       batch_input.damp_b = damp_b_factor;
       batch_input.c_m    = c_m;
+      // gravity at the step's start (Gravity ramp time), the physical
+      // weight with mass scaling
+      const auto  &dm = parameters.get<DiscreteMechanicsParameters>();
+      const double g_share =
+        (dm.gravity_ramp_time > 0. ? std::min(1., time / dm.gravity_ramp_time) :
+                                     1.) /
+        dm.mass_scaling_factor;
+      const bool gravity_on =
+        dm.gravity.size() == 3 &&
+        (dm.gravity[0] != 0. || dm.gravity[1] != 0. || dm.gravity[2] != 0.);
+      double gravity[3] = {0., 0., 0.};
+      if (gravity_on)
+        for (unsigned int i = 0; i < 3; ++i)
+          gravity[i] = g_share * dm.gravity[i];
+      batch_input.with_gravity = gravity_on;
+      for (unsigned int i = 0; i < 3; ++i)
+        batch_input.gravity[i] = gravity[i];
       for_each_chunk(
         arena_for(n_threads),
         m.n_elements,
@@ -747,9 +781,12 @@ namespace tmfdem
                   const int ci   = node_constraint[node];
                   for (unsigned int i = 0; i < 3; ++i)
                     {
-                      const double f_joint = jf[i] + jf[3 + i] + jf[6 + i];
-                      const double f = r.f_elastic[k][i] + r.f_viscous[k][i] +
-                                       f_joint + f_contact[3 * k + i];
+                      const double f_joint   = jf[i] + jf[3 + i] + jf[6 + i];
+                      const double f_gravity = mass * gravity[i];
+                      double       f = r.f_elastic[k][i] + r.f_viscous[k][i] +
+                                 f_joint + f_contact[3 * k + i];
+                      if (gravity_on)
+                        f += f_gravity;
                       const double v_old = *v[i];
                       double v_new = damped_velocity<double>(a, v_old, b_m, f);
                       double f_reaction = 0.;
@@ -762,15 +799,17 @@ namespace tmfdem
                         }
                       const double travel =
                         half_step_travel<double>(dt, v_old, v_new);
+                      // the reaction's work and gravity's: external work
                       const TetrahedronNodeWorks<double> nw =
-                        tetrahedron_node_works<double>(r.f_elastic[k][i],
-                                                       r.f_viscous[k][i],
-                                                       f_joint,
-                                                       f_reaction,
-                                                       travel,
-                                                       c_m,
-                                                       mass,
-                                                       dt);
+                        tetrahedron_node_works<double>(
+                          r.f_elastic[k][i],
+                          r.f_viscous[k][i],
+                          f_joint,
+                          gravity_on ? f_reaction + f_gravity : f_reaction,
+                          travel,
+                          c_m,
+                          mass,
+                          dt);
                       w[0] += nw.elastic;
                       w[1] += nw.viscous;
                       w[2] += nw.joint;
@@ -945,6 +984,27 @@ namespace tmfdem
               << "," << model.n_broken_joints();
           for (const auto &r : owner_reaction)
             row << "," << r[0] << "," << r[1] << "," << r[2];
+          // free bodies: the displacement of their centre of mass
+          const auto &bodies = parameters.get<DiscreteBodyParameters>().bodies;
+          for (unsigned int b = 0; b < bodies.size(); ++b)
+            if (bodies[b].motion == DiscreteBody::Motion::free)
+              {
+                double mass = 0., moment[3] = {0., 0., 0.};
+                for (unsigned int e = 0; e < model.n_elements; ++e)
+                  if (model.body[e] == b)
+                    for (unsigned int n = 4 * e; n < 4 * e + 4; ++n)
+                      {
+                        mass += model.mass[n];
+                        moment[0] +=
+                          model.mass[n] * (model.x[n] - model.x_ref[n]);
+                        moment[1] +=
+                          model.mass[n] * (model.y[n] - model.y_ref[n]);
+                        moment[2] +=
+                          model.mass[n] * (model.z[n] - model.z_ref[n]);
+                      }
+                for (const double m : moment)
+                  row << "," << (mass > 0. ? m / mass : 0.);
+              }
         }
       if (heat)
         {
@@ -1048,7 +1108,8 @@ namespace tmfdem
         }
       energy.add("balance_error", energy_balance_error());
       summary.add("energy", energy);
-      summary.add("contact", contact != nullptr);
+      if (with_mechanics())
+        summary.add("contact", contact != nullptr);
       if (contact)
         {
           summary.add("contact_searches",
@@ -1257,6 +1318,13 @@ namespace tmfdem
           header += "balance_error,damaged_joints,broken_joints";
           for (const auto &name : owner_names)
             header += "," + name + "_fx," + name + "_fy," + name + "_fz";
+          for (const auto &body :
+               parameters.get<DiscreteBodyParameters>().bodies)
+            if (body.motion == DiscreteBody::Motion::free)
+              {
+                const std::string name = "body" + std::to_string(body.number);
+                header += "," + name + "_ux," + name + "_uy," + name + "_uz";
+              }
         }
       if (heat)
         header += ",T_min,T_max,stored_heat,heat_imbalance";

@@ -156,19 +156,24 @@ namespace tmfdem
                 const Lanes f_joint = gather<Lanes>(jf + i, 36) +
                                       gather<Lanes>(jf + 3 + i, 36) +
                                       gather<Lanes>(jf + 6 + i, 36);
-                const Lanes f = r.f_elastic[k][i] + r.f_viscous[k][i] + f_joint;
+                const Lanes f_gravity = mass * in.gravity[i];
+                Lanes       f = r.f_elastic[k][i] + r.f_viscous[k][i] + f_joint;
+                if (in.with_gravity)
+                  f = f + f_gravity;
                 const Lanes v_old = V[i][k];
                 const Lanes v_new =
                   damped_velocity<Lanes>(in.damp_a, v_old, b_m, f);
                 const Lanes travel = half_step_travel(in.dt, v_old, v_new);
-                t[k][i] = tetrahedron_node_works<Lanes>(r.f_elastic[k][i],
-                                                        r.f_viscous[k][i],
-                                                        f_joint,
-                                                        zero,
-                                                        travel,
-                                                        in.c_m,
-                                                        mass,
-                                                        in.dt);
+                t[k][i] =
+                  tetrahedron_node_works<Lanes>(r.f_elastic[k][i],
+                                                r.f_viscous[k][i],
+                                                f_joint,
+                                                in.with_gravity ? f_gravity :
+                                                                  zero,
+                                                travel,
+                                                in.c_m,
+                                                mass,
+                                                in.dt);
                 scatter(v_new, velocity[i] + node, 4);
                 scatter(X[i][k] + in.dt * v_new, position[i] + node, 4);
                 abs_v[k][i] = lane_abs(v_new);

@@ -19,9 +19,9 @@
  * between tetrahedra (TetrahedronContactSystem: Munjiza's potential and
  * friction of tetrahedron_contact.h) as in 2D: the contact forces enter the
  * scalar node update of the tetrahedra in contact, their work the energy
- * balance, their stiffness the stable step. Gravity, monitors and MPI ranks
- * beyond one are refused with a message naming the entry (doc/theory.md
- * 5.12, 5.13, 7.9).
+ * balance, their stiffness the stable step. Gravity (three components,
+ * ramped as in 2D). Monitors and MPI ranks beyond one are refused with a
+ * message naming the entry (doc/theory.md 5.12, 5.13, 7.9).
  */
 #ifndef tmfdem_discrete_tetrahedral_solver_h
 #define tmfdem_discrete_tetrahedral_solver_h

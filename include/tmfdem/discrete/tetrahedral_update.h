@@ -141,6 +141,10 @@ namespace tmfdem
       /** The step [s]; v_new = a v_old + b / m f with @p damp_a [-] and
        *  @p damp_b [s]; the mass damping c [1/s]. */
       double dt, damp_a, damp_b, c_m;
+      /** Gravity on every node, m g (with_gravity; its work is external
+       *  work, in the reaction's slot) [m/s^2]. */
+      bool   with_gravity = false;
+      double gravity[3]   = {0., 0., 0.};
     };
 
     /**
