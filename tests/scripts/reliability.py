@@ -22,7 +22,8 @@ usage: reliability.py TMFDEM OUT_DIR CHECK [CASE]
                      End time before the checkpoint is refused. CASE heat
                      (E = 50 s) or thermo (cut_plate, quasi-static, E = 2000 s:
                      its history interval is the thermal step either way)
-CASE: mechanics (two_blocks_collision), thermo (cut_plate, quasi-static with
+CASE: mechanics (two_blocks_collision), mechanics_3d (two_blocks_collision-3d,
+contact between tetrahedra, shortened), thermo (cut_plate, quasi-static with
 fracture and contact heat), thermo_multirate (sheet_restrained_expansion,
 shortened), heat (plate_transient, discrete heat), thermo_continuum
 (thermal_shock_disc at h = 0.8 mm to 12 ms with the continuum heat, P2, as
@@ -47,6 +48,10 @@ case = sys.argv[4] if len(sys.argv) > 4 else "mechanics"
 prm_dir = os.path.join(os.path.dirname(__file__), "..", "..", "prm")
 CASES = {
     "mechanics": ("two_blocks_collision.prm", []),
+    # contact between tetrahedra: the pairs and their friction history in
+    # the checkpoint (to 1.2 ms: the cubes touch from 0.5 ms)
+    "mechanics_3d": ("two_blocks_collision-3d.prm",
+                     ["Time stepping/End time=0.0012"]),
     "thermo": ("cut_plate.prm", []),
     "thermo_multirate": ("sheet_restrained_expansion.prm",
                          ["Time stepping/End time=0.002"]),
@@ -159,8 +164,11 @@ if which == "kill_resume":
     reference = fresh(os.path.join(out, "reference"))
     run(reference)
     folder = fresh(os.path.join(out, "killed"))
+    # mechanics_3d: the first checkpoint after the cubes touched (step
+    # about 1020), so that it holds friction history
     interval = "Checkpoint/Interval (steps)=" + ("1" if case.startswith("thermo_c") or case == "thermo" else
-                                                 "20" if case == "heat" else "500")
+                                                 "20" if case == "heat" else
+                                                 "1500" if case == "mechanics_3d" else "500")
     cmd = command(folder, interval)
     print("$", " ".join(cmd), "(SIGKILL once a checkpoint exists)", flush=True)
     process = subprocess.Popen(cmd, stdout=subprocess.DEVNULL,
