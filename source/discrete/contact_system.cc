@@ -143,21 +143,8 @@ namespace tmfdem
       // the pieces (triangles connected by intact joints): two triangles of
       // one piece that overlap are crushed, not in failed contact (the
       // guards on inverted elements and the stable step report that)
-      std::vector<unsigned int> piece(model.n_elements);
-      for (unsigned int e = 0; e < model.n_elements; ++e)
-        piece[e] = e;
-      const auto root = [&piece](unsigned int e) {
-        while (piece[e] != e)
-          e = piece[e] = piece[piece[e]];
-        return e;
-      };
-      for (unsigned int j = 0; j < model.n_joints; ++j)
-        if (model.joint_status[j] == JointStatus::intact)
-          {
-            const unsigned int ra   = root(model.joint_elements[2 * j]),
-                               rb   = root(model.joint_elements[2 * j + 1]);
-            piece[std::max(ra, rb)] = std::min(ra, rb);
-          }
+      std::vector<unsigned int> piece;
+      model.intact_pieces(piece);
       OverlapPolygon polygon;
       for (std::size_t p = 0; p < pair_list.size(); ++p)
         {
@@ -166,7 +153,7 @@ namespace tmfdem
           // do not move (fixed or driven)
           if (pair_is_rigid[p] ||
               (rigid_group[a] != no_body && rigid_group[b] != no_body) ||
-              root(a) == root(b))
+              piece[a] == piece[b])
             continue;
           if (!triangle_overlap(&model.x[3 * a],
                                 &model.y[3 * a],

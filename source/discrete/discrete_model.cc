@@ -384,6 +384,28 @@ namespace tmfdem
           elements.push_back(e);
     }
 
+    void
+    DiscreteModel::intact_pieces(std::vector<unsigned int> &piece) const
+    {
+      piece.resize(n_elements);
+      for (unsigned int e = 0; e < n_elements; ++e)
+        piece[e] = e;
+      const auto root = [&piece](unsigned int e) {
+        while (piece[e] != e)
+          e = piece[e] = piece[piece[e]];
+        return e;
+      };
+      for (unsigned int j = 0; j < n_joints; ++j)
+        if (joint_status[j] == JointStatus::intact)
+          {
+            const unsigned int ra   = root(joint_elements[2 * j]),
+                               rb   = root(joint_elements[2 * j + 1]);
+            piece[std::max(ra, rb)] = std::min(ra, rb);
+          }
+      for (unsigned int e = 0; e < n_elements; ++e)
+        piece[e] = root(e);
+    }
+
     unsigned int
     DiscreteModel::n_broken_joints() const
     {

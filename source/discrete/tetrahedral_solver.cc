@@ -1351,6 +1351,8 @@ namespace tmfdem
                                         communicator);
           compute_state_energies();
           initial_kinetic = energies.kinetic;
+          if (contact)
+            check_contact_overlap(true); // tetrahedral_solver_contact.cc
           write_output();
           write_history_row();
           next_history += history_interval;

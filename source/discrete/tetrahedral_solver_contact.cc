@@ -5,6 +5,9 @@
  */
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <tmfdem/base/exceptions.h>
 #include <tmfdem/base/threads.h>
 #include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/discrete/tetrahedral_solver.h>
@@ -93,10 +96,80 @@ namespace tmfdem
           contact->search(model, arena);
           for (unsigned int e = 0; e < m.n_elements; ++e)
             element_in_contact[e] = contact->has_pairs(e) ? 1 : 0;
+          if (contact->overlap_check_due())
+            {
+              check_contact_overlap(false);
+              contact->overlap_checked();
+            }
         }
       contact->compute_forces(model, dt, arena);
       const double dissipated = contact->friction_of_elements(0, m.n_elements);
       energies.friction += dissipated;
+    }
+
+    void
+    TetrahedralSolver::check_contact_overlap(const bool initial)
+    {
+      if (initial)
+        {
+          contact->search(model, arena_for(n_threads));
+          for (unsigned int e = 0; e < model.n_elements; ++e)
+            element_in_contact[e] = contact->has_pairs(e) ? 1 : 0;
+        }
+      const TetrahedronContactSystem::Overlap worst =
+        contact->largest_overlap(model);
+      if (worst.fraction <=
+          (initial ? max_initial_overlap : max_contact_overlap))
+        return;
+      const auto &bodies   = parameters.get<DiscreteBodyParameters>().bodies;
+      const auto  describe = [&](const unsigned int e) {
+        double centroid[3] = {0., 0., 0.};
+        for (unsigned int k = 0; k < 4; ++k)
+          {
+            centroid[0] += 0.25 * model.x_ref[4 * e + k];
+            centroid[1] += 0.25 * model.y_ref[4 * e + k];
+            centroid[2] += 0.25 * model.z_ref[4 * e + k];
+          }
+        const unsigned char b = model.body[e];
+        std::ostringstream  text;
+        text << std::setprecision(6) << e << " ("
+             << (b != no_body && b < bodies.size() ? bodies[b].name :
+                                                      std::string("no body"))
+             << ", material id " << static_cast<unsigned int>(model.material[e])
+             << ", reference centroid (" << centroid[0] << ", " << centroid[1]
+             << ", " << centroid[2] << ") m)";
+        return text.str();
+      };
+      const std::string  a = describe(worst.first), b = describe(worst.second);
+      std::ostringstream message;
+      message << std::setprecision(6);
+      if (initial)
+        {
+          message << "the tetrahedra " << a << " and " << b << " overlap by "
+                  << worst.volume << " m^3 at Time stepping/Start time, "
+                  << 100. * worst.fraction
+                  << " % of the smaller one's volume (allowed at the start: "
+                  << 100. * max_initial_overlap
+                  << " %, a face pressed in by about 3 % of the altitude): "
+                     "bodies, and disconnected pieces of one body, must not "
+                     "overlap at the start (contact would push them apart "
+                     "violently and invert elements). Move them apart in the "
+                     "mesh (Mesh/File name, the .geo file) or leave a gap.";
+          throw InputError(message.str());
+        }
+      const auto &dm = parameters.get<DiscreteMechanicsParameters>();
+      message << "guard: contact failed: the tetrahedra " << a << " and " << b
+              << " overlap by " << worst.volume << " m^3, "
+              << 100. * worst.fraction
+              << " % of the smaller one's volume (allowed: "
+              << 100. * max_contact_overlap
+              << " %, a face pressed in by about a sixth of the altitude): "
+                 "the contact penalty is too soft for the impact, and the "
+                 "bodies pass through each other. Raise Discrete "
+                 "mechanics/Contact penalty factor (now "
+              << dm.contact_penalty_factor
+              << " x Young's modulus) or lower the impact velocity or load";
+      guard_failure(message.str());
     }
   } // namespace discrete
 } // namespace tmfdem

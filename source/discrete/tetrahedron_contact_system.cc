@@ -18,9 +18,10 @@ namespace tmfdem
       rigid_group = rigid_groups;
       pair_list.clear();
       index_pairs(static_cast<unsigned int>(rigid_group.size()));
-      travel_since_search = 0.;
-      search_is_needed    = true;
-      searches            = 0;
+      travel_since_search        = 0.;
+      travel_since_overlap_check = 0.;
+      search_is_needed           = true;
+      searches                   = 0;
     }
 
     double
@@ -195,6 +196,36 @@ namespace tmfdem
                 add_pair_forces_3d(x, v, law, dt, pair.friction, force);
             }
         });
+    }
+
+    TetrahedronContactSystem::Overlap
+    TetrahedronContactSystem::largest_overlap(const DiscreteModel &m) const
+    {
+      Overlap largest;
+      if (pair_list.empty())
+        return largest;
+      std::vector<unsigned int> piece;
+      m.intact_pieces(piece);
+      for (std::size_t p = 0; p < pair_list.size(); ++p)
+        {
+          const unsigned int a = pair_list[p].first, b = pair_list[p].second;
+          if (pair_is_rigid[p] ||
+              (rigid_group[a] != no_body && rigid_group[b] != no_body) ||
+              piece[a] == piece[b])
+            continue;
+          double x[2][4][3], v[2][4][3];
+          gather(m, a, x[0], v[0]);
+          gather(m, b, x[1], v[1]);
+          TetrahedronCoordinates target;
+          if (!target.set(x[1]))
+            continue;
+          const double volume = overlap_volume_3d(x[0], target);
+          const double fraction =
+            volume / std::min(m.reference_area[a], m.reference_area[b]);
+          if (fraction > largest.fraction)
+            largest = Overlap{fraction, volume, a, b};
+        }
+      return largest;
     }
 
     unsigned int

@@ -226,6 +226,12 @@ namespace tmfdem
       void
       contact_candidate_elements(std::vector<unsigned int> &elements) const;
 
+      /** The pieces of the model: elements connected by intact joints get
+       *  the same index (the smallest element of the piece), written to
+       *  @p piece (one per element). */
+      void
+      intact_pieces(std::vector<unsigned int> &piece) const;
+
       /** Number of joints whose traction has reached the strength at some
        * time (damage > 0 at a Gauss point), broken ones included. */
       unsigned int

@@ -155,6 +155,25 @@ namespace tmfdem
        *  smallest edge by default). */
       void
       setup_contact();
+      /**
+       * The overlap guard, after a contact search once the fastest node has
+       * travelled half the search buffer since the last check: the largest
+       * overlap of a force-carrying pair (TetrahedronContactSystem::
+       * largest_overlap()) against the smaller tetrahedron's volume. With
+       * @p initial (before the first step): beyond max_initial_overlap it is
+       * bad input (InputError naming both tetrahedra and their bodies);
+       * later, beyond max_contact_overlap the run stops (guard: the contact
+       * penalty is too soft for the impact).
+       */
+      void
+      check_contact_overlap(const bool initial);
+      /** Overlap volume / smaller tetrahedron volume beyond which contact
+       *  has failed: a face pressed flat in by about a sixth of the
+       *  altitude (3 d / H). */
+      static constexpr double max_contact_overlap = 0.5;
+      /** The same at the start: a face pressed in by about 3 % of the
+       *  altitude. */
+      static constexpr double max_initial_overlap = 0.1;
       /** Element forces, node update over the step @p dt [s] and the
        *  step's works. */
       void

@@ -567,6 +567,40 @@ namespace tmfdem
     }
 
     /**
+     * The volume of the overlap of the tetrahedron @p c (nodes [k][i]) [m]
+     * and the target of coordinates @p target [m^3]: @p c clipped by the
+     * target's four face planes (exact).
+     */
+    inline double
+    overlap_volume_3d(const double (&c)[4][3],
+                      const TetrahedronCoordinates &target)
+    {
+      using namespace tetrahedron_contact_internal;
+      if (separated(target, c))
+        return 0.;
+      SoupTetrahedron base;
+      for (unsigned int v = 0; v < 4; ++v)
+        {
+          for (unsigned int i = 0; i < 3; ++i)
+            base.value[v][i] = c[v][i];
+          for (unsigned int k = 0; k < 4; ++k)
+            base.value[v][3 + k] = target(k, c[v]);
+        }
+      SoupTetrahedron        buffers[2][max_soup];
+      const SoupTetrahedron *pieces = &base;
+      unsigned int           n      = 1;
+      for (unsigned int k = 0; k < 4 && n > 0; ++k)
+        {
+          n      = clip_soup(pieces, n, 3 + k, 7, buffers[k % 2]);
+          pieces = buffers[k % 2];
+        }
+      double volume = 0.;
+      for (unsigned int t = 0; t < n; ++t)
+        volume += soup_volume(pieces[t]);
+      return volume;
+    }
+
+    /**
      * The normal contact energy p int_{c cap t} phi_t dV of the contactor
      * @p c in the target @p t [J] (@p penalty [Pa], nodes [m]), computed
      * as add_target_potential_forces_3d() computes it.

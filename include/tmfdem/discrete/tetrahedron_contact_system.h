@@ -163,6 +163,7 @@ namespace tmfdem
       add_travel(const double distance)
       {
         travel_since_search += distance;
+        travel_since_overlap_check += distance;
         if (2. * travel_since_search > contact.buffer)
           search_is_needed = true;
       }
@@ -207,6 +208,37 @@ namespace tmfdem
       double
       stored_energy(const DiscreteModel &model, tbb::task_arena &arena) const;
 
+      /** The pair of largest overlap (largest_overlap()). */
+      struct Overlap
+      {
+        /** Overlap volume / the smaller tetrahedron's volume [-]; 0 if
+         *  none. */
+        double       fraction = 0.;
+        double       volume   = 0.;         ///< [m^3]
+        unsigned int first = 0, second = 0; ///< the two tetrahedra
+      };
+      /**
+       * The force-carrying pair whose tetrahedra overlap most, relative to
+       * the smaller one's volume (overlap_volume_3d()), in the current
+       * geometry of @p model. Pairs within one rigid group, pairs of two
+       * fixed or driven bodies, and pairs of one piece (connected by intact
+       * joints: crushing, not failed contact) are skipped.
+       */
+      Overlap
+      largest_overlap(const DiscreteModel &model) const;
+      /** Whether the overlap guard is due: the fastest node has travelled
+       *  half the buffer since its last check, as for a search. */
+      bool
+      overlap_check_due() const
+      {
+        return 2. * travel_since_overlap_check > contact.buffer;
+      }
+      void
+      overlap_checked()
+      {
+        travel_since_overlap_check = 0.;
+      }
+
       /** Writes the search state and the pairs with their friction history
        *  to a checkpoint. */
       void
@@ -244,9 +276,10 @@ namespace tmfdem
        *  first_pair_start[e + 1]) of the sorted pair list. */
       std::vector<unsigned int> first_pair_start;
       std::vector<unsigned int> active;
-      double                    travel_since_search = 0.; ///< [m]
-      bool                      search_is_needed    = true;
-      unsigned long             searches            = 0;
+      double                    travel_since_search        = 0.; ///< [m]
+      double                    travel_since_overlap_check = 0.; ///< [m]
+      bool                      search_is_needed           = true;
+      unsigned long             searches                   = 0;
     };
   } // namespace discrete
 } // namespace tmfdem
