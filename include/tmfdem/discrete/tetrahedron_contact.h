@@ -353,6 +353,11 @@ namespace tmfdem
         return std::abs(det) / 6.;
       }
 
+      /** Overlaps shallower than this fraction of the tetrahedra's size
+       *  count as touching (no force): the round-off of coincident nodes.
+       *  Their force would be below p A 1e-12 [N]. */
+      constexpr double touching_tolerance = 1e-12;
+
       /** Whether the tetrahedron @p c (nodes c[k]) and the target overlap
        *  in no volume: all its nodes on the outside of one face's plane or
        *  on it (a shared vertex, edge or face: the overlap lies in the
@@ -361,8 +366,10 @@ namespace tmfdem
       separated(const TetrahedronCoordinates &target, const double (&c)[4][3])
       {
         for (unsigned int k = 0; k < 4; ++k)
-          if (target(k, c[0]) <= 0. && target(k, c[1]) <= 0. &&
-              target(k, c[2]) <= 0. && target(k, c[3]) <= 0.)
+          if (target(k, c[0]) <= touching_tolerance &&
+              target(k, c[1]) <= touching_tolerance &&
+              target(k, c[2]) <= touching_tolerance &&
+              target(k, c[3]) <= touching_tolerance)
             return true;
         return false;
       }
@@ -401,7 +408,9 @@ namespace tmfdem
                     lo_b = std::min(lo_b, pb);
                     hi_b = std::max(hi_b, pb);
                   }
-                if (hi_a <= lo_b || hi_b <= lo_a)
+                const double tolerance =
+                  touching_tolerance * (hi_a - lo_a + hi_b - lo_b);
+                if (hi_a <= lo_b + tolerance || hi_b <= lo_a + tolerance)
                   return true;
               }
           }
