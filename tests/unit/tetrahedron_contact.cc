@@ -7,6 +7,7 @@
 #include <cmath>
 #include <gtest/gtest.h>
 #include <random>
+#include <tmfdem/discrete/discrete_model.h>
 #include <tmfdem/discrete/tetrahedron_contact.h>
 #include <tmfdem/discrete/tetrahedron_contact_system.h>
 
@@ -425,5 +426,52 @@ TEST(TetrahedronContact, LinkedCellsFindEveryPairOfOverlappingBoxes)
           EXPECT_EQ(pairs[p].first, expected[p].first);
           EXPECT_EQ(pairs[p].second, expected[p].second);
         }
+    }
+}
+
+TEST(TetrahedronContact, BrokenFacesTakeOverTheJointsCompressionEnergy)
+{
+  // two tetrahedra joined on the face z = 0 (area 1/2); the upper one
+  // pressed into the lower by o: a joint of normal stiffness k_n stores
+  // k_n / 2 o^2 A; the contact of the two faces once the joint broke, with
+  // the penalty scaled by face_penalty_factor(), must store the same up to
+  // the O(o / H) of a slab that is not a prism
+  const double A = 0.5, p = 1e10, k_n = 1e10;
+  Nodes        a = {{0., 0., 0.}, {1., 0., 0.}, {0., 1., 0.}, {0.2, 0.3, -0.8}};
+  Nodes        b = {{0., 0., 0.}, {1., 0., 0.}, {0., 1., 0.}, {0.3, 0.2, 0.9}};
+  positive(a);
+  positive(b);
+  TetrahedronCoordinates ca, cb;
+  ASSERT_TRUE(ca.set(a) && cb.set(b));
+  DiscreteModel model;
+  model.allocate(3, 2);
+  model.n_joints = 1;
+  model.edge_joint.assign(8, -1);
+  model.edge_joint[4 * 0 + 3] = 0; // joint 0, side A
+  model.edge_joint[4 * 1 + 3] = 1; // joint 0, side B
+  model.joint_elements        = {0, 1};
+  model.joint_area            = {A};
+  model.reference_area        = {ca.volume, cb.volume};
+  JointConstants constants{};
+  constants.normal_stiffness = k_n;
+  model.joint_constants      = {constants};
+  const double factor =
+    TetrahedronContactSystem::face_penalty_factor(model, 0, 1, p);
+  const double H_a = 3. * ca.volume / A, H_b = 3. * cb.volume / A;
+  EXPECT_NEAR(factor, k_n / (4. * p * (1. / H_a + 1. / H_b)), 1e-15);
+  ASSERT_LT(factor, 1.);
+  for (const double o : {1e-3, 1e-4})
+    {
+      double x[2][4][3];
+      for (unsigned int k = 0; k < 4; ++k)
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            x[0][k][i] = a[k][i];
+            x[1][k][i] = b[k][i] - (i == 2 ? o : 0.);
+          }
+      const double contact = pair_contact_energy_3d(x, factor * p);
+      const double joint   = 0.5 * k_n * o * o * A;
+      EXPECT_NEAR(contact / joint, 1., 20. * o / std::min(H_a, H_b))
+        << "overlap " << o << " m";
     }
 }
