@@ -2,6 +2,7 @@
 #include <string>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/discrete/contact_system.h>
+#include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/discrete/triangle_overlap.h>
 #include <tmfdem/io/checkpoint.h>
 
@@ -9,6 +10,46 @@ namespace tmfdem
 {
   namespace discrete
   {
+    ContactSettings
+    make_contact_settings(const DiscreteMechanicsParameters &dm,
+                          const double                       youngs_modulus,
+                          const double                       smallest_size)
+    {
+      ContactSettings settings;
+      settings.enabled           = dm.contact;
+      settings.law               = ContactLaw::penalty_coulomb;
+      PenaltyCoulombContact &law = settings.penalty_coulomb;
+      law.normal_penalty         = dm.contact_penalty_factor * youngs_modulus;
+      law.tangential_penalty =
+        dm.contact_tangential_penalty_factor * youngs_modulus;
+      law.friction            = dm.friction_coefficient;
+      law.memory_slip         = dm.friction_memory_slip;
+      law.rate_effect         = dm.friction_rate_effect;
+      law.reference_slip_rate = dm.friction_reference_slip_rate;
+      law.potential_gradient_on_target =
+        dm.contact_potential_gradient_on_target;
+      settings.match_broken_joints = dm.contact_broken_faces_at_joint_stiffness;
+      settings.buffer =
+        dm.contact_buffer > 0. ? dm.contact_buffer : 0.25 * smallest_size;
+      return settings;
+    }
+
+    void
+    ContactTravel::save(CheckpointWriter &out) const
+    {
+      out.put(travel_since_search);
+      out.put<std::uint8_t>(search_is_needed);
+    }
+
+    void
+    ContactTravel::load(CheckpointReader &in)
+    {
+      in.get(travel_since_search);
+      std::uint8_t flag = 0;
+      in.get(flag);
+      search_is_needed = flag != 0;
+    }
+
     void
     ContactSystem::setup(const ContactSettings            &settings,
                          const std::vector<unsigned char> &rigid_groups)
@@ -17,10 +58,8 @@ namespace tmfdem
       rigid_group = rigid_groups;
       pair_list.clear();
       index_pairs(0);
-      travel_since_search        = 0.;
-      travel_since_overlap_check = 0.;
-      search_is_needed           = true;
-      searches                   = 0;
+      reset(settings.buffer);
+      searches = 0;
     }
 
     double
@@ -42,25 +81,17 @@ namespace tmfdem
                                        const unsigned int   b,
                                        const double         penalty)
     {
-      for (unsigned int k = 0; k < 3; ++k)
-        {
-          const int code = model.edge_joint[3 * a + k];
-          if (code < 0)
-            continue;
-          const unsigned int j = static_cast<unsigned int>(code) / 2;
-          if (model.joint_elements[2 * j + 1 - code % 2] != b)
-            continue;
-          // E_joint = k_n / 2 int o^2 ds, E_contact = 3 p / 2
-          // (1 / H_a + 1 / H_b) int o^2 ds, H = 2 A / L the altitudes
-          const double L = model.joint_length[j];
-          const double inverse_altitudes =
-            0.5 * L *
-            (1. / model.reference_area[a] + 1. / model.reference_area[b]);
-          return std::min(1.,
-                          model.joint_constants[j].normal_stiffness /
-                            (3. * penalty * inverse_altitudes));
-        }
-      return 1.;
+      const int j = model.joint_between(a, b);
+      if (j < 0)
+        return 1.;
+      // E_joint = k_n / 2 int o^2 ds, E_contact = 3 p / 2
+      // (1 / H_a + 1 / H_b) int o^2 ds, H = 2 A / L the altitudes
+      const double L = model.joint_length[j];
+      const double inverse_altitudes =
+        0.5 * L * (1. / model.reference_area[a] + 1. / model.reference_area[b]);
+      return std::min(1.,
+                      model.joint_constants[j].normal_stiffness /
+                        (3. * penalty * inverse_altitudes));
     }
 
     void
@@ -96,8 +127,7 @@ namespace tmfdem
       partition.exchange_pairs(pair_list, candidates != nullptr);
       index_pairs(model.n_elements);
       flag_rigid_pairs();
-      travel_since_search = 0.;
-      search_is_needed    = false;
+      searched();
       ++searches;
       local_pairs_of_search = 0;
       all_pairs_of_search   = 0;
@@ -436,8 +466,7 @@ namespace tmfdem
     void
     ContactSystem::save(CheckpointWriter &out) const
     {
-      out.put(travel_since_search);
-      out.put<std::uint8_t>(search_is_needed);
+      ContactTravel::save(out);
       out.put<std::uint64_t>(searches);
       out.put(pair_list);
     }
@@ -445,10 +474,7 @@ namespace tmfdem
     void
     ContactSystem::load(CheckpointReader &in, const unsigned int n_elements)
     {
-      in.get(travel_since_search);
-      std::uint8_t flag = 0;
-      in.get(flag);
-      search_is_needed    = flag != 0;
+      ContactTravel::load(in);
       std::uint64_t count = 0;
       in.get(count);
       searches              = count;

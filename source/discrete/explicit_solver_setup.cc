@@ -338,37 +338,21 @@ namespace tmfdem
     void
     ExplicitSolver::setup_contact()
     {
-      const auto     &dm = parameters.get<DiscreteMechanicsParameters>();
-      ContactSettings settings;
-      settings.enabled = dm.contact;
-      settings.law     = ContactLaw::penalty_coulomb;
+      const auto &dm = parameters.get<DiscreteMechanicsParameters>();
       // penalties from the stiffest material of the mesh
       double E_max = 0.;
       for (unsigned int e = 0; e < model.n_elements; ++e)
         E_max =
           std::max(E_max,
                    parameters.materials[model.material[e]].youngs_modulus);
-      settings.penalty_coulomb.normal_penalty =
-        dm.contact_penalty_factor * E_max;
-      settings.penalty_coulomb.tangential_penalty =
-        dm.contact_tangential_penalty_factor * E_max;
-      settings.penalty_coulomb.friction    = dm.friction_coefficient;
-      settings.penalty_coulomb.memory_slip = dm.friction_memory_slip;
-      settings.penalty_coulomb.rate_effect = dm.friction_rate_effect;
-      settings.penalty_coulomb.reference_slip_rate =
-        dm.friction_reference_slip_rate;
-      settings.penalty_coulomb.potential_gradient_on_target =
-        dm.contact_potential_gradient_on_target;
-      settings.match_broken_joints = dm.contact_broken_faces_at_joint_stiffness;
       // buffer: a quarter of the smallest edge or element size by default
       double min_h = 1e300;
       for (unsigned int j = 0; j < model.n_joints; ++j)
         min_h = std::min(min_h, model.joint_length[j]);
       for (unsigned int e = 0; e < model.n_elements; ++e)
         min_h = std::min(min_h, std::sqrt(2. * model.reference_area[e]));
-      settings.buffer =
-        dm.contact_buffer > 0. ? dm.contact_buffer : 0.25 * min_h;
-      contact.setup(settings, drivers.rigid_groups(model));
+      contact.setup(make_contact_settings(dm, E_max, min_h),
+                    drivers.rigid_groups(model));
     }
 
     ElementStepInput

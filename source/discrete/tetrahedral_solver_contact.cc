@@ -26,25 +26,12 @@ namespace tmfdem
           contact.reset();
           return;
         }
-      ContactSettings settings;
-      settings.enabled = true;
-      settings.law     = ContactLaw::penalty_coulomb;
       // penalties from the stiffest material of the mesh
       double E_max = 0.;
       for (unsigned int e = 0; e < model.n_elements; ++e)
         E_max =
           std::max(E_max,
                    parameters.materials[model.material[e]].youngs_modulus);
-      PenaltyCoulombContact &law = settings.penalty_coulomb;
-      law.normal_penalty         = dm.contact_penalty_factor * E_max;
-      law.tangential_penalty     = dm.contact_tangential_penalty_factor * E_max;
-      law.friction               = dm.friction_coefficient;
-      law.memory_slip            = dm.friction_memory_slip;
-      law.rate_effect            = dm.friction_rate_effect;
-      law.reference_slip_rate    = dm.friction_reference_slip_rate;
-      law.potential_gradient_on_target =
-        dm.contact_potential_gradient_on_target;
-      settings.match_broken_joints = dm.contact_broken_faces_at_joint_stiffness;
       // buffer: a quarter of the smallest edge by default
       double min_h = 1e300;
       for (unsigned int e = 0; e < model.n_elements; ++e)
@@ -59,8 +46,6 @@ namespace tmfdem
                            std::pow(model.y_ref[na] - model.y_ref[nb], 2) +
                            std::pow(model.z_ref[na] - model.z_ref[nb], 2)));
             }
-      settings.buffer =
-        dm.contact_buffer > 0. ? dm.contact_buffer : 0.25 * min_h;
       // fixed and driven bodies: their tetrahedra never push each other
       const auto &bodies = parameters.get<DiscreteBodyParameters>().bodies;
       std::vector<unsigned char> rigid_group(model.n_elements, no_body);
@@ -69,7 +54,7 @@ namespace tmfdem
             bodies[model.body[e]].motion != DiscreteBody::Motion::free)
           rigid_group[e] = model.body[e];
       contact = std::make_unique<TetrahedronContactSystem>();
-      contact->setup(settings, rigid_group);
+      contact->setup(make_contact_settings(dm, E_max, min_h), rigid_group);
       contact->update_active_elements(model);
       element_in_contact.assign(model.n_elements, 0);
     }

@@ -18,10 +18,8 @@ namespace tmfdem
       rigid_group = rigid_groups;
       pair_list.clear();
       index_pairs(static_cast<unsigned int>(rigid_group.size()));
-      travel_since_search        = 0.;
-      travel_since_overlap_check = 0.;
-      search_is_needed           = true;
-      searches                   = 0;
+      reset(settings.buffer);
+      searches = 0;
     }
 
     double
@@ -55,25 +53,17 @@ namespace tmfdem
                                                   const unsigned int   b,
                                                   const double         penalty)
     {
-      for (unsigned int f = 0; f < 4; ++f)
-        {
-          const int code = model.edge_joint[4 * a + f];
-          if (code < 0)
-            continue;
-          const unsigned int j = static_cast<unsigned int>(code) / 2;
-          if (model.joint_elements[2 * j + 1 - code % 2] != b)
-            continue;
-          // E_joint = k_n / 2 int o^2 dA, E_contact = 2 p (1 / H_a +
-          // 1 / H_b) int o^2 dA, H = 3 V / A the altitudes onto the face
-          const double A = model.joint_area[j];
-          const double inverse_altitudes =
-            A / 3. *
-            (1. / model.reference_area[a] + 1. / model.reference_area[b]);
-          return std::min(1.,
-                          model.joint_constants[j].normal_stiffness /
-                            (4. * penalty * inverse_altitudes));
-        }
-      return 1.;
+      const int j = model.joint_between(a, b);
+      if (j < 0)
+        return 1.;
+      // E_joint = k_n / 2 int o^2 dA, E_contact = 2 p (1 / H_a + 1 / H_b)
+      // int o^2 dA, H = 3 V / A the altitudes onto the face
+      const double A = model.joint_area[j];
+      const double inverse_altitudes =
+        A / 3. * (1. / model.reference_area[a] + 1. / model.reference_area[b]);
+      return std::min(1.,
+                      model.joint_constants[j].normal_stiffness /
+                        (4. * penalty * inverse_altitudes));
     }
 
     void
@@ -103,8 +93,7 @@ namespace tmfdem
                                 pair_list[p].first,
                                 pair_list[p].second,
                                 contact.penalty_coulomb.normal_penalty);
-      travel_since_search = 0.;
-      search_is_needed    = false;
+      searched();
       ++searches;
     }
 
@@ -272,8 +261,7 @@ namespace tmfdem
     void
     TetrahedronContactSystem::save(CheckpointWriter &out) const
     {
-      out.put(travel_since_search);
-      out.put<std::uint8_t>(search_is_needed);
+      ContactTravel::save(out);
       out.put<std::uint64_t>(searches);
       out.put(pair_list);
       out.put(pair_penalty_factor);
@@ -283,10 +271,7 @@ namespace tmfdem
     TetrahedronContactSystem::load(CheckpointReader  &in,
                                    const unsigned int n_elements)
     {
-      in.get(travel_since_search);
-      std::uint8_t flag = 0;
-      in.get(flag);
-      search_is_needed    = flag != 0;
+      ContactTravel::load(in);
       std::uint64_t count = 0;
       in.get(count);
       searches = count;

@@ -21,6 +21,7 @@ namespace tmfdem
 {
   class CheckpointWriter;
   class CheckpointReader;
+  struct DiscreteMechanicsParameters;
 
   namespace discrete
   {
@@ -40,12 +41,97 @@ namespace tmfdem
     };
 
     /**
+     * The contact settings of `Discrete mechanics` @p dm (both dimensions):
+     * the penalties p_n, p_t from the stiffest material's Young's modulus
+     * @p youngs_modulus [Pa], the friction law, the target's share and the
+     * broken faces' penalty, and the buffer (`Contact buffer`, or a quarter
+     * of @p smallest_size [m]).
+     */
+    ContactSettings
+    make_contact_settings(const DiscreteMechanicsParameters &dm,
+                          const double                       youngs_modulus,
+                          const double                       smallest_size);
+
+    /**
+     * The search bookkeeping both contact systems share: the travel of the
+     * fastest node since the last search and since the last overlap check,
+     * and whether a search is due.
+     */
+    class ContactTravel
+    {
+    public:
+      /** No travel; a search is due. */
+      void
+      reset(const double search_buffer)
+      {
+        buffer                     = search_buffer;
+        travel_since_search        = 0.;
+        travel_since_overlap_check = 0.;
+        search_is_needed           = true;
+      }
+      /** After a step whose fastest node moved @p distance [m]: a search is
+       *  due when the travel since the last one passes half the buffer. */
+      void
+      add_travel(const double distance)
+      {
+        travel_since_search += distance;
+        travel_since_overlap_check += distance;
+        if (2. * travel_since_search > buffer)
+          search_is_needed = true;
+      }
+      /** Whether the overlap guard is due: the fastest node has travelled
+       *  half the buffer since its last check, as for a search. Searches
+       *  that joints breaking ask for come far more often and need no
+       *  check. */
+      bool
+      overlap_check_due() const
+      {
+        return 2. * travel_since_overlap_check > buffer;
+      }
+      void
+      overlap_checked()
+      {
+        travel_since_overlap_check = 0.;
+      }
+      /** Asks for a search before the next force computation (joints
+       *  broke, nodes jumped). */
+      void
+      request_search()
+      {
+        search_is_needed = true;
+      }
+      bool
+      search_needed() const
+      {
+        return search_is_needed;
+      }
+      /** A search was made now. */
+      void
+      searched()
+      {
+        travel_since_search = 0.;
+        search_is_needed    = false;
+      }
+      /** Writes the travel since the search and the flag (checkpoints). */
+      void
+      save(CheckpointWriter &out) const;
+      void
+      load(CheckpointReader &in);
+
+    private:
+      double buffer                     = 0.; ///< [m]
+      double travel_since_search        = 0.; ///< [m]
+      double travel_since_overlap_check = 0.; ///< [m]
+      bool   search_is_needed           = true;
+    };
+
+    /**
      * Potential contact between the triangles of a DiscreteModel: the pair
      * list, the pair forces of the last step and the friction history they
      * carry. The pair list is sorted and does not depend on the thread
      * count; forces are summed per element in pair order.
      */
-    class ContactSystem
+    class ContactSystem : public ContactTravel
     {
     public:
       /**
@@ -170,43 +256,6 @@ namespace tmfdem
         return sum;
       }
 
-      /** After a step whose fastest node moved @p distance [m]: a search is
-       *  due when the travel since the last one passes half the buffer. */
-      void
-      add_travel(const double distance)
-      {
-        travel_since_search += distance;
-        travel_since_overlap_check += distance;
-        if (2. * travel_since_search > contact.buffer)
-          search_is_needed = true;
-      }
-      /** Whether the overlap guard is due (ExplicitSolver::
-       *  check_contact_overlap()): the fastest node has travelled half the
-       *  buffer since its last check, as for a search. Searches that joints
-       *  breaking ask for come far more often and need no check. */
-      bool
-      overlap_check_due() const
-      {
-        return 2. * travel_since_overlap_check > contact.buffer;
-      }
-      void
-      overlap_checked()
-      {
-        travel_since_overlap_check = 0.;
-      }
-      /** Asks for a search before the next force computation (joints broke,
-       *  nodes jumped). */
-      void
-      request_search()
-      {
-        search_is_needed = true;
-      }
-      bool
-      search_needed() const
-      {
-        return search_is_needed;
-      }
-
       /** The candidate pairs of the last search, sorted by (first, second):
        *  the mechanical contacts. On several ranks those with a triangle of
        *  this rank (the subsequence of the list of one rank), or, after
@@ -327,11 +376,8 @@ namespace tmfdem
       /** Several ranks: all pairs (all_pairs()), gathered for the search
        *  numbered all_pairs_of_search - 1. */
       std::vector<ContactPair> all_pair_list;
-      unsigned long            all_pairs_of_search        = 0;
-      double                   travel_since_search        = 0.; ///< [m]
-      double                   travel_since_overlap_check = 0.; ///< [m]
-      bool                     search_is_needed           = true;
-      unsigned long            searches                   = 0;
+      unsigned long            all_pairs_of_search = 0;
+      unsigned long            searches            = 0;
     };
   } // namespace discrete
 } // namespace tmfdem

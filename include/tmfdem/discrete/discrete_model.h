@@ -194,6 +194,20 @@ namespace tmfdem
         return joint_elements[2 * j + 1 - code % 2];
       }
 
+      /** The joint (intact or broken) between elements @p a and @p b, or
+       *  -1 if they share no edge or face. */
+      int
+      joint_between(const unsigned int a, const unsigned int b) const
+      {
+        for (unsigned int k = 0; k < nodes_per_element(); ++k)
+          {
+            const int code = edge_joint[nodes_per_element() * a + k];
+            if (code >= 0 && joint_elements[2 * (code / 2) + 1 - code % 2] == b)
+              return code / 2;
+          }
+        return -1;
+      }
+
       /** True if an intact joint joins elements @p a and @p b. */
       bool
       joined(const unsigned int a, const unsigned int b) const

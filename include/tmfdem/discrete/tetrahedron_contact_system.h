@@ -41,7 +41,7 @@ namespace tmfdem
      * second) and does not depend on the thread count; the forces are
      * summed per tetrahedron in pair order, so the results do not either.
      */
-    class TetrahedronContactSystem
+    class TetrahedronContactSystem : public ContactTravel
     {
     public:
       /**
@@ -157,28 +157,6 @@ namespace tmfdem
         return sum;
       }
 
-      /** After a step whose fastest node moved @p distance [m]: a search is
-       *  due when the travel since the last one passes half the buffer. */
-      void
-      add_travel(const double distance)
-      {
-        travel_since_search += distance;
-        travel_since_overlap_check += distance;
-        if (2. * travel_since_search > contact.buffer)
-          search_is_needed = true;
-      }
-      /** Asks for a search before the next force computation (joints
-       *  broke, nodes jumped). */
-      void
-      request_search()
-      {
-        search_is_needed = true;
-      }
-      bool
-      search_needed() const
-      {
-        return search_is_needed;
-      }
       const std::vector<unsigned int> &
       active_elements() const
       {
@@ -226,19 +204,6 @@ namespace tmfdem
        */
       Overlap
       largest_overlap(const DiscreteModel &model) const;
-      /** Whether the overlap guard is due: the fastest node has travelled
-       *  half the buffer since its last check, as for a search. */
-      bool
-      overlap_check_due() const
-      {
-        return 2. * travel_since_overlap_check > contact.buffer;
-      }
-      void
-      overlap_checked()
-      {
-        travel_since_overlap_check = 0.;
-      }
-
       /** Writes the search state and the pairs with their friction history
        *  to a checkpoint. */
       void
@@ -276,10 +241,7 @@ namespace tmfdem
        *  first_pair_start[e + 1]) of the sorted pair list. */
       std::vector<unsigned int> first_pair_start;
       std::vector<unsigned int> active;
-      double                    travel_since_search        = 0.; ///< [m]
-      double                    travel_since_overlap_check = 0.; ///< [m]
-      bool                      search_is_needed           = true;
-      unsigned long             searches                   = 0;
+      unsigned long             searches = 0;
     };
   } // namespace discrete
 } // namespace tmfdem
