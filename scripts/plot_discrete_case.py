@@ -23,7 +23,7 @@ scripts write:
     contact_conduction: OUTPUT_FOLDER/{steady,equilibrate}/  (verify_discrete_contact_heat.py)
     block_on_incline-3d: OUTPUT_FOLDER/incline_mu_{0.3,0.7}/
                        (verify_discrete_contact_3d.py incline)
-    two_blocks_collision-3d: OUTPUT_FOLDER/collision_threads_1/
+    two_blocks_collision-3d: OUTPUT_FOLDER/collision/
                        (verify_discrete_contact_3d.py)
     thermal_shock_disc-3d: OUTPUT_FOLDER/{disc-3d,disc-2d}/
                        (verify_discrete_thermal_shock_3d.py)
@@ -329,8 +329,8 @@ def plot_two_blocks_collision(folder, png):
 
 # ---------------------------------------------- two_blocks_collision-3d
 def plot_two_blocks_collision_3d(folder, png):
-    """Reads OUTPUT_FOLDER/collision_threads_1 (verify_discrete_contact_3d.py)."""
-    folder = os.path.join(folder, "collision_threads_1")
+    """Reads OUTPUT_FOLDER/collision (verify_discrete_contact_3d.py)."""
+    folder = os.path.join(folder, "collision")
     ensure_run(folder, "two_blocks_collision-3d.prm")
     h = read_csv(os.path.join(folder, "history.csv"))
     s = read_summary(folder)

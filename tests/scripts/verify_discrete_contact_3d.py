@@ -23,9 +23,10 @@
    contact is conservative, so after the impact the work the nodes did on
    it equals the energy its overlaps hold (summary.json contact_stored) to
    within the largest balance error of the run.
-3. Collision 1 on two threads gives bitwise the history and the outputs of
-   the run on one thread (pair forces summed per tetrahedron in pair
-   order), with the two threads shown to have run (common.check_parallel).
+3. Collision 1 through the impact (to 1.2 ms) on two threads gives bitwise
+   the history and the outputs of the run on one thread (pair forces summed
+   per tetrahedron in pair order), with the two threads shown to have run
+   (common.check_parallel).
 
 incline: a block on a fixed base under gravity tilted by theta = 30 degrees
 in the plane at phi = 30 degrees from x, out of the block's symmetry planes
@@ -115,10 +116,16 @@ def collision():
 
     runs = {}
     load_before = os.getloadavg()[0]
+    # the whole collision on two threads; 1 vs 2 threads through the impact
+    # (to 1.2 ms: contact from 0.5 ms, friction, the first broken joints)
+    run(binary, prm, os.path.join(out, "collision"),
+        "Discrete mechanics/Threads=2")
+    runs[1] = os.path.join(out, "collision")
     for threads in (1, 2):
-        folder = os.path.join(out, f"collision_threads_{threads}")
-        run(binary, prm, folder, f"Discrete mechanics/Threads={threads}")
-        runs[threads] = folder
+        folder = os.path.join(out, f"impact_threads_{threads}")
+        run(binary, prm, folder, f"Discrete mechanics/Threads={threads}",
+            "Time stepping/End time=0.0012")
+        runs[f"impact_{threads}"] = folder
 
     s = summary(runs[1])
     e = s["energy"]
@@ -190,15 +197,19 @@ def collision():
                 f"elastic, frictionless: momentum change {dp_el:.2e} (round-off)")
 
     # 3. one vs two threads
-    names = sorted(f for f in os.listdir(runs[1])
+    one, two = runs["impact_1"], runs["impact_2"]
+    names = sorted(f for f in os.listdir(one)
                    if f.endswith(".vtu") or f == "history.csv")
-    same = all(filecmp.cmp(os.path.join(runs[1], f), os.path.join(runs[2], f),
+    same = all(filecmp.cmp(os.path.join(one, f), os.path.join(two, f),
                            shallow=False) for f in names)
-    s2 = summary(runs[2])
+    s1, s2 = summary(one), summary(two)
     keys = ("momentum_x", "angular_momentum_z", "broken_joints", "contact_pairs")
-    ok &= check(same and len(names) > 2 and all(s[k] == s2[k] for k in keys),
-                f"2 threads: {len(names)} outputs (history.csv, .vtu) bitwise "
-                f"equal to the 1-thread run's")
+    ok &= check(same and len(names) > 2 and all(s1[k] == s2[k] for k in keys)
+                and s1["energy"]["friction_dissipation"] > 0,
+                f"2 threads, through the impact to 1.2 ms ({s1['broken_joints']} "
+                f"broken joints, friction {s1['energy']['friction_dissipation']:.3e} J): "
+                f"{len(names)} outputs (history.csv, .vtu) bitwise equal to the "
+                f"1-thread run's")
     parallel = check_parallel(s2, threads=2, load_before=load_before)
     ok &= parallel != "fail"
     if ok and parallel == "skip":
