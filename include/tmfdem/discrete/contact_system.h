@@ -41,6 +41,48 @@ namespace tmfdem
     };
 
     /**
+     * Adds to @p f (@p width nodal force components of one element) the
+     * forces of the element's pairs: entries [@p start[e], @p start[e + 1])
+     * of @p entries, each 2 pair + side, whose forces are the @p width
+     * components of that side in @p pair_force (2 @p width per pair), in
+     * pair order (deterministic). Both contact systems.
+     */
+    template <unsigned int width>
+    inline void
+    add_element_pair_forces(const std::vector<unsigned int> &start,
+                            const std::vector<unsigned int> &entries,
+                            const std::vector<double>       &pair_force,
+                            const unsigned int               e,
+                            double                          *f)
+    {
+      for (unsigned int p = start[e]; p < start[e + 1]; ++p)
+        {
+          const unsigned int entry = entries[p];
+          const double      *pf =
+            &pair_force[2 * width * (entry / 2) + width * (entry % 2)];
+          for (unsigned int i = 0; i < width; ++i)
+            f[i] += pf[i];
+        }
+    }
+
+    /** The sum of @p pair_friction over the pairs whose first element is
+     *  in [@p begin, @p end) (@p first_start: where each element's pairs
+     *  begin in the sorted list), in pair order. Both contact systems. */
+    inline double
+    sum_pair_friction(const std::vector<unsigned int> &first_start,
+                      const std::vector<double>       &pair_friction,
+                      const std::size_t                begin,
+                      const std::size_t                end)
+    {
+      double sum = 0.;
+      if (first_start.empty())
+        return sum;
+      for (unsigned int p = first_start[begin]; p < first_start[end]; ++p)
+        sum += pair_friction[p];
+      return sum;
+    }
+
+    /**
      * The contact settings of `Discrete mechanics` @p dm (both dimensions):
      * the penalties p_n, p_t from the stiffest material's Young's modulus
      * @p youngs_modulus [Pa], the friction law, the target's share and the
@@ -229,15 +271,11 @@ namespace tmfdem
       void
       add_forces(const unsigned int e, double *f) const
       {
-        for (unsigned int p = element_pair_start[e];
-             p < element_pair_start[e + 1];
-             ++p)
-          {
-            const unsigned int entry = element_pair_entries[p];
-            const double *pf = &pair_force[12 * (entry / 2) + 6 * (entry % 2)];
-            for (unsigned int i = 0; i < 6; ++i)
-              f[i] += pf[i];
-          }
+        add_element_pair_forces<6>(element_pair_start,
+                                   element_pair_entries,
+                                   pair_force,
+                                   e,
+                                   f);
       }
 
       /** Energy dissipated by friction in the last step by the pairs
@@ -246,14 +284,7 @@ namespace tmfdem
       double
       friction_of_elements(const std::size_t begin, const std::size_t end) const
       {
-        double sum = 0.;
-        if (first_pair_start.empty())
-          return sum;
-        for (unsigned int p = first_pair_start[begin];
-             p < first_pair_start[end];
-             ++p)
-          sum += pair_friction[p];
-        return sum;
+        return sum_pair_friction(first_pair_start, pair_friction, begin, end);
       }
 
       /** The candidate pairs of the last search, sorted by (first, second):

@@ -133,15 +133,11 @@ namespace tmfdem
       void
       add_forces(const unsigned int e, double *f) const
       {
-        for (unsigned int p = element_pair_start[e];
-             p < element_pair_start[e + 1];
-             ++p)
-          {
-            const unsigned int entry = element_pair_entries[p];
-            const double *pf = &pair_force[24 * (entry / 2) + 12 * (entry % 2)];
-            for (unsigned int i = 0; i < 12; ++i)
-              f[i] += pf[i];
-          }
+        add_element_pair_forces<12>(element_pair_start,
+                                    element_pair_entries,
+                                    pair_force,
+                                    e,
+                                    f);
       }
 
       /** Energy dissipated by friction in the last step by the pairs whose
@@ -149,12 +145,7 @@ namespace tmfdem
       double
       friction_of_elements(const std::size_t begin, const std::size_t end) const
       {
-        double sum = 0.;
-        for (unsigned int p = first_pair_start[begin];
-             p < first_pair_start[end];
-             ++p)
-          sum += pair_friction[p];
-        return sum;
+        return sum_pair_friction(first_pair_start, pair_friction, begin, end);
       }
 
       const std::vector<unsigned int> &
