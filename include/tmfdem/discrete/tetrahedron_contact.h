@@ -416,6 +416,23 @@ namespace tmfdem
           }
         return false;
       }
+
+      /** The contactor @p c (nodes [k][i]) as one soup tetrahedron carrying
+       *  the target's barycentric coordinates at its vertices. */
+      inline SoupTetrahedron
+      contactor_soup(const double (&c)[4][3],
+                     const TetrahedronCoordinates &target)
+      {
+        SoupTetrahedron base;
+        for (unsigned int v = 0; v < 4; ++v)
+          {
+            for (unsigned int i = 0; i < 3; ++i)
+              base.value[v][i] = c[v][i];
+            for (unsigned int k = 0; k < 4; ++k)
+              base.value[v][3 + k] = target(k, c[v]);
+          }
+        return base;
+      }
     } // namespace tetrahedron_contact_internal
 
     /** The three nodes of the face of a tetrahedron opposite node @p f,
@@ -538,15 +555,8 @@ namespace tmfdem
       using namespace tetrahedron_contact_internal;
       if (separated(target, c))
         return 0.;
-      SoupTetrahedron base;
-      for (unsigned int v = 0; v < 4; ++v)
-        {
-          for (unsigned int i = 0; i < 3; ++i)
-            base.value[v][i] = c[v][i];
-          for (unsigned int k = 0; k < 4; ++k)
-            base.value[v][3 + k] = target(k, c[v]);
-        }
-      double energy = 0.;
+      const SoupTetrahedron base   = contactor_soup(c, target);
+      double                energy = 0.;
       for (unsigned int m = 0; m < 4; ++m)
         {
           SoupTetrahedron        buffer[2][max_soup];
@@ -587,14 +597,7 @@ namespace tmfdem
       using namespace tetrahedron_contact_internal;
       if (separated(target, c))
         return 0.;
-      SoupTetrahedron base;
-      for (unsigned int v = 0; v < 4; ++v)
-        {
-          for (unsigned int i = 0; i < 3; ++i)
-            base.value[v][i] = c[v][i];
-          for (unsigned int k = 0; k < 4; ++k)
-            base.value[v][3 + k] = target(k, c[v]);
-        }
+      const SoupTetrahedron  base = contactor_soup(c, target);
       SoupTetrahedron        buffers[2][max_soup];
       const SoupTetrahedron *pieces = &base;
       unsigned int           n      = 1;
