@@ -6,7 +6,7 @@
 CASE is one of joint_pull, joint_pull-3d, block_on_incline, two_blocks_collision,
 two_blocks_collision-3d, block_on_incline-3d,
 brazilian_disc, plate_traction, plate_transient, plate_transient-discrete-3d,
-contact_conduction,
+contact_conduction, contact_conduction-3d,
 sheet_free_expansion, sheet_restrained_expansion, thermal_shock_disc-3d. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
 probes.csv, summary.json, solution_*.vtu, cracks_*.vtu). Cases that compare
 several runs read one sub-folder per run, the layout the verification
@@ -21,6 +21,8 @@ scripts write:
     plate_transient-discrete-3d: OUTPUT_FOLDER/{plate,plate_beta_{100,10000}}/
                        (verify_discrete_heat_3d.py)
     contact_conduction: OUTPUT_FOLDER/{steady,equilibrate}/  (verify_discrete_contact_heat.py)
+    contact_conduction-3d: OUTPUT_FOLDER/{steady,equilibrate}/
+                       (verify_discrete_contact_heat_3d.py)
     block_on_incline-3d: OUTPUT_FOLDER/incline_mu_{0.3,0.7}/
                        (verify_discrete_contact_3d.py incline)
     two_blocks_collision-3d: OUTPUT_FOLDER/collision/
@@ -979,6 +981,88 @@ def plot_thermal_shock_disc_3d(folder, png):
 
 
 
+# ------------------------------------------------ contact_conduction-3d
+def plot_contact_conduction_3d(folder, png):
+    """OUTPUT_FOLDER as written by verify_discrete_contact_heat_3d.py:
+    steady/ and equilibrate/."""
+    import vtu_pieces
+    prm = "contact_conduction-3d.prm"
+    section, delta, h_c = 0.05 * 0.05, 1e-5, 50.0
+    k1, k2, L1, L2 = 2.0, 5.0, 0.1, 0.1 - delta
+    steady, equil = os.path.join(folder, "steady"), os.path.join(folder, "equilibrate")
+    ensure_run(steady, prm, "Discrete heat/Contact conductance=50")
+    ensure_run(equil, prm, "Thermal boundary conditions/Condition 1/Boundary ids=",
+               "Thermal boundary conditions/Condition 2/Boundary ids=",
+               "Materials/Material 1/Thermal conductivity=1000",
+               "Materials/Material 2/Thermal conductivity=1000",
+               "Materials/Material 1/Initial temperature=100",
+               "Materials/Material 2/Initial temperature=0",
+               "Discrete heat/Contact conductance=50", "Time stepping/Time step=5",
+               "Discrete heat/Joint conductance factor=100",
+               "Time stepping/End time=3000",
+               "Output/Times=" + ", ".join(str(250 * i) for i in range(1, 13)))
+
+    def nodal(arrays):
+        z = arrays[("Points", None)].reshape(-1, 3)[:, 2]
+        material = np.repeat(arrays[("CellData", "material_id")], 4)
+        return z, material, arrays[("PointData", "temperature")]
+
+    q = 100.0 / (L1 / k1 + 1.0 / h_c + L2 / k2)
+    zm = 0.1 - delta / 2
+    z, material, T = nodal(vtu_pieces.read_series(steady)[-1][1])
+    exact = np.where(material == 1, 100 - q * z / k1, q * (0.2 - delta - z) / k2)
+    err = np.abs(T - exact).max()
+    Q = read_summary(steady)["heat_balance"]["boundary_heat_rate_last_step"]["1"]
+    fig, (ax_s, ax_e) = plt.subplots(1, 2, figsize=(12, 5), dpi=150)
+    zz = np.linspace(0, 0.2 - delta, 2001)
+    ax_s.plot(100 * zz, np.where(zz < zm, 100 - q * zz / k1, q * (0.2 - delta - zz) / k2),
+              "k-", lw=1.0, label=f"exact: q = dT / (L1/k1 + 1/h_c + L2/k2) = {q:.2f} W/m^2, "
+                                  f"jump q / h_c = {q / h_c:.3f} C")
+    for m, color in ((1, "C0"), (2, "C3")):
+        sel = material == m
+        ax_s.plot(100 * z[sel], T[sel], "o", color=color, ms=2, mfc="none", alpha=0.5,
+                  label=f"tmfdem, block {m}: {sel.sum()} nodes")
+    ax_s.axvline(100 * zm, color="gray", lw=0.5, ls=":")
+    ax_s.set_xlabel("z [cm]")
+    ax_s.set_ylabel("T [C]")
+    ax_s.set_title(f"steady, every node (max |T - exact| {err:.3f} C); heat flow {Q:.4f} W vs "
+                   f"q A = {q * section:.4f} W", fontsize=8.5)
+    ax_s.legend(fontsize=7, loc="upper right")
+    ax_s.grid(alpha=0.3)
+
+    times, diff = [], []
+    for t, arrays in vtu_pieces.read_series(equil)[1:]:
+        z, material, T = nodal(arrays)
+        times.append(t)
+        diff.append(T[material == 1].mean() - T[material == 2].mean())
+    times, diff = np.array(times), np.array(diff)
+    C1, C2 = 2500.0 * 800.0 * section * L1, 2500.0 * 800.0 * section * L2
+    tau = C1 * C2 / ((C1 + C2) * h_c * section)
+    fit = np.polyfit(times, np.log(diff), 1)
+    tau_fit, amp = -1.0 / fit[0], np.exp(fit[1])
+    tt = np.linspace(0, times.max(), 400)
+    ax_e.semilogy(tt, 100 * np.exp(-tt / tau), "k-", lw=1.0,
+                  label=f"100 exp(-t / tau), tau = C1 C2 / ((C1 + C2) h_c A) = {tau:.2f} s")
+    ax_e.semilogy(times, diff, "o", color="C3", ms=4, mfc="none",
+                  label=f"tmfdem, difference of the blocks' mean T: fitted tau {tau_fit:.2f} s")
+    ax_e.set_xlabel("t [s]")
+    ax_e.set_ylabel("mean T (block 1) - mean T (block 2) [C]")
+    ax_e.set_title("equilibration of two insulated blocks (k = 1000 W/(m K)), 100 C and 0 C "
+                   "at t = 0", fontsize=8.5)
+    ax_e.legend(fontsize=7)
+    ax_e.grid(alpha=0.3, which="both")
+    fig.suptitle("Heat across a contact between tetrahedra: two blocks pressed together "
+                 "(overlap 10 um)", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(png)
+    print("contact_conduction-3d:")
+    print(f"  steady: heat flow {Q:.5f} W vs q A = {q * section:.5f} W "
+          f"({100 * (Q / (q * section) - 1):+.3f} %); max |T - exact| at the nodes {err:.4f} C")
+    print(f"  equilibrate: tau fitted {tau_fit:.2f} s vs {tau:.2f} s "
+          f"({100 * (tau_fit / tau - 1):+.3f} %), fitted amplitude {amp:.3f} C")
+    print(f"wrote {png}")
+
+
 CASES = {"joint_pull": plot_joint_pull,
          "joint_pull-3d": plot_joint_pull_3d,
          "block_on_incline": plot_block_on_incline,
@@ -990,6 +1074,7 @@ CASES = {"joint_pull": plot_joint_pull,
          "plate_transient": plot_plate_transient,
          "plate_transient-discrete-3d": plot_plate_transient_3d,
          "contact_conduction": plot_contact_conduction,
+         "contact_conduction-3d": plot_contact_conduction_3d,
          "sheet_free_expansion": plot_sheet_free_expansion,
          "sheet_restrained_expansion": plot_sheet_restrained_expansion,
          "thermal_shock_disc-3d": plot_thermal_shock_disc_3d}

@@ -41,6 +41,10 @@ namespace tmfdem
       const auto &dh = parameters.get<DiscreteHeatParameters>();
       heat           = std::make_unique<TetrahedralHeat>(parameters, model);
       heat->set_threads(n_threads);
+      // contact heat: the pairs of the mechanics' contact search; the heat
+      // alone searches its fixed geometry itself
+      heat->set_contact_candidates(contact ? &contact->pairs() : nullptr,
+                                   with_mechanics());
       heat->initialise(parameters.time.start_time);
       thermal_time    = parameters.time.start_time;
       n_thermal_steps = 0;
@@ -54,7 +58,8 @@ namespace tmfdem
               " s exceeds the stable explicit thermal step " +
               Utilities::to_string(heat->stable_time_step()) +
               " s of this mesh (lumped capacity, joint conductance, Robin "
-              "coefficients); allowed is at most the stable step, or "
+              "coefficients, contact conductance of the pairs in contact); "
+              "allowed is at most the stable step, or "
               "Discrete heat/Time integration = implicit.");
           return;
         }
@@ -181,6 +186,15 @@ namespace tmfdem
             }
         }
       const bool broke = compute_joint_forces();
+      if (contact)
+        {
+          if (broke)
+            {
+              contact->update_active_elements(model);
+              contact->request_search();
+            }
+          compute_contact_forces(time_step);
+        }
       update_nodes(time_step);
       ++step_number;
       return broke;
@@ -206,6 +220,9 @@ namespace tmfdem
           // stored energy; the jump is small against a joint's opening)
           compute_state_energies();
           const double strain_before = energies.strain;
+          // and the contact's stored energy (the pairs of the last search)
+          const double contact_before =
+            contact ? contact->stored_energy(model, arena_for(n_threads)) : 0.;
           compute_joint_forces();
           const std::vector<double> joint_force_before = model.node_joint_force;
           const double        ratio = dt / relaxation.relaxed_thermal_step;
@@ -238,9 +255,14 @@ namespace tmfdem
                 joint_jump -= 0.5 * (f_before + f_after) * jump[3 * n + i];
               }
           compute_state_energies();
+          const double contact_jump =
+            contact ? contact->stored_energy(model, arena_for(n_threads)) -
+                        contact_before :
+                      0.;
           energies.relaxation_work +=
-            energies.strain - strain_before + joint_jump;
+            energies.strain - strain_before + joint_jump + contact_jump;
           energies.joint_work += joint_jump;
+          energies.contact_work += contact_jump;
           ++relaxation.predicted_relaxations;
         }
       else
@@ -304,8 +326,16 @@ namespace tmfdem
     TetrahedralSolver::unbalanced_force()
     {
       // the joint forces at the current positions, as the element forces
-      // (the next step evaluates them here again: the same values)
+      // (the next step evaluates them here again: the same values); the
+      // contact forces of the last step (evaluating them again would
+      // advance the friction history twice), and the weight (no ramp in
+      // quasi-static coupling; with mass scaling the physical weight)
       compute_joint_forces();
+      const auto &dm         = parameters.get<DiscreteMechanicsParameters>();
+      double      gravity[3] = {0., 0., 0.};
+      if (dm.gravity.size() == 3)
+        for (unsigned int i = 0; i < 3; ++i)
+          gravity[i] = dm.gravity[i] / dm.mass_scaling_factor;
       // per chunk of tetrahedra (their nodes), summed in chunk order
       const std::size_t n_chunks =
         (model.n_elements + chunk_size - 1) / chunk_size;
@@ -337,6 +367,9 @@ namespace tmfdem
                                           anisotropy_of(e),
                                           0.,
                                           r);
+              double f_contact[12] = {};
+              if (contact && element_in_contact[e])
+                contact->add_forces(e, f_contact);
               for (unsigned int k = 0; k < 4; ++k)
                 {
                   const std::size_t node = n0 + k;
@@ -347,8 +380,9 @@ namespace tmfdem
                       sums[c][1] += r.f_elastic[k][i] * r.f_elastic[k][i];
                       if (ci >= 0 && constraints[ci].prescribed[i])
                         continue;
-                      const double f =
-                        r.f_elastic[k][i] + jf[i] + jf[3 + i] + jf[6 + i];
+                      const double f = r.f_elastic[k][i] + jf[i] + jf[3 + i] +
+                                       jf[6 + i] + f_contact[3 * k + i] +
+                                       model.mass[node] * gravity[i];
                       sums[c][0] += f * f;
                     }
                 }

@@ -6,6 +6,7 @@
 #include <tmfdem/discrete/discrete_parameters.h>
 #include <tmfdem/discrete/heat_kernel.h>
 #include <tmfdem/discrete/tetrahedral_heat.h>
+#include <tmfdem/discrete/tetrahedron_contact_system.h>
 #include <tmfdem/io/checkpoint.h>
 
 namespace tmfdem
@@ -64,9 +65,11 @@ namespace tmfdem
       const auto &dh = parameters.get<DiscreteHeatParameters>();
       use_implicit   = dh.time_integration ==
                      DiscreteHeatParameters::TimeIntegration::implicit;
-      beta      = dh.joint_conductance_factor;
-      tolerance = dh.solver_tolerance;
-      n_chunks  = (model.n_elements + chunk_elements - 1) / chunk_elements;
+      beta                = dh.joint_conductance_factor;
+      tolerance           = dh.solver_tolerance;
+      contact_conductance = dh.contact_conductance;
+      contact_model       = dh.contact_heat_model;
+      n_chunks = (model.n_elements + chunk_elements - 1) / chunk_elements;
       T.assign(model.n_nodes, 0.);
       conductivity.resize(model.n_elements);
       volumetric_heat_capacity.resize(model.n_elements);
@@ -221,6 +224,7 @@ namespace tmfdem
             T[n] = f->value(reference_point(model, n));
         }
       set_function_time(time);
+      update_contact_pairs(); // the heat alone: its own search, once
     }
 
     void
@@ -299,44 +303,176 @@ namespace tmfdem
     double
     TetrahedralHeat::stable_time_step() const
     {
-      // Gershgorin: lambda_max <= max_n (sum_b |K_nb| + 2 sum G + h A/3)
-      // / C_n over the free nodes, at the reference geometry
-      double lambda = 0.;
-      set_function_time(0.);
-      std::vector<double> robin(model.n_nodes, 0.);
-      for_each_flux_node(
-        [&](const BoundaryFace &b, const unsigned int n, const double third) {
-          if (conditions[b.condition].type ==
-              ThermalBoundaryCondition::Type::robin)
-            robin[n] += third * conditions[b.condition].coefficient->value(
-                                  reference_point(model, n));
-        });
-      for (unsigned int e = 0; e < model.n_elements; ++e)
+      // Gershgorin: lambda_max <= max_n (sum_b |K_nb| + 2 sum G + h A/3 +
+      // contact) / C_n over the free nodes; all but the contact at the
+      // reference geometry, once
+      if (row_bound.empty())
         {
-          double              X[3][4];
-          const double *const x[3] = {X[0], X[1], X[2]};
-          for (unsigned int k = 0; k < 4; ++k)
+          row_bound.assign(model.n_nodes, 0.);
+          set_function_time(0.);
+          for_each_flux_node([&](const BoundaryFace &b,
+                                 const unsigned int  n,
+                                 const double        third) {
+            if (conditions[b.condition].type ==
+                ThermalBoundaryCondition::Type::robin)
+              row_bound[n] +=
+                third * conditions[b.condition].coefficient->value(
+                          reference_point(model, n));
+          });
+          for (unsigned int e = 0; e < model.n_elements; ++e)
             {
-              X[0][k] = model.x_ref[4 * e + k];
-              X[1][k] = model.y_ref[4 * e + k];
-              X[2][k] = model.z_ref[4 * e + k];
-            }
-          double K[4][4];
-          conductivity_matrix<3, double>(x, conductivity[e], K);
-          for (unsigned int a = 0; a < 4; ++a)
-            {
-              const unsigned int n = 4 * e + a;
-              if (dirichlet_node[n])
-                continue;
-              double row = robin[n];
-              for (unsigned int b = 0; b < 4; ++b)
-                row += std::abs(K[a][b]);
-              for (unsigned int s = 3 * n; s < 3 * n + 3; ++s)
-                row += 2. * partner_conductance[s];
-              lambda = std::max(lambda, row / lumped_capacity[n]);
+              double              X[3][4];
+              const double *const x[3] = {X[0], X[1], X[2]};
+              for (unsigned int k = 0; k < 4; ++k)
+                {
+                  X[0][k] = model.x_ref[4 * e + k];
+                  X[1][k] = model.y_ref[4 * e + k];
+                  X[2][k] = model.z_ref[4 * e + k];
+                }
+              double K[4][4];
+              conductivity_matrix<3, double>(x, conductivity[e], K);
+              for (unsigned int a = 0; a < 4; ++a)
+                {
+                  const unsigned int n = 4 * e + a;
+                  for (unsigned int b = 0; b < 4; ++b)
+                    row_bound[n] += std::abs(K[a][b]);
+                  for (unsigned int s = 3 * n; s < 3 * n + 3; ++s)
+                    row_bound[n] += 2. * partner_conductance[s];
+                }
             }
         }
+      // contact: K = h_c A w w^T has the row sums 2 h_c A N_k; the paper
+      // literal term s_i dQ/dT_j, s = (N_c, -N_t), N_k sum |dQ/dT|
+      std::vector<double> contact_row;
+      if (!contact_pairs.empty())
+        {
+          contact_row.assign(model.n_nodes, 0.);
+          const double zero[4] = {0., 0., 0., 0.};
+          for (const HeatContactPair &pair : contact_pairs)
+            {
+              TetrahedronContactHeat transfer;
+              tetrahedron_contact_heat(contact_model,
+                                       pair.interface,
+                                       zero,
+                                       zero,
+                                       contact_conductance,
+                                       transfer);
+              double weights = 2. * transfer.conductance;
+              for (const double w : transfer.flow_weights)
+                weights += std::abs(w);
+              for (unsigned int k = 0; k < 4; ++k)
+                {
+                  contact_row[4 * pair.first + k] +=
+                    transfer.contactor_shape[k] * weights;
+                  contact_row[4 * pair.second + k] +=
+                    transfer.target_shape[k] * weights;
+                }
+            }
+        }
+      double lambda = 0.;
+      for (unsigned int n = 0; n < model.n_nodes; ++n)
+        if (!dirichlet_node[n])
+          lambda = std::max(lambda,
+                            (row_bound[n] +
+                             (contact_row.empty() ? 0. : contact_row[n])) /
+                              lumped_capacity[n]);
       return lambda > 0. ? 2. / lambda : 1e300;
+    }
+
+    void
+    TetrahedralHeat::update_contact_pairs()
+    {
+      if (!(contact_conductance > 0.))
+        return;
+      if (shared_pairs == nullptr && own_pairs_found)
+        return; // the heat alone: the geometry does not change
+      std::vector<TetrahedronContactPair>        own;
+      const std::vector<TetrahedronContactPair> *candidates = shared_pairs;
+      if (candidates == nullptr)
+        {
+          // tetrahedra with a free face and their intact neighbours; boxes
+          // that overlap (no buffer); pairs joined by an intact joint
+          // excluded
+          std::vector<unsigned int> elements;
+          model.contact_candidate_elements(elements);
+          LinkedCellSearchT<3, TetrahedronContactPair> search;
+          const std::vector<double> *const coordinates[3] = {&model.x,
+                                                             &model.y,
+                                                             &model.z};
+          search.rebuild(
+            coordinates,
+            elements,
+            0.,
+            [&](const unsigned int a, const unsigned int b) {
+              return model.joined(a, b);
+            },
+            own,
+            arena_for(n_threads));
+          candidates      = &own;
+          own_pairs_found = true;
+        }
+      const bool literal = contact_model == ContactHeatModel::paper_literal;
+      std::vector<HeatContactPair> found(candidates->size());
+      std::vector<char>            touching(candidates->size(), 0);
+      for_each_chunk(
+        arena_for(n_threads),
+        candidates->size(),
+        256,
+        [&](const std::size_t begin, const std::size_t end, const std::size_t) {
+          for (std::size_t p = begin; p < end; ++p)
+            {
+              const unsigned int e[2] = {(*candidates)[p].first,
+                                         (*candidates)[p].second};
+              double             x[2][4][3];
+              // bit f: the face opposite node f (deal.II's face 3 - f) is
+              // free, a boundary face or a broken joint's
+              unsigned char free_faces[2] = {0, 0};
+              for (unsigned int side = 0; side < 2; ++side)
+                for (unsigned int k = 0; k < 4; ++k)
+                  {
+                    const unsigned int node = 4 * e[side] + k;
+                    x[side][k][0]           = model.x[node];
+                    x[side][k][1]           = model.y[node];
+                    x[side][k][2]           = model.z[node];
+                    if (model.intact_neighbour(e[side], 3 - k) < 0)
+                      free_faces[side] |= 1 << k;
+                  }
+              found[p].first  = e[0];
+              found[p].second = e[1];
+              touching[p]     = tetrahedron_contact_interface(x,
+                                                          free_faces,
+                                                          literal,
+                                                          found[p].interface);
+            }
+        });
+      contact_pairs.clear();
+      for (std::size_t p = 0; p < found.size(); ++p)
+        if (touching[p])
+          contact_pairs.push_back(found[p]);
+    }
+
+    double
+    TetrahedralHeat::add_contact_heat(const std::vector<double> &temperatures,
+                                      std::vector<double>       &rate) const
+    {
+      double exchange = 0.;
+      for (const HeatContactPair &pair : contact_pairs)
+        {
+          TetrahedronContactHeat transfer;
+          tetrahedron_contact_heat(contact_model,
+                                   pair.interface,
+                                   &temperatures[4 * pair.first],
+                                   &temperatures[4 * pair.second],
+                                   contact_conductance,
+                                   transfer);
+          for (unsigned int k = 0; k < 4; ++k)
+            {
+              rate[4 * pair.first + k] += transfer.contactor_nodal_heat[k];
+              rate[4 * pair.second + k] += transfer.target_nodal_heat[k];
+            }
+          exchange += std::abs(transfer.heat_flow);
+        }
+      return exchange;
     }
 
     void
@@ -410,12 +546,37 @@ namespace tmfdem
       for_each_row(x, [&](const std::size_t n, const double product) {
         y[n] = dirichlet_node[n] ? 0. : product + robin_diagonal[n] * x[n];
       });
+      if (!contact_in_matrix())
+        return;
+      // + h_c A w w^T x, w = (N_c, -N_t), in pair order
+      for (const HeatContactPair &pair : contact_pairs)
+        {
+          const auto  &N = pair.interface.shape;
+          const double s =
+            contact_conductance * pair.interface.area *
+            (N[0][0] * x[4 * pair.first] + N[0][1] * x[4 * pair.first + 1] +
+             N[0][2] * x[4 * pair.first + 2] + N[0][3] * x[4 * pair.first + 3] -
+             N[1][0] * x[4 * pair.second] - N[1][1] * x[4 * pair.second + 1] -
+             N[1][2] * x[4 * pair.second + 2] -
+             N[1][3] * x[4 * pair.second + 3]);
+          for (unsigned int k = 0; k < 4; ++k)
+            {
+              const unsigned int a = 4 * pair.first + k,
+                                 b = 4 * pair.second + k;
+              if (!dirichlet_node[a])
+                y[a] += N[0][k] * s;
+              if (!dirichlet_node[b])
+                y[b] -= N[1][k] * s;
+            }
+        }
     }
 
     void
-    TetrahedralHeat::solve_implicit(const double               time,
-                                    const double               time_step,
-                                    const std::vector<double> &T_old)
+    TetrahedralHeat::solve_implicit(
+      const double               time,
+      const double               time_step,
+      const std::vector<double> &T_old,
+      const std::vector<double> &lagged_contact_heat)
     {
       const unsigned int N = model.n_nodes;
       // the step's matrix per tetrahedron: K + M / dt
@@ -448,6 +609,9 @@ namespace tmfdem
         if (const double q = nodal_source(e); q != 0.)
           for (unsigned int n = 4 * e; n < 4 * e + 4; ++n)
             rhs[n] += q;
+      // the paper literal contact heat, at the old temperatures
+      for (unsigned int n = 0; n < lagged_contact_heat.size(); ++n)
+        rhs[n] += lagged_contact_heat[n];
       std::fill(robin_diagonal.begin(), robin_diagonal.end(), 0.);
       for_each_flux_node(
         [&](const BoundaryFace &b, const unsigned int n, const double third) {
@@ -478,6 +642,15 @@ namespace tmfdem
                 d += partner_conductance[s];
             diagonal[n] = d;
           }
+      if (contact_in_matrix())
+        for (const HeatContactPair &pair : contact_pairs)
+          for (unsigned int side = 0; side < 2; ++side)
+            for (unsigned int k = 0; k < 4; ++k)
+              {
+                const double N = pair.interface.shape[side][k];
+                diagonal[4 * (side == 0 ? pair.first : pair.second) + k] +=
+                  contact_conductance * pair.interface.area * N * N;
+              }
       apply(T, q);
       for (unsigned int n = 0; n < N; ++n)
         {
@@ -540,9 +713,25 @@ namespace tmfdem
       std::vector<double>       partials(n_chunks * W, 0.);
       std::vector<double>       rate(model.n_nodes, 0.);
       update_element_matrices();
+      update_contact_pairs();
+      double exchange = 0.; // sum of |Q| of the contact pairs [W]
       if (!use_implicit)
         {
+          if (!contact_pairs.empty() && time_step > stable_time_step())
+            throw RunError(
+              "discrete heat (3D), step at t = " + Utilities::to_string(time) +
+              " s: the thermal step " + Utilities::to_string(time_step) +
+              " s exceeds the stable explicit step " +
+              Utilities::to_string(stable_time_step()) +
+              " s with the contact heat of the " +
+              std::to_string(contact_pairs.size()) +
+              " pairs in contact now (Discrete heat/Contact conductance = " +
+              Utilities::to_string(contact_conductance) +
+              " W/(m^2 K)); allowed: Discrete heat/Time integration = "
+              "implicit, a smaller Contact conductance or a shorter thermal "
+              "step.");
           heat_rates(time, rate, partials);
+          exchange = add_contact_heat(T, rate);
           for (unsigned int n = 0; n < model.n_nodes; ++n)
             if (!dirichlet_node[n])
               T[n] += time_step * rate[n] / lumped_capacity[n];
@@ -550,12 +739,30 @@ namespace tmfdem
         }
       else
         {
-          solve_implicit(time, time_step, T_old);
+          // the paper literal contact heat is not a conductance: explicit
+          // (lagged) in the backward Euler step, as in 2D
+          std::vector<double> lagged;
+          double              lagged_exchange = 0.;
+          if (!contact_pairs.empty() && !contact_in_matrix())
+            {
+              lagged.assign(model.n_nodes, 0.);
+              lagged_exchange = add_contact_heat(T_old, lagged);
+            }
+          solve_implicit(time, time_step, T_old, lagged);
           // the rates at the new temperatures (what backward Euler used),
           // with the conductivity matrices alone again (the solve added M/dt)
           update_element_matrices();
           heat_rates(time + time_step, rate, partials);
+          if (!lagged.empty())
+            {
+              for (unsigned int n = 0; n < model.n_nodes; ++n)
+                rate[n] += lagged[n];
+              exchange = lagged_exchange;
+            }
+          else
+            exchange = add_contact_heat(T, rate);
         }
+      heat_balance.contact_exchange += time_step * exchange;
       // stored heat (lumped or consistent capacity, as the step) and the
       // heat of the held nodes from their residual, per chunk
       for (unsigned int e = 0; e < model.n_elements; ++e)
@@ -609,6 +816,7 @@ namespace tmfdem
       out.put(heat_balance.boundary_heat_in);
       out.put(heat_balance.source_heat);
       out.put(heat_balance.stored_heat);
+      out.put(heat_balance.contact_exchange);
       out.put(last_rate);
       out.put(iterations);
     }
@@ -620,6 +828,7 @@ namespace tmfdem
       in.get(heat_balance.boundary_heat_in);
       in.get(heat_balance.source_heat);
       in.get(heat_balance.stored_heat);
+      in.get(heat_balance.contact_exchange);
       in.get(last_rate);
       in.get(iterations);
     }

@@ -57,7 +57,8 @@ namespace tmfdem
       const std::string in_3d =
         " is not modelled in 3D yet (Mesh/Dimension = 3: tetrahedra with "
         "cohesive joints, bodies and boundary conditions, heat with the "
-        "multi-rate and quasi-static coupling, contact, gravity); ";
+        "multi-rate and quasi-static coupling, contact with contact heat, "
+        "gravity); ";
       if (physics != Physics::mechanics)
         {
           const auto &dh = parameters.get<DiscreteHeatParameters>();
@@ -85,13 +86,6 @@ namespace tmfdem
       if (physics == Physics::heat)
         return;
       parameters.mechanics.check_dimension(3);
-      if (dm.contact && physics == Physics::thermo_mechanics)
-        throw InputError(
-          "Discrete mechanics/Contact = true with Model = discrete "
-          "thermo-mechanics: the contact heat between tetrahedra and the "
-          "relaxation of their contact" +
-          in_3d +
-          "allowed is Contact = false (or Model = discrete mechanics).");
       const auto as_text = [](const double value) {
         std::ostringstream text;
         text << value;
@@ -1126,6 +1120,10 @@ namespace tmfdem
                       static_cast<long long>(steps_per_thermal_step));
           summary.add("stable_explicit_thermal_step", heat->stable_time_step());
           summary.add("cg_iterations_last_step", heat->last_iterations());
+          summary.add("contact_heat_model",
+                      contact_heat_model_name(dh.contact_heat_model));
+          summary.add("contact_heat_pairs",
+                      static_cast<long long>(heat->n_contact_pairs()));
           summary.add("coupling", dh.coupling_name());
           if (quasi_static)
             {

@@ -106,115 +106,131 @@ namespace tmfdem
     }
 
     /**
-     * Temperature [K] interpolated with area coordinates @p N [-] from the
-     * nodal temperatures @p T [K], written as T_0 + N_1 (T_1 - T_0) +
-     * N_2 (T_2 - T_0) so that an isothermal triangle returns its temperature
-     * exactly.
+     * Temperature [K] interpolated with the @p n_nodes barycentric (area or
+     * volume) coordinates @p N [-] from the nodal temperatures @p T [K],
+     * written as T_0 + sum_k N_k (T_k - T_0) so that an isothermal simplex
+     * returns its temperature exactly.
      */
+    template <std::size_t n_nodes>
     inline double
-    interpolate_temperature(const double *T, const std::array<double, 3> &N)
+    interpolate_temperature(const double                      *T,
+                            const std::array<double, n_nodes> &N)
     {
-      return T[0] + N[1] * (T[1] - T[0]) + N[2] * (T[2] - T[0]);
+      double value = T[0];
+      for (std::size_t k = 1; k < n_nodes; ++k)
+        value += N[k] * (T[k] - T[0]);
+      return value;
     }
 
     /**
-     * Heat exchanged by one contact pair and its linearisation.
-     * Nodal heats are positive into the node, in W per unit thickness
-     * [W/m]. With T = (T_c0, T_c1, T_c2, T_t0, T_t1, T_t2) and
-     * w = (N_c, -N_t), the nodal heats are q = -(h_c L_c) w w^T T, so the
-     * conductance matrix K = h_c L_c w w^T (symmetric positive
-     * semi-definite, rows summing to zero) enters an implicit scheme's
-     * matrix with a plus sign: C dT/dt + (... + K) T = ...
+     * Heat exchanged by one contact pair of simplices with @p n_nodes nodes
+     * each (3: triangles, heats per unit thickness [W/m]; 4: tetrahedra,
+     * heats [W]) and its linearisation. Nodal heats are positive into the
+     * node. With T = (T_c0, ..., T_t0, ...) and w = (N_c, -N_t), the nodal
+     * heats are q = -(h_c L_c) w w^T T (h_c A_c in 3D), so the conductance
+     * matrix K = h_c L_c w w^T (symmetric positive semi-definite, rows
+     * summing to zero) enters an implicit scheme's matrix with a plus sign:
+     * C dT/dt + (... + K) T = ...
      */
-    struct ContactHeatTransfer
+    template <std::size_t n_nodes>
+    struct ContactHeatTransferT
     {
-      /** Pair conductance h_c L_c [W/(m K)] (0 without overlap). */
+      /** Pair conductance h_c L_c [W/(m K)] (2D) or h_c A_c [W/K] (3D); 0
+       * without overlap. */
       double conductance = 0.;
 
       /** Contactor's and target's temperatures at G [K]. */
       double contactor_temperature = 0., target_temperature = 0.;
 
-      /** Q = h_c L_c (T_t(G) - T_c(G)): heat flowing from the target into
-       * the contactor [W/m]. */
+      /** Q = conductance (T_t(G) - T_c(G)): heat flowing from the target
+       * into the contactor [W/m] (2D) or [W] (3D). */
       double heat_flow = 0.;
 
-      /** Area coordinates of G in the contactor and in the target [-]. */
-      std::array<double, 3> contactor_shape{{0., 0., 0.}},
-        target_shape{{0., 0., 0.}};
+      /** Barycentric coordinates of G in the contactor and in the target
+       * [-]. */
+      std::array<double, n_nodes> contactor_shape{}, target_shape{};
 
-      /** Nodal heats into the contactor's and the target's nodes [W/m];
-       * all six sum to exactly 0.0. */
-      std::array<double, 3> contactor_nodal_heat{{0., 0., 0.}},
-        target_nodal_heat{{0., 0., 0.}};
+      /** Nodal heats into the contactor's and the target's nodes [W/m] or
+       * [W]; all of them sum to exactly 0.0. */
+      std::array<double, n_nodes> contactor_nodal_heat{}, target_nodal_heat{};
 
-      /** Paper literal model only (zero otherwise): dQ/dT_j [W/(m K)] of
-       * the heat flow into the contactor, Q = sum_j flow_weights[j] T_j,
-       * j over contactor nodes 0-2 then target nodes 0-2. Its Jacobian
-       * (not a conductance: neither symmetric nor definite) bounds the
-       * explicit step, see DiscreteHeat::stable_time_step(). */
-      std::array<double, 6> flow_weights{{0., 0., 0., 0., 0., 0.}};
+      /** Paper literal model only (zero otherwise): dQ/dT_j of the heat
+       * flow into the contactor, Q = sum_j flow_weights[j] T_j, j over the
+       * contactor's nodes then the target's. Its Jacobian (not a
+       * conductance: neither symmetric nor definite) bounds the explicit
+       * step, see DiscreteHeat::stable_time_step(). */
+      std::array<double, 2 * n_nodes> flow_weights{};
 
       /**
-       * d(nodal heat i)/d(nodal temperature j) [W/(m K)], i and j running
-       * over contactor nodes 0-2 then target nodes 0-2: -K, with
-       * K = conductance * w w^T, w = (N_c, -N_t).
+       * d(nodal heat i)/d(nodal temperature j), i and j running over the
+       * contactor's nodes then the target's: -K, with K = conductance w
+       * w^T, w = (N_c, -N_t).
        */
-      std::array<std::array<double, 6>, 6>
+      std::array<std::array<double, 2 * n_nodes>, 2 * n_nodes>
       heat_jacobian() const
       {
-        const std::array<double, 6>          w{{contactor_shape[0],
-                                                contactor_shape[1],
-                                                contactor_shape[2],
-                                                -target_shape[0],
-                                                -target_shape[1],
-                                                -target_shape[2]}};
-        std::array<std::array<double, 6>, 6> jacobian;
-        for (unsigned int i = 0; i < 6; ++i)
-          for (unsigned int j = 0; j < 6; ++j)
+        std::array<double, 2 * n_nodes> w;
+        for (std::size_t k = 0; k < n_nodes; ++k)
+          {
+            w[k]           = contactor_shape[k];
+            w[n_nodes + k] = -target_shape[k];
+          }
+        std::array<std::array<double, 2 * n_nodes>, 2 * n_nodes> jacobian;
+        for (std::size_t i = 0; i < 2 * n_nodes; ++i)
+          for (std::size_t j = 0; j < 2 * n_nodes; ++j)
             jacobian[i][j] = -conductance * (w[i] * w[j]);
         return jacobian;
       }
     };
 
+    /** The contact heat of a pair of triangles (per unit thickness). */
+    using ContactHeatTransfer = ContactHeatTransferT<3>;
+
     /**
-     * Splits the pair's heat @p heat_flow [W/m] into +Q N_c to the
-     * contactor's nodes and -Q N_t to the target's nodes (Eq. 36) so that
-     * the six nodal heats [W/m] sum to exactly 0.0 in any order of
-     * summation: every share is rounded to a multiple of the power of two
+     * Splits the pair's heat @p heat_flow into +Q N_c to the contactor's
+     * nodes and -Q N_t to the target's nodes (Eq. 36) so that the 2
+     * @p n_nodes nodal heats sum to exactly 0.0 in any order of summation:
+     * every share is rounded to a multiple of the power of two
      * u = 2^(e - 50), |Q| < 2^e, and the last target share is the exact
      * remainder. All partial sums are then multiples of u below 2^53 u and
      * are computed without rounding. Each share is off Q N by at most
      * 2^-50 |Q| (about 1e-15 relative).
      */
+    template <std::size_t n_nodes>
     inline void
-    split_heat_exactly(const double                 heat_flow,
-                       const std::array<double, 3> &contactor_shape,
-                       const std::array<double, 3> &target_shape,
-                       std::array<double, 3>       &contactor_nodal_heat,
-                       std::array<double, 3>       &target_nodal_heat)
+    split_heat_exactly(const double                       heat_flow,
+                       const std::array<double, n_nodes> &contactor_shape,
+                       const std::array<double, n_nodes> &target_shape,
+                       std::array<double, n_nodes>       &contactor_nodal_heat,
+                       std::array<double, n_nodes>       &target_nodal_heat)
     {
       int exponent = 0;
       std::frexp(heat_flow, &exponent);
       if (heat_flow == 0. || !std::isfinite(heat_flow) || exponent < -960)
         {
           // nothing to transfer (or non-finite input: let it propagate)
-          const double q       = std::isfinite(heat_flow) ? 0. : heat_flow;
-          contactor_nodal_heat = {{q, q, q}};
-          target_nodal_heat    = {{-q, -q, -q}};
+          const double q = std::isfinite(heat_flow) ? 0. : heat_flow;
+          contactor_nodal_heat.fill(q);
+          target_nodal_heat.fill(-q);
           return;
         }
       const double quantum          = std::ldexp(1., exponent - 50);
       auto         round_to_quantum = [quantum](const double value) {
         return std::nearbyint(value / quantum) * quantum;
       };
-      for (unsigned int k = 0; k < 3; ++k)
-        contactor_nodal_heat[k] =
-          round_to_quantum(heat_flow * contactor_shape[k]);
-      target_nodal_heat[0] = -round_to_quantum(heat_flow * target_shape[0]);
-      target_nodal_heat[1] = -round_to_quantum(heat_flow * target_shape[1]);
-      target_nodal_heat[2] = -(
-        contactor_nodal_heat[0] + contactor_nodal_heat[1] +
-        contactor_nodal_heat[2] + target_nodal_heat[0] + target_nodal_heat[1]);
+      double sum = 0.;
+      for (std::size_t k = 0; k < n_nodes; ++k)
+        {
+          contactor_nodal_heat[k] =
+            round_to_quantum(heat_flow * contactor_shape[k]);
+          sum += contactor_nodal_heat[k];
+        }
+      for (std::size_t k = 0; k + 1 < n_nodes; ++k)
+        {
+          target_nodal_heat[k] = -round_to_quantum(heat_flow * target_shape[k]);
+          sum += target_nodal_heat[k];
+        }
+      target_nodal_heat[n_nodes - 1] = -sum;
     }
 
     /**

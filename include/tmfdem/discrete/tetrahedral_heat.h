@@ -27,8 +27,10 @@
 #include <map>
 #include <memory>
 #include <tmfdem/base/parameters.h>
+#include <tmfdem/discrete/contact_heat.h>
 #include <tmfdem/discrete/discrete_model.h>
 #include <tmfdem/discrete/temperature_source.h>
+#include <tmfdem/discrete/tetrahedron_contact_heat.h>
 #include <vector>
 
 namespace tmfdem
@@ -38,6 +40,8 @@ namespace tmfdem
 
   namespace discrete
   {
+    struct TetrahedronContactPair;
+
     /** The thermal state and operators of the discrete layer in 3D. */
     class TetrahedralHeat
     {
@@ -58,6 +62,31 @@ namespace tmfdem
         n_threads = threads > 0 ? threads : 1;
       }
 
+      /**
+       * Where the contact heat finds its pairs: with @p pairs, the
+       * mechanics' contact search (the list kept up to date by it, read at
+       * every step at the current geometry); with nullptr and
+       * @p moving_geometry false (the heat alone, the default), a search of
+       * its own on the fixed geometry, once; with nullptr and a moving
+       * geometry (thermo-mechanics without contact: pieces pass through
+       * each other), no contact heat.
+       */
+      void
+      set_contact_candidates(const std::vector<TetrahedronContactPair> *pairs,
+                             const bool moving_geometry)
+      {
+        shared_pairs = pairs;
+        if (pairs == nullptr && moving_geometry)
+          contact_conductance = 0.;
+      }
+
+      /** Pairs of tetrahedra that exchanged heat in the last step. */
+      std::size_t
+      n_contact_pairs() const
+      {
+        return contact_pairs.size();
+      }
+
       /** Sets T(x, y, z, @p time) [C] at every node from the initial
        *  temperature of its tetrahedron's material (body > material >
        *  `Initial conditions/Temperature`), Dirichlet nodes included (their
@@ -66,7 +95,9 @@ namespace tmfdem
       initialise(const double time);
 
       /** Stable step of the forward Euler method [s]: 2 / lambda_max of
-       *  C^-1 (K + joints + Robin) bounded by Gershgorin's rows. */
+       *  C^-1 (K + joints + Robin + contact) bounded by Gershgorin's rows
+       *  (the conduction, joints and Robin at the reference geometry, the
+       *  contact of the current pairs). */
       double
       stable_time_step() const;
 
@@ -128,6 +159,32 @@ namespace tmfdem
       load(CheckpointReader &in);
 
     private:
+      /** A pair of tetrahedra that exchanges heat: the first is the
+       *  contactor of the transfer, and their contact geometry. */
+      struct HeatContactPair
+      {
+        unsigned int                first, second;
+        TetrahedronContactInterface interface;
+      };
+      /** The pairs that overlap at the current geometry, from the shared
+       *  candidates or (heat alone, once) a search of its own. */
+      void
+      update_contact_pairs();
+      /** Adds the contact heat of every pair at the nodal temperatures
+       *  @p temperatures [C] to @p rate [W], in pair order; returns the sum
+       *  of |Q| [W]. */
+      double
+      add_contact_heat(const std::vector<double> &temperatures,
+                       std::vector<double>       &rate) const;
+      /** Whether the contact heat enters the implicit matrix (the
+       *  temperature-difference model; the paper literal one is lagged). */
+      bool
+      contact_in_matrix() const
+      {
+        return contact_model == ContactHeatModel::temperature_difference &&
+               !contact_pairs.empty();
+      }
+
       /** A boundary face with a thermal condition. */
       struct BoundaryFace
       {
@@ -169,7 +226,8 @@ namespace tmfdem
       void
       solve_implicit(const double               time,
                      const double               time_step,
-                     const std::vector<double> &T_old);
+                     const std::vector<double> &T_old,
+                     const std::vector<double> &lagged_contact_heat);
       /** The heat source of tetrahedron @p e lumped on each of its four
        *  nodes, q V / 4 with q at the centroid at the functions' time [W]. */
       double
@@ -213,6 +271,20 @@ namespace tmfdem
       std::vector<int> partner_joint;
       /** Per node: Robin's h A / 3 at the end of the implicit step [W/K]. */
       std::vector<double> robin_diagonal;
+      /** Per node: Gershgorin's row sum of conduction, joints and Robin
+       *  over the capacity [1/s] (stable_time_step(), computed once). */
+      mutable std::vector<double> row_bound;
+
+      /** `Discrete heat/Contact conductance` h_c [W/(m^2 K)] (0: no
+       *  contact heat) and `Contact heat model`. */
+      double           contact_conductance = 0.;
+      ContactHeatModel contact_model = ContactHeatModel::temperature_difference;
+      /** The mechanics' pair list, or nullptr (a search of its own). */
+      const std::vector<TetrahedronContactPair> *shared_pairs = nullptr;
+      /** Whether the pairs of the own search are known (the geometry of
+       *  the heat alone does not change). */
+      bool                         own_pairs_found = false;
+      std::vector<HeatContactPair> contact_pairs;
 
       std::vector<std::unique_ptr<FunctionParser<3>>> sources; ///< per material
       std::vector<ConditionFunctions>                 conditions;

@@ -396,6 +396,13 @@ namespace tmfdem
                 const double n[3] = {u[1] * w[2] - u[2] * w[1],
                                      u[2] * w[0] - u[0] * w[2],
                                      u[0] * w[1] - u[1] * w[0]};
+                // parallel edges give no axis (the face planes cover that
+                // direction); a zero axis would project both to one point
+                const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+                const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+                const double ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+                if (!(nn > 1e-24 * uu * ww))
+                  continue;
                 double lo_a = 1e300, hi_a = -1e300, lo_b = 1e300, hi_b = -1e300;
                 for (unsigned int k = 0; k < 4; ++k)
                   {
@@ -790,6 +797,41 @@ namespace tmfdem
       return dissipated;
     }
 
+    /**
+     * Whether the tetrahedra @p x[0] and @p x[1] (nodes [k][i], positively
+     * oriented) [m] overlap in a volume: false if their boxes do not
+     * overlap, if either is degenerate, or if a plane separates them (a
+     * face plane of either, or a plane along an edge of each: the
+     * separating-axis theorem for two convex polyhedra), touching counted
+     * as separated (touching_tolerance). Sets @p coordinates to their
+     * barycentric coordinates where it gets that far.
+     */
+    inline bool
+    tetrahedra_overlap(const double (&x)[2][4][3],
+                       TetrahedronCoordinates (&coordinates)[2])
+    {
+      using tetrahedron_contact_internal::separated;
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          double lo[2], hi[2];
+          for (unsigned int side = 0; side < 2; ++side)
+            {
+              lo[side] = hi[side] = x[side][0][i];
+              for (unsigned int k = 1; k < 4; ++k)
+                {
+                  lo[side] = std::min(lo[side], x[side][k][i]);
+                  hi[side] = std::max(hi[side], x[side][k][i]);
+                }
+            }
+          if (hi[0] <= lo[1] || hi[1] <= lo[0])
+            return false;
+        }
+      return coordinates[0].set(x[0]) && coordinates[1].set(x[1]) &&
+             !separated(coordinates[1], x[0]) &&
+             !separated(coordinates[0], x[1]) &&
+             !tetrahedron_contact_internal::separated_by_edge_pair(x[0], x[1]);
+    }
+
     /** The friction history of a pair of tetrahedra: entry 4 direction +
      *  face, direction 0 the first tetrahedron the contactor. */
     using TetrahedronPairFriction = std::array<FaceFriction, 8>;
@@ -816,37 +858,13 @@ namespace tmfdem
                        TetrahedronPairFriction     &friction,
                        double                      *force)
     {
-      using tetrahedron_contact_internal::separated;
-      // boxes that do not overlap in a volume: nothing to do
-      for (unsigned int i = 0; i < 3; ++i)
-        {
-          double lo[2], hi[2];
-          for (unsigned int side = 0; side < 2; ++side)
-            {
-              lo[side] = hi[side] = x[side][0][i];
-              for (unsigned int k = 1; k < 4; ++k)
-                {
-                  lo[side] = std::min(lo[side], x[side][k][i]);
-                  hi[side] = std::max(hi[side], x[side][k][i]);
-                }
-            }
-          if (hi[0] <= lo[1] || hi[1] <= lo[0])
-            {
-              friction = TetrahedronPairFriction();
-              return 0.;
-            }
-        }
-      double                 dissipated = 0.;
       TetrahedronCoordinates coordinates[2];
-      // a plane that separates them (a face of either, or along two edges:
-      // the separating-axis theorem for two convex polyhedra): no overlap
-      if (!coordinates[0].set(x[0]) || !coordinates[1].set(x[1]) ||
-          separated(coordinates[1], x[0]) || separated(coordinates[0], x[1]) ||
-          tetrahedron_contact_internal::separated_by_edge_pair(x[0], x[1]))
+      if (!tetrahedra_overlap(x, coordinates))
         {
           friction = TetrahedronPairFriction();
           return 0.;
         }
+      double dissipated = 0.;
       for (unsigned int direction = 0; direction < 2; ++direction)
         {
           const unsigned int c = direction, t = 1 - direction;
