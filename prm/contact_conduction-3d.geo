@@ -7,7 +7,7 @@
 // this file.
 SetFactory("OpenCASCADE");
 DefineConstant[ h = 0.0125 ];
-delta = 1e-5;
+DefineConstant[ delta = 1e-5 ];
 Box(1) = {0, 0, 0, 0.05, 0.05, 0.1};
 Box(2) = {0, 0, 0.1 - delta, 0.05, 0.05, 0.1};
 e = 1e-7;
