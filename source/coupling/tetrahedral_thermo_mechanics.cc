@@ -85,11 +85,15 @@ namespace tmfdem
                                     steps_per_thermal_step * time_step;
       if (quasi_static)
         {
-          // velocities imposed in thermal time are ramped in over the
-          // first relaxation steps of each thermal step (as in 2D)
-          relaxation.set_ramp(!velocity_functions.empty(),
+          // velocities and displacements imposed in thermal time are
+          // ramped in over the first relaxation steps of each thermal step
+          // (as in 2D)
+          relaxation.set_ramp(!velocity_functions.empty() ||
+                                imposed_displacements,
                               steps_per_thermal_step,
-                              "velocities");
+                              imposed_displacements ?
+                                "velocities or displacements" :
+                                "velocities");
           // an unloaded body relaxes at once (strains below 1e-10)
           double EV = 0.;
           for (unsigned int e = 0; e < model.n_elements; ++e)
@@ -185,6 +189,11 @@ namespace tmfdem
               imposed_velocity_scale = scale;
             }
         }
+      // displacements: reached at the end of the ramp (thermal time does
+      // not move while the mechanics relaxes)
+      evaluate_imposed_displacements(time,
+                                     relaxation.steps_to_ramp_end() *
+                                       time_step);
       const bool broke = compute_joint_forces();
       if (contact)
         {

@@ -111,15 +111,12 @@ namespace tmfdem
         throw InputError("Discrete mechanics/Initial cracks: segments are 2D "
                          "cracks; allowed in 3D is none.");
       for (const auto &condition : parameters.mechanical_boundary.conditions)
-        if (condition.type == MechanicalBoundaryCondition::Type::displacement ||
-            condition.type == MechanicalBoundaryCondition::Type::traction)
+        if (condition.type == MechanicalBoundaryCondition::Type::traction)
           throw InputError(
-            condition.name + "/Type = " +
-            (condition.type == MechanicalBoundaryCondition::Type::traction ?
-               "traction" :
-               "displacement") +
-            ": the discrete layer in 3D imposes fixed, roller x, roller y, "
-            "roller z and velocity conditions; allowed are those.");
+            condition.name +
+            "/Type = traction: the discrete layer in 3D imposes fixed, roller "
+            "x, roller y, roller z, velocity and displacement conditions; "
+            "allowed are those.");
     }
 
     void
@@ -259,6 +256,7 @@ namespace tmfdem
       node_constraint.assign(model.n_nodes, -1);
       constraints.clear();
       velocity_functions.clear();
+      imposed_displacements = false;
       owner_names.clear();
       const auto constraint_of = [&](const unsigned int node,
                                      const unsigned int owner) {
@@ -386,16 +384,22 @@ namespace tmfdem
               case Type::roller_z:
                 prescribed[2] = true;
                 break;
-              default: // velocity
+              default: // velocity or displacement
                 {
+                  const bool  held    = condition.type == Type::displacement;
                   const char *axes[3] = {"x", "y", "z"};
                   for (unsigned int i = 0; i < 3; ++i)
                     {
                       prescribed[i] = true;
                       functions[i] =
-                        add_function(condition.velocity[i],
-                                     condition.name + "/Velocity " + axes[i]);
+                        held ?
+                          add_function(condition.displacement[i],
+                                       condition.name + "/Displacement " +
+                                         axes[i]) :
+                          add_function(condition.velocity[i],
+                                       condition.name + "/Velocity " + axes[i]);
                     }
+                  imposed_displacements |= held;
                 }
             }
           for (unsigned int e = 0; e < model.n_elements; ++e)
@@ -419,6 +423,8 @@ namespace tmfdem
                               continue;
                             c->prescribed[i] = true;
                             c->function[i]   = functions[i];
+                            c->displacement[i] =
+                              condition.type == Type::displacement;
                           }
                     }
               }
@@ -435,12 +441,44 @@ namespace tmfdem
         function->set_time(t);
       for (NodeConstraint &c : constraints)
         for (unsigned int i = 0; i < 3; ++i)
-          c.velocity[i] = c.function[i] < 0 ?
-                            0. :
-                            scale * velocity_functions[c.function[i]]->value(
-                                      Point<3>(model.x_ref[c.node],
-                                               model.y_ref[c.node],
-                                               model.z_ref[c.node]));
+          if (!c.displacement[i])
+            c.velocity[i] = c.function[i] < 0 ?
+                              0. :
+                              scale * velocity_functions[c.function[i]]->value(
+                                        Point<3>(model.x_ref[c.node],
+                                                 model.y_ref[c.node],
+                                                 model.z_ref[c.node]));
+    }
+
+    void
+    TetrahedralSolver::evaluate_imposed_displacements(const double target_time,
+                                                      const double duration)
+    {
+      if (!imposed_displacements)
+        return;
+      for (auto &function : velocity_functions)
+        function->set_time(target_time);
+      const std::vector<double> *reference[3] = {&model.x_ref,
+                                                 &model.y_ref,
+                                                 &model.z_ref};
+      const std::vector<double> *position[3]  = {&model.x, &model.y, &model.z};
+      for (NodeConstraint &c : constraints)
+        for (unsigned int i = 0; i < 3; ++i)
+          if (c.displacement[i])
+            {
+              const Point<3> X(model.x_ref[c.node],
+                               model.y_ref[c.node],
+                               model.z_ref[c.node]);
+              const double   u = c.function[i] < 0 ?
+                                   0. :
+                                   velocity_functions[c.function[i]]->value(X);
+              // reach X + u at the end of the steps
+              c.velocity[i] =
+                duration > 0. ?
+                  ((*reference[i])[c.node] + u - (*position[i])[c.node]) /
+                    duration :
+                  0.;
+            }
     }
 
     void
@@ -874,6 +912,7 @@ namespace tmfdem
         }
       if (imposed_depend_on_time)
         evaluate_imposed_velocities(time + 0.5 * dt);
+      evaluate_imposed_displacements(time + dt, dt);
       if (compute_joint_forces() && contact)
         {
           contact->update_active_elements(model);

@@ -115,8 +115,12 @@ namespace tmfdem
       {
         unsigned int node          = 0;
         bool         prescribed[3] = {false, false, false};
-        /** Index into velocity_functions per component, or -1: zero. */
+        /** Index into velocity_functions per component, or -1: zero (a
+         *  velocity, or with displacement[i] a displacement). */
         int function[3] = {-1, -1, -1};
+        /** Per component: the function gives the displacement u(X, t)
+         *  [m] (a displacement condition), not the velocity. */
+        bool displacement[3] = {false, false, false};
         /** The imposed velocity now [m/s]. */
         double velocity[3] = {0., 0., 0.};
         /** Body or condition it belongs to (reactions are summed per
@@ -141,6 +145,13 @@ namespace tmfdem
        *  QuasiStaticRelaxation::imposed_velocity_scale()). */
       void
       evaluate_imposed_velocities(const double time, const double scale = 1.);
+      /** The velocities of the components held by displacement conditions
+       *  that bring their nodes from where they are to X + u(X,
+       *  @p target_time) over @p duration [s] (dynamic: the step, to its
+       *  end; quasi-static: the relaxation steps to the end of its ramp). */
+      void
+      evaluate_imposed_displacements(const double target_time,
+                                     const double duration);
       /** The joint forces into DiscreteModel::node_joint_force; true if a
        *  joint broke. */
       bool
@@ -366,6 +377,8 @@ namespace tmfdem
       std::vector<std::string>           owner_names;
       std::vector<std::array<double, 3>> owner_reaction;
       bool                               imposed_depend_on_time = false;
+      /** Some node component is held by a displacement condition. */
+      bool imposed_displacements = false;
       /** Quasi-static coupling: the scale of the imposed velocities now
        *  (the ramp of the relaxation under way); NaN: not yet evaluated in
        *  this thermal step [-]. */
