@@ -234,6 +234,26 @@ namespace tmfdem
     }
 
     /**
+     * The default model's heat of a pair whose shapes and temperatures at G
+     * are in @p transfer: its @p conductance [W/(m K)] in 2D, [W/K] in 3D,
+     * Q = conductance (T_t(G) - T_c(G)) and its exact split to the nodes.
+     */
+    template <std::size_t n_nodes>
+    inline void
+    temperature_difference_heat(const double                   conductance,
+                                ContactHeatTransferT<n_nodes> &transfer)
+    {
+      transfer.conductance = conductance;
+      transfer.heat_flow   = conductance * (transfer.target_temperature -
+                                          transfer.contactor_temperature);
+      split_heat_exactly(transfer.heat_flow,
+                         transfer.contactor_shape,
+                         transfer.target_shape,
+                         transfer.contactor_nodal_heat,
+                         transfer.target_nodal_heat);
+    }
+
+    /**
      * Contact heat of a pair whose overlap (@p overlap, from
      * triangle_overlap(), contactor first) is known: contactor nodes
      * (@p cx, @p cy) [m] at temperatures @p Tc [K], target nodes
@@ -264,15 +284,7 @@ namespace tmfdem
         interpolate_temperature(Tc, transfer.contactor_shape);
       transfer.target_temperature =
         interpolate_temperature(Tt, transfer.target_shape);
-      transfer.conductance = h_c * overlap.contact_length;
-      transfer.heat_flow =
-        transfer.conductance *
-        (transfer.target_temperature - transfer.contactor_temperature);
-      split_heat_exactly(transfer.heat_flow,
-                         transfer.contactor_shape,
-                         transfer.target_shape,
-                         transfer.contactor_nodal_heat,
-                         transfer.target_nodal_heat);
+      temperature_difference_heat(h_c * overlap.contact_length, transfer);
     }
 
     /**

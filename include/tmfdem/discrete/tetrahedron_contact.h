@@ -183,6 +183,19 @@ namespace tmfdem
         return m < 3 ? 0 : m;
       }
 
+      /** Area [m^2] of the fan triangle (@p p0, @p p1, @p p2) of a clipped
+       *  face of area @p face_area [m^2], from their face coordinates N_1,
+       *  N_2 (value[1], value[2]). */
+      inline double
+      fan_triangle_area(const double *p0,
+                        const double *p1,
+                        const double *p2,
+                        const double  face_area)
+      {
+        return face_area * std::abs((p1[1] - p0[1]) * (p2[2] - p0[2]) -
+                                    (p1[2] - p0[2]) * (p2[1] - p0[1]));
+      }
+
       /** A tetrahedron of a clipped polyhedron: positions and the target's
        *  barycentric coordinates at its four vertices. */
       struct SoupTetrahedron
@@ -454,6 +467,25 @@ namespace tmfdem
       return {{faces[f][0], faces[f][1], faces[f][2]}};
     }
 
+    /** The face opposite node @p f of the tetrahedron @p c (nodes [k][i])
+     *  as three vertices for clipping: the face's shape functions and the
+     *  barycentric coordinates of @p target at its nodes. */
+    inline void
+    face_vertices(const double (&c)[4][3],
+                  const unsigned int            f,
+                  const TetrahedronCoordinates &target,
+                  tetrahedron_contact_internal::FaceVertex (&base)[3])
+    {
+      const std::array<unsigned int, 3> face = tetrahedron_face_nodes(f);
+      for (unsigned int v = 0; v < 3; ++v)
+        {
+          for (unsigned int a = 0; a < 3; ++a)
+            base[v].value[a] = a == v ? 1. : 0.;
+          for (unsigned int k = 0; k < 4; ++k)
+            base[v].value[3 + k] = target(k, c[face[v]]);
+        }
+    }
+
     /**
      * The unit outward normal @p n of the face opposite node @p f of a
      * positively oriented tetrahedron with scaled gradients @p g
@@ -486,15 +518,8 @@ namespace tmfdem
                              FacePotentialIntegrals       &result)
     {
       using namespace tetrahedron_contact_internal;
-      const std::array<unsigned int, 3> face = tetrahedron_face_nodes(f);
-      FaceVertex                        base[3];
-      for (unsigned int v = 0; v < 3; ++v)
-        {
-          for (unsigned int a = 0; a < 3; ++a)
-            base[v].value[a] = a == v ? 1. : 0.;
-          for (unsigned int k = 0; k < 4; ++k)
-            base[v].value[3 + k] = target(k, c[face[v]]);
-        }
+      FaceVertex base[3];
+      face_vertices(c, f, target, base);
       // quick rejection: the whole face outside one target face
       for (unsigned int k = 0; k < 4; ++k)
         if (base[0].value[3 + k] <= 0. && base[1].value[3 + k] <= 0. &&
@@ -519,10 +544,8 @@ namespace tmfdem
           for (unsigned int v = 1; v + 1 < n; ++v)
             {
               const double *p0 = P[0].value, *p1 = P[v].value,
-                           *p2 = P[v + 1].value;
-              const double area =
-                face_area * std::abs((p1[1] - p0[1]) * (p2[2] - p0[2]) -
-                                     (p1[2] - p0[2]) * (p2[1] - p0[1]));
+                           *p2  = P[v + 1].value;
+              const double area = fan_triangle_area(p0, p1, p2, face_area);
               if (!(area > 0.))
                 continue;
               entered = true;

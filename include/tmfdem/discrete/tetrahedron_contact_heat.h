@@ -116,13 +116,7 @@ namespace tmfdem
               const std::array<unsigned int, 3> face =
                 tetrahedron_face_nodes(f);
               FaceVertex base[3];
-              for (unsigned int v = 0; v < 3; ++v)
-                {
-                  for (unsigned int a = 0; a < 3; ++a)
-                    base[v].value[a] = a == v ? 1. : 0.;
-                  for (unsigned int k = 0; k < 4; ++k)
-                    base[v].value[3 + k] = coordinates[t](k, x[c][face[v]]);
-                }
+              face_vertices(x[c], f, coordinates[t], base);
               // the face clipped by the target's four face planes
               FaceVertex        buffers[2][max_face_vertices];
               const FaceVertex *P = base;
@@ -138,10 +132,8 @@ namespace tmfdem
               for (unsigned int v = 1; v + 1 < n; ++v)
                 {
                   const double *p0 = P[0].value, *p1 = P[v].value,
-                               *p2 = P[v + 1].value;
-                  const double area =
-                    face_area * std::abs((p1[1] - p0[1]) * (p2[2] - p0[2]) -
-                                         (p1[2] - p0[2]) * (p2[1] - p0[1]));
+                               *p2  = P[v + 1].value;
+                  const double area = fan_triangle_area(p0, p1, p2, face_area);
                   if (!(area > 0.))
                     continue;
                   clipped[entry] += area;
@@ -282,10 +274,8 @@ namespace tmfdem
         }
       else
         {
-          transfer.conductance = h_c * interface.area;
-          transfer.heat_flow =
-            transfer.conductance *
-            (transfer.target_temperature - transfer.contactor_temperature);
+          temperature_difference_heat(h_c * interface.area, transfer);
+          return;
         }
       split_heat_exactly(transfer.heat_flow,
                          transfer.contactor_shape,
