@@ -104,15 +104,18 @@ parallel = check_parallel(s2, threads=2, load_before=load_before)
 ok &= parallel != "fail"
 
 
+# the blocks insulated, nearly isothermal, at 100 C and 0 C at t = 0
+INSULATED = ["Thermal boundary conditions/Condition 1/Boundary ids=",
+             "Thermal boundary conditions/Condition 2/Boundary ids=",
+             "Materials/Material 1/Thermal conductivity=1000",
+             "Materials/Material 2/Thermal conductivity=1000",
+             "Materials/Material 1/Initial temperature=100",
+             "Materials/Material 2/Initial temperature=0"]
+
+
 def equilibrate(folder, label, *settings, literal=False):
     global ok
-    run(binary, prm, folder,
-        "Thermal boundary conditions/Condition 1/Boundary ids=",
-        "Thermal boundary conditions/Condition 2/Boundary ids=",
-        "Materials/Material 1/Thermal conductivity=1000",
-        "Materials/Material 2/Thermal conductivity=1000",
-        "Materials/Material 1/Initial temperature=100",
-        "Materials/Material 2/Initial temperature=0",
+    run(binary, prm, folder, *INSULATED,
         "Time stepping/End time=3000", "Output/Times=" +
         ", ".join(str(250 * i) for i in range(1, 13)), *settings)
     series = vtu_pieces.read_series(folder)
@@ -158,14 +161,7 @@ for label, settings in (("explicit", ("Discrete heat/Time integration=explicit",
                                       "Time stepping/Time step=5e-7")),
                         ("implicit", ("Time stepping/Time step=5e-4",))):
     folder = os.path.join(out, f"short_{label}")
-    run(binary, prm, folder,
-        "Thermal boundary conditions/Condition 1/Boundary ids=",
-        "Thermal boundary conditions/Condition 2/Boundary ids=",
-        "Materials/Material 1/Thermal conductivity=1000",
-        "Materials/Material 2/Thermal conductivity=1000",
-        "Materials/Material 1/Initial temperature=100",
-        "Materials/Material 2/Initial temperature=0",
-        "Discrete heat/Contact conductance=50",
+    run(binary, prm, folder, *INSULATED, "Discrete heat/Contact conductance=50",
         "Time stepping/End time=0.05", "Output/Times=0.05", *settings)
     s = summary(folder)
     exchange, expected = s["heat_balance"]["contact_exchange"], 50.0 * section * 100.0 * 0.05
