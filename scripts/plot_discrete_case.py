@@ -7,7 +7,8 @@ CASE is one of joint_pull, joint_pull-3d, block_on_incline, two_blocks_collision
 two_blocks_collision-3d, block_on_incline-3d,
 brazilian_disc, plate_traction, plate_transient, plate_transient-discrete-3d,
 contact_conduction, contact_conduction-3d,
-sheet_free_expansion, sheet_restrained_expansion, thermal_shock_disc-3d. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
+sheet_free_expansion, sheet_restrained_expansion, thermal_shock_disc-3d,
+sphere_drop-3d. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
 probes.csv, summary.json, solution_*.vtu, cracks_*.vtu). Cases that compare
 several runs read one sub-folder per run, the layout the verification
 scripts write:
@@ -27,6 +28,7 @@ scripts write:
                        (verify_discrete_contact_3d.py incline)
     two_blocks_collision-3d: OUTPUT_FOLDER/collision/
                        (verify_discrete_contact_3d.py)
+    sphere_drop-3d:    OUTPUT_FOLDER/drop/ (verify_discrete_sphere_drop_3d.py)
     thermal_shock_disc-3d: OUTPUT_FOLDER/{disc-3d,disc-2d}/
                        (verify_discrete_thermal_shock_3d.py)
     sheet_*_expansion: OUTPUT_FOLDER/free_{+100,-100}/,
@@ -439,6 +441,55 @@ def plot_block_on_incline_3d(folder, png):
     fig.savefig(png)
     print(f"block_on_incline-3d: a fit {a_fit:.6f} vs {a0:.6f} m/s^2; "
           f"sideways max {np.max(np.abs(side)):.3e} m; stick max {np.max(u):.3e} m")
+    print(f"wrote {png}")
+
+
+def plot_sphere_drop_3d(folder, png):
+    """Reads OUTPUT_FOLDER/drop (verify_discrete_sphere_drop_3d.py)."""
+    R, E, nu, rho, v, gap = 0.05, 5e10, 0.25, 2700.0, 20.0, 0.0005
+    sub = os.path.join(folder, "drop")
+    ensure_run(sub, "sphere_drop-3d.prm")
+    h = read_csv(os.path.join(sub, "history.csv"))
+    t, F = h["time"], 4.0 * np.abs(h["body2_fz"])
+    # Hertz: m delta'' = -4/3 E* sqrt(R) delta^(3/2), delta(0) = 0,
+    # delta'(0) = v (RK4 until the sphere leaves the plate)
+    m = 4.0 / 3.0 * math.pi * R ** 3 * rho
+    K = 4.0 / 3.0 * E / (1.0 - nu * nu) * math.sqrt(R)
+    acc = lambda d: -K / m * max(d, 0.0) ** 1.5  # noqa: E731
+    dt, d, w, th, Fh = 1e-8, 0.0, v, [0.0], [0.0]
+    while True:
+        k1, l1 = w, acc(d)
+        k2, l2 = w + 0.5 * dt * l1, acc(d + 0.5 * dt * k1)
+        k3, l3 = w + 0.5 * dt * l2, acc(d + 0.5 * dt * k2)
+        k4, l4 = w + dt * l3, acc(d + dt * k3)
+        d += dt / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
+        w += dt / 6.0 * (l1 + 2 * l2 + 2 * l3 + l4)
+        if d <= 0.0:
+            break
+        th.append(th[-1] + dt)
+        Fh.append(K * d ** 1.5)
+    th.append(th[-1] + dt)
+    Fh.append(0.0)
+    th = np.array(th) + gap / v
+    on = np.nonzero(F > 1e-6 * max(Fh))[0]
+    duration = t[on[-1]] - t[on[0]]
+    fig, ax = plt.subplots(figsize=(7, 4.5), dpi=150)
+    ax.plot(1e6 * th, 1e-3 * np.array(Fh), "-", color="gray", lw=2.5, alpha=0.6,
+            label=f"Hertz: t_c = {1e6 * (th[-1] - th[0]):.1f} us, "
+                  f"F_max = {1e-3 * max(Fh):.0f} kN")
+    ax.plot(1e6 * t, 1e-3 * F, "C0-", lw=1,
+            label=f"tmfdem (4 x the quarter's reaction): contact "
+                  f"{1e6 * duration:.1f} us, peak {1e-3 * F.max():.0f} kN")
+    ax.set_xlabel("t [us]")
+    ax.set_ylabel("contact force on the plate [kN]")
+    ax.set_title(f"Sphere (R = {R} m, E = {E:g} Pa, nu = {nu}) dropped on a fixed "
+                 f"plate at {v:g} m/s", fontsize=9)
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(png)
+    print(f"sphere_drop-3d: contact {duration:.6e} s vs Hertz "
+          f"{th[-1] - th[0]:.6e} s; peak {F.max():.6e} N vs {max(Fh):.6e} N")
     print(f"wrote {png}")
 
 
@@ -1077,7 +1128,8 @@ CASES = {"joint_pull": plot_joint_pull,
          "contact_conduction-3d": plot_contact_conduction_3d,
          "sheet_free_expansion": plot_sheet_free_expansion,
          "sheet_restrained_expansion": plot_sheet_restrained_expansion,
-         "thermal_shock_disc-3d": plot_thermal_shock_disc_3d}
+         "thermal_shock_disc-3d": plot_thermal_shock_disc_3d,
+         "sphere_drop-3d": plot_sphere_drop_3d}
 
 
 def main():
