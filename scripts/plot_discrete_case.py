@@ -446,7 +446,8 @@ def plot_block_on_incline_3d(folder, png):
 
 def plot_sphere_drop_3d(folder, png):
     """Reads OUTPUT_FOLDER/drop (verify_discrete_sphere_drop_3d.py)."""
-    R, E, nu, rho, v, gap = 0.05, 5e10, 0.25, 2700.0, 20.0, 0.0005
+    sys.path.insert(0, os.path.join(ROOT, "tests", "scripts"))
+    from verify_discrete_sphere_drop_3d import R, E, nu, rho, v, gap
     sub = os.path.join(folder, "drop")
     ensure_run(sub, "sphere_drop-3d.prm")
     h = read_csv(os.path.join(sub, "history.csv"))

@@ -31,12 +31,10 @@ import sys
 
 from common import run, summary, check
 
-binary, out = sys.argv[1], sys.argv[2]
-settings = sys.argv[3:]
-prm = os.path.join(os.path.dirname(__file__), "..", "..", "prm",
-                   "sphere_drop-3d.prm")
+prm = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                   "prm", "sphere_drop-3d.prm")
 
-# the prm's values
+# the prm's values (scripts/plot_discrete_case.py imports them)
 R, E, nu, rho, v, gap = 0.05, 5e10, 0.25, 2700.0, 20.0, 0.0005
 
 
@@ -58,6 +56,8 @@ def hertz():
 
 
 def main():
+    binary, out = sys.argv[1], sys.argv[2]
+    settings = sys.argv[3:]
     ok = True
     delta, F_max, t_c, m = hertz()
     print(f"Hertz: delta_max = {delta:.6e} m, F_max = {F_max:.6e} N, "
