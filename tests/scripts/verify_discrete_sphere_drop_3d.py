@@ -16,7 +16,7 @@ Checked, bounds fixed before the run:
   - the contact lasts t_c within 5 % (the plate's reaction is non-zero from
     the touch to the rebound);
   - the peak force, 4 times the quarter's reaction, is F_max within 10 %
-    (linear tetrahedra, a / h of about 5 under the contact);
+    (linear tetrahedra, a / h of about 6 under the contact);
   - the impact gains no energy: the energy balance closes to 1 % of the
     initial kinetic energy, and the centre of mass rebounds no faster than
     it came (restitution <= 1), and not below 0.9 (the elastic impact loses
