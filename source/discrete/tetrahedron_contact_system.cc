@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <tmfdem/base/exceptions.h>
 #include <tmfdem/discrete/tetrahedron_contact_system.h>
@@ -9,6 +10,26 @@ namespace tmfdem
 {
   namespace discrete
   {
+    namespace
+    {
+      /** The potential of a pair of normal contact energy @p E with the
+       *  offset @p E0 [J]: (E - E0)^2 / E above the offset, 0 at or below
+       *  it. */
+      double
+      offset_energy(const double E, const double E0)
+      {
+        return E > E0 ? (E - E0) * (E - E0) / E : 0.;
+      }
+
+      /** Its derivative with respect to E above the offset, 1 - (E0 /
+       *  E)^2: the factor on the normal forces of E [-]. */
+      double
+      offset_force_factor(const double E, const double E0)
+      {
+        return 1. - (E0 / E) * (E0 / E);
+      }
+    } // namespace
+
     void
     TetrahedronContactSystem::setup(
       const ContactSettings            &settings,
@@ -17,6 +38,7 @@ namespace tmfdem
       contact     = settings;
       rigid_group = rigid_groups;
       pair_list.clear();
+      pair_energy_offset.clear();
       index_pairs(static_cast<unsigned int>(rigid_group.size()));
       reset(settings.buffer);
       searches = 0;
@@ -76,12 +98,21 @@ namespace tmfdem
     TetrahedronContactSystem::search(const DiscreteModel &model,
                                      tbb::task_arena     &arena)
     {
+      continuity.update(model);
       const auto skip = [&](const unsigned int a, const unsigned int b) {
-        return model.joined(a, b);
+        return model.joined(a, b) || continuity.continuous(a, b);
       };
-      const std::vector<double> *const coordinates[3] = {&model.x,
-                                                         &model.y,
-                                                         &model.z};
+      // the pairs of the last search (sorted), to carry their offsets over
+      std::vector<std::uint64_t> previous(pair_list.size());
+      const auto                 key = [](const TetrahedronContactPair &pair) {
+        return (static_cast<std::uint64_t>(pair.first) << 32) | pair.second;
+      };
+      for (std::size_t p = 0; p < pair_list.size(); ++p)
+        previous[p] = key(pair_list[p]);
+      const std::vector<double>        previous_offset = pair_energy_offset;
+      const std::vector<double> *const coordinates[3]  = {&model.x,
+                                                          &model.y,
+                                                          &model.z};
       linked_cells
         .rebuild(coordinates, active, contact.buffer, skip, pair_list, arena);
       index_pairs(model.n_elements);
@@ -93,6 +124,42 @@ namespace tmfdem
                                 pair_list[p].first,
                                 pair_list[p].second,
                                 contact.penalty_coulomb.normal_penalty);
+      // energy offsets: kept for pairs found again; a new pair that is not
+      // the two faces of a joint brings the energy it has now (0 unless a
+      // crack has just parted two corners of one piece that overlapped)
+      pair_energy_offset.assign(pair_list.size(), 0.);
+      std::vector<char> is_new(pair_list.size(), 0);
+      std::size_t       old = 0;
+      for (std::size_t p = 0; p < pair_list.size(); ++p)
+        {
+          const std::uint64_t k = key(pair_list[p]);
+          while (old < previous.size() && previous[old] < k)
+            ++old;
+          if (old < previous.size() && previous[old] == k)
+            pair_energy_offset[p] = previous_offset[old];
+          else
+            is_new[p] =
+              searches > 0 && !pair_is_rigid[p] &&
+              model.joint_between(pair_list[p].first, pair_list[p].second) < 0;
+        }
+      for_each_chunk(arena,
+                     pair_list.size(),
+                     64,
+                     [&](const std::size_t begin,
+                         const std::size_t end,
+                         const std::size_t) {
+                       for (std::size_t p = begin; p < end; ++p)
+                         if (is_new[p])
+                           {
+                             double x[2][4][3], v[2][4][3];
+                             gather(model, pair_list[p].first, x[0], v[0]);
+                             gather(model, pair_list[p].second, x[1], v[1]);
+                             pair_energy_offset[p] = pair_contact_energy_3d(
+                               x,
+                               contact.penalty_coulomb.normal_penalty *
+                                 pair_penalty_factor[p]);
+                           }
+                     });
       searched();
       ++searches;
     }
@@ -181,6 +248,22 @@ namespace tmfdem
               // the faces of a broken joint: its compressive stiffness
               law.normal_penalty =
                 contact.penalty_coulomb.normal_penalty * pair_penalty_factor[p];
+              if (pair_energy_offset[p] > 0.)
+                {
+                  // potential (E - E_0)^2 / E above the offset, 0 below it
+                  // (the offset follows E down): the normal forces of E
+                  // times 1 - (E_0 / E)^2, which starts from 0
+                  const double energy =
+                    pair_contact_energy_3d(x, law.normal_penalty);
+                  if (energy <= pair_energy_offset[p])
+                    {
+                      pair_energy_offset[p] = energy;
+                      pair.friction         = TetrahedronPairFriction();
+                      continue;
+                    }
+                  law.normal_penalty *=
+                    offset_force_factor(energy, pair_energy_offset[p]);
+                }
               pair_friction[p] =
                 add_pair_forces_3d(x, v, law, dt, pair.friction, force);
             }
@@ -231,27 +314,29 @@ namespace tmfdem
       constexpr std::size_t chunk = 64;
       std::vector<double>   chunk_energy((pair_list.size() + chunk - 1) / chunk,
                                        0.);
-      for_each_chunk(arena,
-                     pair_list.size(),
-                     chunk,
-                     [&](const std::size_t begin,
-                         const std::size_t end,
-                         const std::size_t c) {
-                       double energy = 0.;
-                       for (std::size_t p = begin; p < end; ++p)
-                         {
-                           if (pair_is_rigid[p])
-                             continue;
-                           double x[2][4][3], v[2][4][3];
-                           gather(m, pair_list[p].first, x[0], v[0]);
-                           gather(m, pair_list[p].second, x[1], v[1]);
-                           energy += pair_contact_energy_3d(
-                             x,
-                             contact.penalty_coulomb.normal_penalty *
-                               pair_penalty_factor[p]);
-                         }
-                       chunk_energy[c] = energy;
-                     });
+      for_each_chunk(
+        arena,
+        pair_list.size(),
+        chunk,
+        [&](const std::size_t begin,
+            const std::size_t end,
+            const std::size_t c) {
+          double energy = 0.;
+          for (std::size_t p = begin; p < end; ++p)
+            {
+              if (pair_is_rigid[p])
+                continue;
+              double x[2][4][3], v[2][4][3];
+              gather(m, pair_list[p].first, x[0], v[0]);
+              gather(m, pair_list[p].second, x[1], v[1]);
+              energy += offset_energy(
+                pair_contact_energy_3d(x,
+                                       contact.penalty_coulomb.normal_penalty *
+                                         pair_penalty_factor[p]),
+                pair_energy_offset[p]);
+            }
+          chunk_energy[c] = energy;
+        });
       double energy = 0.;
       for (const double e : chunk_energy)
         energy += e;
@@ -265,6 +350,7 @@ namespace tmfdem
       out.put<std::uint64_t>(searches);
       out.put(pair_list);
       out.put(pair_penalty_factor);
+      out.put(pair_energy_offset);
     }
 
     void
@@ -277,15 +363,17 @@ namespace tmfdem
       searches = count;
       in.get(pair_list);
       in.get(pair_penalty_factor);
+      in.get(pair_energy_offset);
       for (const auto &p : pair_list)
         if (p.first >= n_elements || p.second >= n_elements)
           throw InputError("the checkpoint '" + in.name() +
                            "' is corrupt (contact pair of tetrahedron " +
                            std::to_string(std::max(p.first, p.second)) + ").");
-      if (pair_penalty_factor.size() != pair_list.size())
+      if (pair_penalty_factor.size() != pair_list.size() ||
+          pair_energy_offset.size() != pair_list.size())
         throw InputError("the checkpoint '" + in.name() +
                          "' is corrupt (contact pairs and their penalties "
-                         "differ in number).");
+                         "or energy offsets differ in number).");
       index_pairs(n_elements);
     }
   } // namespace discrete

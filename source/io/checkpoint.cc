@@ -38,7 +38,7 @@ namespace tmfdem
     }
 
     constexpr char          magic[8] = {'T', 'M', 'F', 'D', 'E', 'M', 'C', 'K'};
-    constexpr std::uint32_t format_version = 7;
+    constexpr std::uint32_t format_version = 8;
     constexpr std::size_t   header_bytes   = 32;
 
     std::uint64_t

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <map>
 #include <tmfdem/discrete/discrete_model.h>
+#include <tmfdem/discrete/vertex_continuity.h>
 
 using namespace dealii;
 using namespace tmfdem;
@@ -165,4 +166,75 @@ TEST(DiscreteModel3D, ExplodedTetrahedraWithAJointOnEveryInteriorFace)
   const unsigned int ea = m.joint_elements[2], eb = m.joint_elements[3];
   EXPECT_TRUE(m.joined(ea, eb));
   EXPECT_FALSE(m.joined(m.joint_elements[0], m.joint_elements[1]));
+}
+
+// In an intact box every two tetrahedra that share a vertex or an edge are
+// one piece of material around it, and face neighbours are left to their
+// joint. Breaking every joint in the plane x = 1 parts the stars of the
+// vertices on that plane: pairs with a tetrahedron on each side are no
+// longer continuous, pairs on one side still are.
+TEST(VertexContinuity, ACrackPartsTheStarsOfItsVertices)
+{
+  Triangulation<3> triangulation;
+  tetrahedral_box(triangulation);
+  const FE_SimplexDGP<3> fe(1);
+  DoFHandler<3>          dof_handler(triangulation);
+  dof_handler.distribute_dofs(fe);
+  DiscreteModel m;
+  m.build(dof_handler);
+
+  const auto shared_vertices = [&](const unsigned int a, const unsigned int b) {
+    unsigned int shared = 0;
+    for (unsigned int k = 0; k < 4; ++k)
+      for (unsigned int l = 0; l < 4; ++l)
+        shared += m.node_vertex[4 * a + k] == m.node_vertex[4 * b + l];
+    return shared;
+  };
+  const auto side = [&](const unsigned int e) {
+    double x = 0.;
+    for (unsigned int k = 0; k < 4; ++k)
+      x += 0.25 * m.x_ref[4 * e + k];
+    return x < 1.;
+  };
+
+  VertexContinuity continuity;
+  continuity.update(m);
+  unsigned int vertex_pairs = 0;
+  for (unsigned int a = 0; a < m.n_elements; ++a)
+    for (unsigned int b = a + 1; b < m.n_elements; ++b)
+      {
+        const unsigned int shared = shared_vertices(a, b);
+        EXPECT_EQ(continuity.continuous(a, b), shared == 1 || shared == 2)
+          << a << " " << b;
+        vertex_pairs += shared == 1 || shared == 2;
+      }
+  EXPECT_GT(vertex_pairs, m.n_elements);
+
+  unsigned int broken = 0;
+  for (unsigned int j = 0; j < m.n_joints; ++j)
+    {
+      bool on_plane = true;
+      for (unsigned int i = 0; i < 3; ++i)
+        on_plane =
+          on_plane && std::abs(m.x_ref[m.joint_nodes[6 * j + i]] - 1.) < 1e-12;
+      if (on_plane)
+        {
+          m.joint_status[j] = JointStatus::mode_I;
+          ++broken;
+        }
+    }
+  EXPECT_GT(broken, 0u);
+  continuity.update(m);
+  unsigned int parted = 0;
+  for (unsigned int a = 0; a < m.n_elements; ++a)
+    for (unsigned int b = a + 1; b < m.n_elements; ++b)
+      {
+        const unsigned int shared      = shared_vertices(a, b);
+        const bool         vertex_pair = shared == 1 || shared == 2;
+        EXPECT_EQ(continuity.continuous(a, b),
+                  vertex_pair && side(a) == side(b))
+          << a << " " << b;
+        parted += vertex_pair && side(a) != side(b);
+      }
+  EXPECT_GT(parted, 0u);
 }

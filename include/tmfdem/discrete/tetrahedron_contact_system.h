@@ -16,6 +16,7 @@
 #include <tmfdem/discrete/contact_system.h>
 #include <tmfdem/discrete/discrete_model.h>
 #include <tmfdem/discrete/tetrahedron_contact.h>
+#include <tmfdem/discrete/vertex_continuity.h>
 #include <vector>
 
 namespace tmfdem
@@ -106,16 +107,27 @@ namespace tmfdem
 
       /**
        * Rebuilds the pair list from the current geometry of @p model: pairs
-       * of active tetrahedra whose boxes come within the buffer and that no
-       * intact joint joins. Pairs within one rigid group carry no force.
-       * Friction history of pairs found again is kept.
+       * of active tetrahedra whose boxes come within the buffer, that no
+       * intact joint joins, and that are not one piece of material around
+       * the vertices or the edge they share (VertexContinuity). Pairs within
+       * one rigid group carry no force. Friction history and energy offset
+       * of pairs found again are kept. A pair new to the list after the
+       * first search that is not the two faces of a broken joint takes the
+       * normal contact energy it has now as its offset: the overlap that two
+       * corners of one intact piece had through the joints' compliance is
+       * not pushed out when a crack makes them two (doc/theory.md 5.13).
        */
       void
       search(const DiscreteModel &model, tbb::task_arena &arena);
 
-      /** The forces of every pair at the current state of @p model over
-       *  the step @p dt [s] (friction history, and the friction dissipated
-       *  per pair). */
+      /**
+       * The forces of every pair at the current state of @p model over the
+       * step @p dt [s] (friction history, and the friction dissipated per
+       * pair). A pair with an energy offset E_0 > 0 has the potential
+       * max(E - E_0, 0) of its normal contact energy E: no force while E <=
+       * E_0, and E_0 follows E down (the offset shrinks as the corners
+       * separate and is gone once they do).
+       */
       void
       compute_forces(const DiscreteModel &model,
                      const double         dt,
@@ -170,9 +182,10 @@ namespace tmfdem
 
       /**
        * The energy stored in the normal contact of the current pairs [J]:
-       * E_t + E_c (pair_contact_energy_3d()) summed over the pairs that
-       * carry force, each with its penalty (face_penalty_factor()), per
-       * chunk of first tetrahedra in chunk order.
+       * E_t + E_c (pair_contact_energy_3d()) less the pair's energy offset,
+       * at least 0, summed over the pairs that carry force, each with its
+       * penalty (face_penalty_factor()), per chunk of first tetrahedra in
+       * chunk order.
        */
       double
       stored_energy(const DiscreteModel &model, tbb::task_arena &arena) const;
@@ -223,6 +236,12 @@ namespace tmfdem
       std::vector<char> pair_is_rigid;
       /** face_penalty_factor() of each pair [-]. */
       std::vector<double> pair_penalty_factor;
+      /** Normal contact energy of each pair that its potential leaves out
+       *  (search()) [J]. */
+      std::vector<double> pair_energy_offset;
+      /** The pieces of material around each vertex, as of the last
+       *  search. */
+      VertexContinuity    continuity;
       std::vector<double> pair_force;    ///< 24 per pair [N]
       std::vector<double> pair_friction; ///< dissipation this step [J]
       /** Pairs of tetrahedron e: element_pair_entries[start[e] ..
