@@ -1137,6 +1137,8 @@ namespace tmfdem
           // over, and the O(dt^2) error of the work)
           energy.add("contact_stored",
                      contact->stored_energy(model, arena_for(n_threads)));
+          // what the faces of joints broken in compression brought in
+          energy.add("contact_handed_over", contact->handed_over_energy());
           energy.add("friction_dissipation", energies.friction);
         }
       energy.add("balance_error", energy_balance_error());

@@ -39,6 +39,7 @@ namespace tmfdem
       rigid_group = rigid_groups;
       pair_list.clear();
       pair_energy_offset.clear();
+      handed_over = 0.;
       index_pairs(static_cast<unsigned int>(rigid_group.size()));
       reset(settings.buffer);
       searches = 0;
@@ -126,9 +127,17 @@ namespace tmfdem
                                 contact.penalty_coulomb.normal_penalty);
       // energy offsets: kept for pairs found again; a new pair that is not
       // the two faces of a joint brings the energy it has now (0 unless a
-      // crack has just parted two corners of one piece that overlapped)
+      // crack has just parted two corners of one piece that overlapped); the
+      // two faces of a joint broken since the last search bring theirs into
+      // the contact (handed_over)
+      enum : char
+      {
+        found_again,
+        new_pair,
+        new_joint_faces
+      };
       pair_energy_offset.assign(pair_list.size(), 0.);
-      std::vector<char> is_new(pair_list.size(), 0);
+      std::vector<char> kind(pair_list.size(), found_again);
       std::size_t       old = 0;
       for (std::size_t p = 0; p < pair_list.size(); ++p)
         {
@@ -137,11 +146,13 @@ namespace tmfdem
             ++old;
           if (old < previous.size() && previous[old] == k)
             pair_energy_offset[p] = previous_offset[old];
-          else
-            is_new[p] =
-              searches > 0 && !pair_is_rigid[p] &&
-              model.joint_between(pair_list[p].first, pair_list[p].second) < 0;
+          else if (searches > 0 && !pair_is_rigid[p])
+            kind[p] =
+              model.joint_between(pair_list[p].first, pair_list[p].second) < 0 ?
+                new_pair :
+                new_joint_faces;
         }
+      std::vector<double> energy_now(pair_list.size(), 0.);
       for_each_chunk(arena,
                      pair_list.size(),
                      64,
@@ -149,17 +160,22 @@ namespace tmfdem
                          const std::size_t end,
                          const std::size_t) {
                        for (std::size_t p = begin; p < end; ++p)
-                         if (is_new[p])
+                         if (kind[p] != found_again)
                            {
                              double x[2][4][3], v[2][4][3];
                              gather(model, pair_list[p].first, x[0], v[0]);
                              gather(model, pair_list[p].second, x[1], v[1]);
-                             pair_energy_offset[p] = pair_contact_energy_3d(
+                             energy_now[p] = pair_contact_energy_3d(
                                x,
                                contact.penalty_coulomb.normal_penalty *
                                  pair_penalty_factor[p]);
                            }
                      });
+      for (std::size_t p = 0; p < pair_list.size(); ++p)
+        if (kind[p] == new_pair)
+          pair_energy_offset[p] = energy_now[p];
+        else if (kind[p] == new_joint_faces)
+          handed_over += energy_now[p];
       searched();
       ++searches;
     }
@@ -351,6 +367,7 @@ namespace tmfdem
       out.put(pair_list);
       out.put(pair_penalty_factor);
       out.put(pair_energy_offset);
+      out.put(handed_over);
     }
 
     void
@@ -364,6 +381,7 @@ namespace tmfdem
       in.get(pair_list);
       in.get(pair_penalty_factor);
       in.get(pair_energy_offset);
+      in.get(handed_over);
       for (const auto &p : pair_list)
         if (p.first >= n_elements || p.second >= n_elements)
           throw InputError("the checkpoint '" + in.name() +

@@ -17,8 +17,11 @@
      kinetic energy at some time), friction dissipates (> 0, never
      decreasing), the contact gains no energy (its work on the nodes at the
      end, stored + dissipated, is not below minus the largest balance error
-     of the run, the O(dt^2) error of the works), and the impact fractures
-     (broken joints > 10).
+     of the run, the O(dt^2) error of the works); more sharply, its normal
+     part (work less friction) is not below what the overlaps hold less
+     what the faces of joints broken in compression brought in
+     (summary.json contact_handed_over) by more than that error; and the
+     impact fractures (broken joints > 10).
 2. The same collision with unbreakable joints and no friction: the normal
    contact is conservative, so after the impact the work the nodes did on
    it equals the energy its overlaps hold (summary.json contact_stored) to
@@ -162,6 +165,18 @@ def collision():
                 f"{contact_work[-1]:.4e} J (stored {e['contact_stored']:.3e} J, "
                 f"friction {friction[-1]:.4e} J) >= -{largest_balance:.3e} J, "
                 f"the largest balance error of the run")
+    # sharper: the normal contact's own books. Its work less friction is
+    # what the overlaps hold now, less what the faces of joints broken in
+    # compression brought in (the joints' work before), plus the elastic
+    # energy of the friction springs (>= 0): never below that by more than
+    # the O(dt^2) error of the works
+    normal_work = contact_work[-1] - friction[-1]
+    books = normal_work - (e["contact_stored"] - e["contact_handed_over"])
+    ok &= check(books >= -largest_balance,
+                f"the normal contact gains no energy: its work "
+                f"{normal_work:.4e} J - (stored {e['contact_stored']:.4e} J - "
+                f"handed over by broken joints {e['contact_handed_over']:.4e} J)"
+                f" = {books:.3e} J >= -{largest_balance:.3e} J")
     ok &= check(s["broken_joints"] > 10,
                 f"the impact fractures: {s['broken_joints']} broken joints, "
                 f"{s['cracks']} cracks, {s['contact_pairs']} contact pairs, "

@@ -190,6 +190,20 @@ namespace tmfdem
       double
       stored_energy(const DiscreteModel &model, tbb::task_arena &arena) const;
 
+      /**
+       * The normal contact energy the two faces of joints broken in
+       * compression brought into the contact, summed over the searches that
+       * found them first (each with its penalty, face_penalty_factor()) [J].
+       * The joints' share of the joint work becomes the contact's: without
+       * it the contact work equals the stored energy plus the friction
+       * dissipated; with it, that less this.
+       */
+      double
+      handed_over_energy() const
+      {
+        return handed_over;
+      }
+
       /** The pair of largest overlap (largest_overlap()). */
       struct Overlap
       {
@@ -239,6 +253,8 @@ namespace tmfdem
       /** Normal contact energy of each pair that its potential leaves out
        *  (search()) [J]. */
       std::vector<double> pair_energy_offset;
+      /** handed_over_energy() [J]. */
+      double handed_over = 0.;
       /** The pieces of material around each vertex, as of the last
        *  search. */
       VertexContinuity    continuity;
