@@ -124,8 +124,9 @@ namespace tmfdem
        * The forces of every pair at the current state of @p model over the
        * step @p dt [s] (friction history, and the friction dissipated per
        * pair). A pair with an energy offset E_0 > 0 has the potential
-       * max(E - E_0, 0) of its normal contact energy E: no force while E <=
-       * E_0, and E_0 follows E down (the offset shrinks as the corners
+       * (E - E_0)^2 / E of its normal contact energy E above the offset and
+       * 0 below it: the normal forces of E times 1 - (E_0 / E)^2, none while
+       * E <= E_0, and E_0 follows E down (the offset shrinks as the corners
        * separate and is gone once they do).
        */
       void
@@ -182,10 +183,10 @@ namespace tmfdem
 
       /**
        * The energy stored in the normal contact of the current pairs [J]:
-       * E_t + E_c (pair_contact_energy_3d()) less the pair's energy offset,
-       * at least 0, summed over the pairs that carry force, each with its
-       * penalty (face_penalty_factor()), per chunk of first tetrahedra in
-       * chunk order.
+       * E_t + E_c (pair_contact_energy_3d()), or (E - E_0)^2 / E above a
+       * pair's energy offset E_0 and 0 below it, summed over the pairs that
+       * carry force, each with its penalty (face_penalty_factor()), per chunk
+       * of first tetrahedra in chunk order.
        */
       double
       stored_energy(const DiscreteModel &model, tbb::task_arena &arena) const;
