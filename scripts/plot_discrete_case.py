@@ -8,7 +8,7 @@ two_blocks_collision-3d, block_on_incline-3d,
 brazilian_disc, plate_traction, plate_transient, plate_transient-discrete-3d,
 contact_conduction, contact_conduction-3d,
 sheet_free_expansion, sheet_restrained_expansion, thermal_shock_disc-3d,
-sphere_drop-3d. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
+sphere_drop-3d, brazilian_cylinder-3d. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
 probes.csv, summary.json, solution_*.vtu, cracks_*.vtu). Cases that compare
 several runs read one sub-folder per run, the layout the verification
 scripts write:
@@ -29,6 +29,7 @@ scripts write:
     two_blocks_collision-3d: OUTPUT_FOLDER/collision/
                        (verify_discrete_contact_3d.py)
     sphere_drop-3d:    OUTPUT_FOLDER/drop/ (verify_discrete_sphere_drop_3d.py)
+    brazilian_cylinder-3d: OUTPUT_FOLDER/cylinder/ (verify_discrete_brazilian_3d.py)
     thermal_shock_disc-3d: OUTPUT_FOLDER/{disc-3d,disc-2d}/
                        (verify_discrete_thermal_shock_3d.py)
     sheet_*_expansion: OUTPUT_FOLDER/free_{+100,-100}/,
@@ -576,6 +577,77 @@ def plot_brazilian_disc(folder, png, magnify=1.0):
     print(f"  f_t from the peak, 2 P / (pi D t) = {2 * peak / (math.pi * D) / 1e6:.3f} MPa; "
           f"Hondros factor (sin 2a - a) / sin a = {hondros:.4f} at 2a = 15 degrees")
     print(f"  broken joints at the end by mode: {counts}")
+    print(f"wrote {png}")
+
+
+def plot_brazilian_cylinder_3d(folder, png):
+    """Reads OUTPUT_FOLDER/cylinder (verify_discrete_brazilian_3d.py)."""
+    sys.path.insert(0, os.path.join(ROOT, "tests", "scripts"))
+    from verify_discrete_brazilian_3d import D, t, alpha, reference_load, load_history, \
+        broken_faces, on_loaded_plane
+    sub = os.path.join(folder, "cylinder")
+    ensure_run(sub, "brazilian_cylinder-3d.prm")
+    time, load = load_history(sub)
+    time, load = 1e3 * np.array(time), np.array(load)
+    h = read_csv(os.path.join(sub, "history.csv"))
+    P0 = reference_load()
+    hondros = (math.sin(2 * alpha) - alpha) / math.sin(alpha)
+    i = int(np.argmax(load))
+    centroid, normal, area, _, mode = broken_faces(sub)
+    fig, (ax_p, ax_t, ax_s) = plt.subplots(
+        1, 3, figsize=(15, 5), dpi=150, gridspec_kw=dict(width_ratios=[1.2, 1, 0.55]))
+    ax_p.plot(time, 1e-3 * load, "-", color="C0", lw=1.2,
+              label="tmfdem: 2 x (-P_top,y + P_bottom,y) / 2 (half the thickness modelled)")
+    ax_p.axhline(1e-3 * P0, color="k", ls="--", lw=0.8,
+                 label=f"pi D t f_t / 2 = {1e-3 * P0:.3f} kN")
+    ax_p.axhline(1e-3 * P0 / hondros, color="gray", ls=":", lw=0.8,
+                 label=f"with Hondros' arc factor {hondros:.4f}: {1e-3 * P0 / hondros:.3f} kN")
+    ax_p.plot(time[i], 1e-3 * load[i], "o", color="C3",
+              label=f"peak {1e-3 * load[i]:.3f} kN at {time[i]:.3f} ms "
+                    f"({100 * (load[i] / P0 - 1):+.1f} %)")
+    ax2 = ax_p.twinx()
+    ax2.plot(time, h["broken_joints"], "-", color="C2", lw=0.8)
+    ax2.set_ylabel("broken joints", color="C2")
+    ax_p.set_xlabel("t [ms]")
+    ax_p.set_ylabel("load P [kN]")
+    ax_p.set_title(f"Brazilian cylinder, D = {1e3 * D:g} mm, t = {1e3 * t:g} mm, "
+                   "f_t = 5 MPa, G_I = 5 J/m^2", fontsize=10)
+    ax_p.legend(fontsize=7, loc="upper left")
+    ax_p.grid(alpha=0.3)
+    names = {1: ("Mode I", "C3"), 2: ("Mode II", "C0"), 3: ("mixed", "C2")}
+    # (b) along the axis: every broken face's centroid; (c) the loaded plane
+    # x = 0 seen from +x: its broken faces' centroids
+    on_plane = on_loaded_plane(centroid, normal)
+    fraction = area[on_plane].sum() / (D * t / 2)
+    for m_id, (name, c) in names.items():
+        sel = mode == m_id
+        if sel.any():
+            ax_t.plot(1e3 * centroid[sel, 0], 1e3 * centroid[sel, 1], ".", color=c, ms=3,
+                      label=f"{name}: {sel.sum()} faces")
+        sel &= on_plane
+        if sel.any():
+            ax_s.plot(1e3 * centroid[sel, 2], 1e3 * centroid[sel, 1], ".", color=c, ms=4)
+    phi = np.linspace(0, 2 * math.pi, 200)
+    ax_t.plot(1e3 * D / 2 * np.cos(phi), 1e3 * D / 2 * np.sin(phi), "k-", lw=0.6)
+    ax_t.set_aspect("equal")
+    ax_t.set_xlabel("x [mm]")
+    ax_t.set_ylabel("y [mm]")
+    ax_t.set_title(f"broken faces at {time[-1]:.2f} ms (centroids, seen along the axis)",
+                   fontsize=9)
+    ax_t.legend(fontsize=7, loc="lower right")
+    ax_s.add_patch(plt.Rectangle((0, -1e3 * D / 2), 1e3 * t / 2, 1e3 * D, fill=False, lw=0.6))
+    ax_s.set_xlim(-1, 1e3 * t / 2 + 1)
+    ax_s.set_aspect("equal")
+    ax_s.set_xlabel("z [mm] (0: mid plane)")
+    ax_s.set_ylabel("y [mm]")
+    ax_s.set_title(f"the loaded plane x = 0:\n{100 * fraction:.0f} % of it broken", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(png)
+    print(f"brazilian_cylinder-3d: peak {load[i]:.1f} N at {time[i]:.4f} ms; "
+          f"pi D t f_t / 2 = {P0:.1f} N; error {100 * (load[i] / P0 - 1):+.2f} %; "
+          f"Hondros factor {hondros:.4f}")
+    print(f"  broken faces {len(area)}, on the loaded plane {on_plane.sum()} "
+          f"({100 * fraction:.1f} % of its area); end load {load[-1]:.1f} N")
     print(f"wrote {png}")
 
 
@@ -1130,7 +1202,8 @@ CASES = {"joint_pull": plot_joint_pull,
          "sheet_free_expansion": plot_sheet_free_expansion,
          "sheet_restrained_expansion": plot_sheet_restrained_expansion,
          "thermal_shock_disc-3d": plot_thermal_shock_disc_3d,
-         "sphere_drop-3d": plot_sphere_drop_3d}
+         "sphere_drop-3d": plot_sphere_drop_3d,
+         "brazilian_cylinder-3d": plot_brazilian_cylinder_3d}
 
 
 def main():

@@ -73,9 +73,9 @@ namespace tmfdem
 
       const bool registered = register_simulation(
         "discrete mechanics",
-        "explicit FDEM dynamics: finite-strain triangles, cohesive joints, "
-        "contact with friction (no heat); in 3D tetrahedra with cohesive "
-        "joints on their faces (no contact yet)",
+        "explicit FDEM dynamics: finite-strain triangles (2D) or tetrahedra "
+        "(3D), cohesive joints on their edges or faces, contact with "
+        "friction (no heat)",
         explicit_sections(false),
         [](const Parameters &parameters,
            MPI_Comm          communicator) -> std::unique_ptr<Simulation> {
