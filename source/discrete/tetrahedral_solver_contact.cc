@@ -88,6 +88,10 @@ namespace tmfdem
             }
         }
       contact->compute_forces(model, dt, arena);
+      // the tetrahedra whose pairs are all apart take the contact-free
+      // path of the node update (their contact forces are +0)
+      for (unsigned int e = 0; e < m.n_elements; ++e)
+        element_in_contact[e] = contact->has_active_pairs(e) ? 1 : 0;
       const double dissipated = contact->friction_of_elements(0, m.n_elements);
       energies.friction += dissipated;
     }

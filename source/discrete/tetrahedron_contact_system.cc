@@ -116,6 +116,31 @@ namespace tmfdem
                                                           &model.z};
       linked_cells
         .rebuild(coordinates, active, contact.buffer, skip, pair_list, arena);
+      // the boxes are coarse for tetrahedra: drop the pairs that a plane
+      // separates by more than the buffer (they cannot meet before the next
+      // search, and the pairs between nearby tetrahedra of one intact body
+      // are most of the boxes' candidates)
+      std::vector<char> far(pair_list.size(), 0);
+      for_each_chunk(arena,
+                     pair_list.size(),
+                     64,
+                     [&](const std::size_t begin,
+                         const std::size_t end,
+                         const std::size_t) {
+                       for (std::size_t p = begin; p < end; ++p)
+                         {
+                           double x[2][4][3];
+                           gather_positions(model, pair_list[p].first, x[0]);
+                           gather_positions(model, pair_list[p].second, x[1]);
+                           far[p] =
+                             tetrahedra_apart_by_more_than(x, contact.buffer);
+                         }
+                     });
+      std::size_t kept = 0;
+      for (std::size_t p = 0; p < pair_list.size(); ++p)
+        if (!far[p])
+          pair_list[kept++] = pair_list[p];
+      pair_list.resize(kept);
       index_pairs(model.n_elements);
       pair_penalty_factor.assign(pair_list.size(), 1.);
       if (contact.match_broken_joints)
@@ -193,6 +218,9 @@ namespace tmfdem
         }
       pair_force.assign(24 * pair_list.size(), 0.);
       pair_friction.assign(pair_list.size(), 0.);
+      // a pair found again keeps its friction history: reset it at the
+      // first compute_forces() that finds its boxes apart
+      pair_active.assign(pair_list.size(), 1);
       element_pair_start.assign(n_elements + 1, 0);
       first_pair_start.assign(n_elements + 1, 0);
       for (std::size_t p = 0; p < pair_list.size(); ++p)
@@ -220,10 +248,9 @@ namespace tmfdem
     }
 
     void
-    TetrahedronContactSystem::gather(const DiscreteModel &m,
-                                     const unsigned int   e,
-                                     double (&x)[4][3],
-                                     double (&v)[4][3])
+    TetrahedronContactSystem::gather_positions(const DiscreteModel &m,
+                                               const unsigned int   e,
+                                               double (&x)[4][3])
     {
       for (unsigned int k = 0; k < 4; ++k)
         {
@@ -231,10 +258,31 @@ namespace tmfdem
           x[k][0]                 = m.x[node];
           x[k][1]                 = m.y[node];
           x[k][2]                 = m.z[node];
+        }
+    }
+
+    void
+    TetrahedronContactSystem::gather_velocities(const DiscreteModel &m,
+                                                const unsigned int   e,
+                                                double (&v)[4][3])
+    {
+      for (unsigned int k = 0; k < 4; ++k)
+        {
+          const unsigned int node = 4 * e + k;
           v[k][0]                 = m.vx[node];
           v[k][1]                 = m.vy[node];
           v[k][2]                 = m.vz[node];
         }
+    }
+
+    void
+    TetrahedronContactSystem::gather(const DiscreteModel &m,
+                                     const unsigned int   e,
+                                     double (&x)[4][3],
+                                     double (&v)[4][3])
+    {
+      gather_positions(m, e, x);
+      gather_velocities(m, e, v);
     }
 
     void
@@ -252,15 +300,33 @@ namespace tmfdem
           PenaltyCoulombContact law = contact.penalty_coulomb;
           for (std::size_t p = begin; p < end; ++p)
             {
+              if (pair_is_rigid[p]) // its forces stay the +0 of index_pairs()
+                continue;
               TetrahedronContactPair &pair  = pair_list[p];
               double                 *force = &pair_force[24 * p];
+              double                  x[2][4][3], v[2][4][3];
+              gather_positions(m, pair.first, x[0]);
+              gather_positions(m, pair.second, x[1]);
+              if (!tetrahedron_boxes_overlap(x))
+                {
+                  // apart: no force, no dissipation, the friction history
+                  // reset, the energy offset 0 (E = 0), as the full path
+                  // below gives; done once, then skipped while apart
+                  if (pair_active[p] != 0)
+                    {
+                      std::fill(force, force + 24, 0.);
+                      pair_friction[p] = 0.;
+                      pair.friction    = TetrahedronPairFriction();
+                      pair_active[p]   = 0;
+                    }
+                  pair_energy_offset[p] = 0.;
+                  continue;
+                }
+              pair_active[p] = 1;
               std::fill(force, force + 24, 0.);
               pair_friction[p] = 0.;
-              if (pair_is_rigid[p])
-                continue;
-              double x[2][4][3], v[2][4][3];
-              gather(m, pair.first, x[0], v[0]);
-              gather(m, pair.second, x[1], v[1]);
+              gather_velocities(m, pair.first, v[0]);
+              gather_velocities(m, pair.second, v[1]);
               // the faces of a broken joint: its compressive stiffness
               law.normal_penalty =
                 contact.penalty_coulomb.normal_penalty * pair_penalty_factor[p];

@@ -45,7 +45,10 @@ namespace tmfdem
      * forces of the element's pairs: entries [@p start[e], @p start[e + 1])
      * of @p entries, each 2 pair + side, whose forces are the @p width
      * components of that side in @p pair_force (2 @p width per pair), in
-     * pair order (deterministic). Both contact systems.
+     * pair order (deterministic). Both contact systems. With @p active,
+     * the pairs p with active[p] == 0 are skipped: their forces are +0, and
+     * a sum that starts from +0 is never -0, so adding +0 changes nothing
+     * (the result is bitwise that of adding them).
      */
     template <unsigned int width>
     inline void
@@ -53,11 +56,14 @@ namespace tmfdem
                             const std::vector<unsigned int> &entries,
                             const std::vector<double>       &pair_force,
                             const unsigned int               e,
-                            double                          *f)
+                            double                          *f,
+                            const unsigned char *active = nullptr)
     {
       for (unsigned int p = start[e]; p < start[e + 1]; ++p)
         {
           const unsigned int entry = entries[p];
+          if (active != nullptr && active[entry / 2] == 0)
+            continue;
           const double      *pf =
             &pair_force[2 * width * (entry / 2) + width * (entry % 2)];
           for (unsigned int i = 0; i < width; ++i)

@@ -821,19 +821,84 @@ namespace tmfdem
     }
 
     /**
-     * Whether the tetrahedra @p x[0] and @p x[1] (nodes [k][i], positively
-     * oriented) [m] overlap in a volume: false if their boxes do not
-     * overlap, if either is degenerate, or if a plane separates them (a
-     * face plane of either, or a plane along an edge of each: the
-     * separating-axis theorem for two convex polyhedra), touching counted
-     * as separated (touching_tolerance). Sets @p coordinates to their
-     * barycentric coordinates where it gets that far.
+     * Whether a plane separates the tetrahedra @p x[0] and @p x[1] (nodes
+     * [k][i]) [m] with a gap wider than @p gap [m] between them: along the
+     * normal of a face of either, or along the cross product of an edge of
+     * each (the axes of the separating-axis theorem, each made a unit
+     * vector). The contact search drops such pairs: while every node moves
+     * less than half the search buffer, two tetrahedra more than the
+     * buffer apart along a fixed direction cannot meet.
      */
     inline bool
-    tetrahedra_overlap(const double (&x)[2][4][3],
-                       TetrahedronCoordinates (&coordinates)[2])
+    tetrahedra_apart_by_more_than(const double (&x)[2][4][3], const double gap)
     {
-      using tetrahedron_contact_internal::separated;
+      static constexpr unsigned int edges[6][2] =
+        {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+      // the gap between the projections onto the axis n (any length)
+      const auto apart_along = [&](const double (&n)[3]) {
+        const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        if (!(nn > 0.))
+          return false;
+        double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+        for (unsigned int side = 0; side < 2; ++side)
+          for (unsigned int k = 0; k < 4; ++k)
+            {
+              const double p = n[0] * x[side][k][0] + n[1] * x[side][k][1] +
+                               n[2] * x[side][k][2];
+              lo[side] = std::min(lo[side], p);
+              hi[side] = std::max(hi[side], p);
+            }
+        const double width = gap * std::sqrt(nn);
+        return lo[1] - hi[0] > width || lo[0] - hi[1] > width;
+      };
+      const auto edge = [&](const unsigned int side,
+                            const unsigned int e,
+                            double (&u)[3]) {
+        for (unsigned int i = 0; i < 3; ++i)
+          u[i] = x[side][edges[e][1]][i] - x[side][edges[e][0]][i];
+      };
+      const auto cross = [](const double (&u)[3],
+                            const double (&w)[3],
+                            double (&n)[3]) {
+        n[0] = u[1] * w[2] - u[2] * w[1];
+        n[1] = u[2] * w[0] - u[0] * w[2];
+        n[2] = u[0] * w[1] - u[1] * w[0];
+      };
+      // face normals: edges (0,1) x (0,2), (0,1) x (0,3), (0,2) x (0,3),
+      // (1,2) x (1,3)
+      static constexpr unsigned int faces[4][2] = {{0, 1},
+                                                   {0, 2},
+                                                   {1, 2},
+                                                   {3, 4}};
+      double u[3], w[3], n[3];
+      for (unsigned int side = 0; side < 2; ++side)
+        for (const auto &f : faces)
+          {
+            edge(side, f[0], u);
+            edge(side, f[1], w);
+            cross(u, w, n);
+            if (apart_along(n))
+              return true;
+          }
+      for (unsigned int ea = 0; ea < 6; ++ea)
+        {
+          edge(0, ea, u);
+          for (unsigned int eb = 0; eb < 6; ++eb)
+            {
+              edge(1, eb, w);
+              cross(u, w, n);
+              if (apart_along(n))
+                return true;
+            }
+        }
+      return false;
+    }
+
+    /** Whether the axis-aligned boxes of the tetrahedra @p x[0] and
+     *  @p x[1] (nodes [k][i]) [m] overlap (touching counted as apart). */
+    inline bool
+    tetrahedron_boxes_overlap(const double (&x)[2][4][3])
+    {
       for (unsigned int i = 0; i < 3; ++i)
         {
           double lo[2], hi[2];
@@ -849,6 +914,25 @@ namespace tmfdem
           if (hi[0] <= lo[1] || hi[1] <= lo[0])
             return false;
         }
+      return true;
+    }
+
+    /**
+     * Whether the tetrahedra @p x[0] and @p x[1] (nodes [k][i], positively
+     * oriented) [m] overlap in a volume: false if their boxes do not
+     * overlap (tetrahedron_boxes_overlap()), if either is degenerate, or if a plane separates them (a
+     * face plane of either, or a plane along an edge of each: the
+     * separating-axis theorem for two convex polyhedra), touching counted
+     * as separated (touching_tolerance). Sets @p coordinates to their
+     * barycentric coordinates where it gets that far.
+     */
+    inline bool
+    tetrahedra_overlap(const double (&x)[2][4][3],
+                       TetrahedronCoordinates (&coordinates)[2])
+    {
+      using tetrahedron_contact_internal::separated;
+      if (!tetrahedron_boxes_overlap(x))
+        return false;
       return coordinates[0].set(x[0]) && coordinates[1].set(x[1]) &&
              !separated(coordinates[1], x[0]) &&
              !separated(coordinates[0], x[1]) &&

@@ -141,6 +141,20 @@ namespace tmfdem
         return element_pair_start[e + 1] > element_pair_start[e];
       }
 
+      /** Whether a pair of tetrahedron @p e may have carried force in the
+       *  last compute_forces() (the others' forces are +0: the node update
+       *  may take the contact-free path for it). */
+      bool
+      has_active_pairs(const unsigned int e) const
+      {
+        for (unsigned int p = element_pair_start[e];
+             p < element_pair_start[e + 1];
+             ++p)
+          if (pair_active[element_pair_entries[p] / 2] != 0)
+            return true;
+        return false;
+      }
+
       /** Adds the contact forces of all pairs of tetrahedron @p e to its
        *  twelve nodal components @p f [N] (pair order: deterministic). */
       void
@@ -150,7 +164,8 @@ namespace tmfdem
                                     element_pair_entries,
                                     pair_force,
                                     e,
-                                    f);
+                                    f,
+                                    pair_active.data());
       }
 
       /** Energy dissipated by friction in the last step by the pairs whose
@@ -243,6 +258,18 @@ namespace tmfdem
              double (&x)[4][3],
              double (&v)[4][3]);
 
+      /** The nodes of tetrahedron @p e into @p x [m]. */
+      static void
+      gather_positions(const DiscreteModel &model,
+                       const unsigned int   e,
+                       double (&x)[4][3]);
+
+      /** The node velocities of tetrahedron @p e into @p v [m/s]. */
+      static void
+      gather_velocities(const DiscreteModel &model,
+                        const unsigned int   e,
+                        double (&v)[4][3]);
+
       ContactSettings            contact;
       std::vector<unsigned char> rigid_group; ///< per tetrahedron
       LinkedCellSearchT<3, TetrahedronContactPair> linked_cells;
@@ -260,6 +287,11 @@ namespace tmfdem
        *  search. */
       VertexContinuity    continuity;
       std::vector<double> pair_force;    ///< 24 per pair [N]
+      /** 0 where a pair's forces, dissipation and friction history are
+       *  known to be zero (its tetrahedra's boxes were apart at the last
+       *  compute_forces() and it was reset then): compute_forces() and
+       *  add_forces() skip it until the boxes meet. */
+      std::vector<unsigned char> pair_active;
       std::vector<double> pair_friction; ///< dissipation this step [J]
       /** Pairs of tetrahedron e: element_pair_entries[start[e] ..
        *  start[e+1]), each 2 pair + side (force-carrying pairs only). */
