@@ -121,21 +121,18 @@ namespace tmfdem
       // search, and the pairs between nearby tetrahedra of one intact body
       // are most of the boxes' candidates)
       std::vector<char> far(pair_list.size(), 0);
-      for_each_chunk(arena,
-                     pair_list.size(),
-                     64,
-                     [&](const std::size_t begin,
-                         const std::size_t end,
-                         const std::size_t) {
-                       for (std::size_t p = begin; p < end; ++p)
-                         {
-                           double x[2][4][3];
-                           gather_positions(model, pair_list[p].first, x[0]);
-                           gather_positions(model, pair_list[p].second, x[1]);
-                           far[p] =
-                             tetrahedra_apart_by_more_than(x, contact.buffer);
-                         }
-                     });
+      for_each_chunk(
+        arena,
+        pair_list.size(),
+        64,
+        [&](const std::size_t begin, const std::size_t end, const std::size_t) {
+          for (std::size_t p = begin; p < end; ++p)
+            {
+              double x[2][4][3];
+              gather_positions(model, pair_list[p], x);
+              far[p] = tetrahedra_apart_by_more_than(x, contact.buffer);
+            }
+        });
       std::size_t kept = 0;
       for (std::size_t p = 0; p < pair_list.size(); ++p)
         if (!far[p])
@@ -187,9 +184,8 @@ namespace tmfdem
                        for (std::size_t p = begin; p < end; ++p)
                          if (kind[p] != found_again)
                            {
-                             double x[2][4][3], v[2][4][3];
-                             gather(model, pair_list[p].first, x[0], v[0]);
-                             gather(model, pair_list[p].second, x[1], v[1]);
+                             double x[2][4][3];
+                             gather_positions(model, pair_list[p], x);
                              energy_now[p] = pair_contact_energy_3d(
                                x,
                                contact.penalty_coulomb.normal_penalty *
@@ -276,13 +272,13 @@ namespace tmfdem
     }
 
     void
-    TetrahedronContactSystem::gather(const DiscreteModel &m,
-                                     const unsigned int   e,
-                                     double (&x)[4][3],
-                                     double (&v)[4][3])
+    TetrahedronContactSystem::gather_positions(
+      const DiscreteModel          &m,
+      const TetrahedronContactPair &pair,
+      double (&x)[2][4][3])
     {
-      gather_positions(m, e, x);
-      gather_velocities(m, e, v);
+      gather_positions(m, pair.first, x[0]);
+      gather_positions(m, pair.second, x[1]);
     }
 
     void
@@ -305,8 +301,7 @@ namespace tmfdem
               TetrahedronContactPair &pair  = pair_list[p];
               double                 *force = &pair_force[24 * p];
               double                  x[2][4][3], v[2][4][3];
-              gather_positions(m, pair.first, x[0]);
-              gather_positions(m, pair.second, x[1]);
+              gather_positions(m, pair, x);
               if (!tetrahedron_boxes_overlap(x))
                 {
                   // apart: no force, no dissipation, the friction history
@@ -367,9 +362,8 @@ namespace tmfdem
               (rigid_group[a] != no_body && rigid_group[b] != no_body) ||
               piece[a] == piece[b])
             continue;
-          double x[2][4][3], v[2][4][3];
-          gather(m, a, x[0], v[0]);
-          gather(m, b, x[1], v[1]);
+          double x[2][4][3];
+          gather_positions(m, pair_list[p], x);
           TetrahedronCoordinates target;
           if (!target.set(x[1]))
             continue;
@@ -408,9 +402,8 @@ namespace tmfdem
             {
               if (pair_is_rigid[p])
                 continue;
-              double x[2][4][3], v[2][4][3];
-              gather(m, pair_list[p].first, x[0], v[0]);
-              gather(m, pair_list[p].second, x[1], v[1]);
+              double x[2][4][3];
+              gather_positions(m, pair_list[p], x);
               energy += offset_energy(
                 pair_contact_energy_3d(x,
                                        contact.penalty_coulomb.normal_penalty *

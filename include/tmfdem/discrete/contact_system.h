@@ -57,14 +57,14 @@ namespace tmfdem
                             const std::vector<double>       &pair_force,
                             const unsigned int               e,
                             double                          *f,
-                            const unsigned char *active = nullptr)
+                            const unsigned char             *active = nullptr)
     {
       for (unsigned int p = start[e]; p < start[e + 1]; ++p)
         {
           const unsigned int entry = entries[p];
           if (active != nullptr && active[entry / 2] == 0)
             continue;
-          const double      *pf =
+          const double *pf =
             &pair_force[2 * width * (entry / 2) + width * (entry % 2)];
           for (unsigned int i = 0; i < width; ++i)
             f[i] += pf[i];

@@ -835,7 +835,7 @@ namespace tmfdem
       static constexpr unsigned int edges[6][2] =
         {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
       // the gap between the projections onto the axis n (any length)
-      const auto apart_along = [&](const double (&n)[3]) {
+      const auto apart_along = [&](const double(&n)[3]) {
         const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
         if (!(nn > 0.))
           return false;
@@ -851,26 +851,24 @@ namespace tmfdem
         const double width = gap * std::sqrt(nn);
         return lo[1] - hi[0] > width || lo[0] - hi[1] > width;
       };
-      const auto edge = [&](const unsigned int side,
-                            const unsigned int e,
-                            double (&u)[3]) {
-        for (unsigned int i = 0; i < 3; ++i)
-          u[i] = x[side][edges[e][1]][i] - x[side][edges[e][0]][i];
-      };
-      const auto cross = [](const double (&u)[3],
-                            const double (&w)[3],
-                            double (&n)[3]) {
-        n[0] = u[1] * w[2] - u[2] * w[1];
-        n[1] = u[2] * w[0] - u[0] * w[2];
-        n[2] = u[0] * w[1] - u[1] * w[0];
-      };
+      const auto edge =
+        [&](const unsigned int side, const unsigned int e, double(&u)[3]) {
+          for (unsigned int i = 0; i < 3; ++i)
+            u[i] = x[side][edges[e][1]][i] - x[side][edges[e][0]][i];
+        };
+      const auto cross =
+        [](const double(&u)[3], const double(&w)[3], double(&n)[3]) {
+          n[0] = u[1] * w[2] - u[2] * w[1];
+          n[1] = u[2] * w[0] - u[0] * w[2];
+          n[2] = u[0] * w[1] - u[1] * w[0];
+        };
       // face normals: edges (0,1) x (0,2), (0,1) x (0,3), (0,2) x (0,3),
       // (1,2) x (1,3)
       static constexpr unsigned int faces[4][2] = {{0, 1},
                                                    {0, 2},
                                                    {1, 2},
                                                    {3, 4}};
-      double u[3], w[3], n[3];
+      double                        u[3], w[3], n[3];
       for (unsigned int side = 0; side < 2; ++side)
         for (const auto &f : faces)
           {
@@ -920,10 +918,10 @@ namespace tmfdem
     /**
      * Whether the tetrahedra @p x[0] and @p x[1] (nodes [k][i], positively
      * oriented) [m] overlap in a volume: false if their boxes do not
-     * overlap (tetrahedron_boxes_overlap()), if either is degenerate, or if a plane separates them (a
-     * face plane of either, or a plane along an edge of each: the
-     * separating-axis theorem for two convex polyhedra), touching counted
-     * as separated (touching_tolerance). Sets @p coordinates to their
+     * overlap (tetrahedron_boxes_overlap()), if either is degenerate, or if a
+     * plane separates them (a face plane of either, or a plane along an edge of
+     * each: the separating-axis theorem for two convex polyhedra), touching
+     * counted as separated (touching_tolerance). Sets @p coordinates to their
      * barycentric coordinates where it gets that far.
      */
     inline bool

@@ -252,17 +252,18 @@ namespace tmfdem
       void
       index_pairs(const unsigned int n_elements);
       /** Gathers the nodes (and velocities) of tetrahedron @p e. */
-      static void
-      gather(const DiscreteModel &model,
-             const unsigned int   e,
-             double (&x)[4][3],
-             double (&v)[4][3]);
-
       /** The nodes of tetrahedron @p e into @p x [m]. */
       static void
       gather_positions(const DiscreteModel &model,
                        const unsigned int   e,
                        double (&x)[4][3]);
+
+      /** The nodes of both tetrahedra of @p pair into @p x[0], @p x[1]
+       *  [m]. */
+      static void
+      gather_positions(const DiscreteModel          &model,
+                       const TetrahedronContactPair &pair,
+                       double (&x)[2][4][3]);
 
       /** The node velocities of tetrahedron @p e into @p v [m/s]. */
       static void
@@ -286,13 +287,13 @@ namespace tmfdem
       /** The pieces of material around each vertex, as of the last
        *  search. */
       VertexContinuity    continuity;
-      std::vector<double> pair_force;    ///< 24 per pair [N]
+      std::vector<double> pair_force; ///< 24 per pair [N]
       /** 0 where a pair's forces, dissipation and friction history are
        *  known to be zero (its tetrahedra's boxes were apart at the last
        *  compute_forces() and it was reset then): compute_forces() and
        *  add_forces() skip it until the boxes meet. */
       std::vector<unsigned char> pair_active;
-      std::vector<double> pair_friction; ///< dissipation this step [J]
+      std::vector<double>        pair_friction; ///< dissipation this step [J]
       /** Pairs of tetrahedron e: element_pair_entries[start[e] ..
        *  start[e+1]), each 2 pair + side (force-carrying pairs only). */
       std::vector<unsigned int> element_pair_start, element_pair_entries;
