@@ -2,11 +2,15 @@
 
     xvfb-run -a pvbatch scripts/render_paraview.py OUTPUT/solution.pvd out.png
         [--field T] [--time 0.01] [--size 1200x900] [--cmap "Inferno (matplotlib)"]
+        [--view-from X,Y,Z] [--warp FACTOR]
 
 Opens the .pvd (or a .vtu / .pvtu) with ParaView's own readers, goes to the
 output time nearest --time (default: the last), colours by --field (point
 or cell data; a vector by its magnitude; default: T, else the first array)
-and saves the picture with a colour bar. pvbatch renders off screen through
+and saves the picture with a colour bar: seen along z as a 2D picture, or
+in perspective from the direction --view-from (3D outputs), the points
+moved by FACTOR times `displacement` with --warp (a discrete layer's
+exploded elements then show their cracks opened). pvbatch renders off screen through
 an X display: on a machine without one (a server, CI), run it under
 `xvfb-run -a` (Debian packages paraview, python3-paraview, xvfb).
 Prints the time, the field's range there and the number of cells.
@@ -18,7 +22,8 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import paraview_path  # noqa: E402,F401  (finds python3-paraview's package)
 from paraview.simple import (ColorBy, CreateView, GetColorTransferFunction, GetScalarBar,
-                             OpenDataFile, SaveScreenshot, Show, UpdatePipeline)
+                             OpenDataFile, SaveScreenshot, Show, UpdatePipeline,
+                             WarpByVector)
 
 
 def main(argv):
@@ -29,6 +34,11 @@ def main(argv):
     ap.add_argument("--time", type=float, default=None, help="output time [s] (default: the last)")
     ap.add_argument("--size", default="1200x900", help="picture size WIDTHxHEIGHT in pixels")
     ap.add_argument("--cmap", default="Inferno (matplotlib)", help="ParaView colour map preset")
+    ap.add_argument("--view-from", default=None,
+                    help="X,Y,Z: look at the output from this direction in perspective "
+                         "(default: along z, as a 2D picture)")
+    ap.add_argument("--warp", type=float, default=None,
+                    help="move the points by this factor times the point array 'displacement'")
     args = ap.parse_args(argv)
 
     reader = OpenDataFile(args.input)
@@ -62,7 +72,13 @@ def main(argv):
         view.UseColorPaletteForBackground = 0
     except AttributeError:
         pass
-    display = Show(reader, view)
+    shown = reader
+    if args.warp is not None:
+        if "displacement" not in point_names:
+            sys.exit(f"{args.input}: --warp needs the point array 'displacement'")
+        shown = WarpByVector(Input=reader, Vectors=["POINTS", "displacement"],
+                             ScaleFactor=args.warp)
+    display = Show(shown, view)
     if component == -1:
         ColorBy(display, (association, field, "Magnitude"))
     else:
@@ -73,8 +89,18 @@ def main(argv):
     display.SetScalarBarVisibility(view, True)
     bar = GetScalarBar(lut, view)
     bar.TitleColor = bar.LabelColor = [0, 0, 0]
-    view.InteractionMode = "2D"
-    view.ResetCamera()
+    if args.view_from is None:
+        view.InteractionMode = "2D"
+        view.ResetCamera()
+    else:
+        direction = [float(v) for v in args.view_from.split(",")]
+        if len(direction) != 3 or not any(direction):
+            sys.exit(f"--view-from {args.view_from}: give three numbers, not all zero")
+        view.CameraPosition = direction
+        view.CameraFocalPoint = [0.0, 0.0, 0.0]
+        view.CameraViewUp = [0.0, 1.0, 0.0] if abs(direction[1]) < max(
+            abs(direction[0]), abs(direction[2])) else [0.0, 0.0, 1.0]
+        view.ResetCamera()
     SaveScreenshot(args.output, view, ImageResolution=[width, height])
     n_cells = reader.GetDataInformation().GetNumberOfCells()
     print(f"wrote {args.output}: {field} ({association.lower()}) at t = {time:.6g} s in "

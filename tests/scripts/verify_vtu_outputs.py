@@ -26,7 +26,8 @@ hexahedra), the discrete solution.pvd, cracks.pvd and a two-rank pvtu, and
 the discrete layer's 3D solution.pvd and cracks.pvd (tetrahedra and broken
 faces, tests/data/discrete/cube_pull-3d.prm):
 time steps, array names, sizes and value ranges as VTK's Python module
-decodes them; scripts/render_paraview.py writes a PNG. Exit 77 (ctest
+decodes them; scripts/render_paraview.py writes a PNG of the 2D disc and one
+of the 3D cube in perspective with magnified displacements. Exit 77 (ctest
 SKIP_RETURN_CODE) when pvbatch or xvfb-run is missing.
 """
 import filecmp
@@ -319,7 +320,13 @@ def paraview():
     for cmd in (xvfb + [pvbatch, os.path.join(HERE, "paraview_check.py"), spec_file],
                 xvfb + [pvbatch, os.path.join(ROOT, "scripts", "render_paraview.py"),
                         os.path.join(disc, "solution.pvd"), os.path.join(out, "disc_T.png"),
-                        "--field", "T", "--time", "0.003", "--size", "800x600"]):
+                        "--field", "T", "--time", "0.003", "--size", "800x600"],
+                # 3D in perspective, the pieces moved apart by their
+                # displacements magnified
+                xvfb + [pvbatch, os.path.join(ROOT, "scripts", "render_paraview.py"),
+                        os.path.join(discrete_3d, "solution.pvd"),
+                        os.path.join(out, "cube_3d.png"), "--field", "displacement",
+                        "--view-from", "1,0.7,1.3", "--warp", "10", "--size", "800x600"]):
         # a second try: xvfb-run -a can race another X server for a display
         for attempt in (1, 2):
             print("$", " ".join(cmd), flush=True)
@@ -328,11 +335,12 @@ def paraview():
             if r.returncode == 0 or "FAIL:" in r.stdout:
                 break
         ok &= check(r.returncode == 0, f"{os.path.basename(cmd[5])} exit status {r.returncode}")
-    png = os.path.join(out, "disc_T.png")
-    with open(png, "rb") if os.path.exists(png) else open(os.devnull, "rb") as f:
-        head = f.read(8)
-    ok &= check(head == b"\x89PNG\r\n\x1a\n" and os.path.getsize(png) > 5000,
-                f"render_paraview.py wrote {png} ({os.path.getsize(png) if os.path.exists(png) else 0} bytes)")
+    for png in (os.path.join(out, "disc_T.png"), os.path.join(out, "cube_3d.png")):
+        with open(png, "rb") if os.path.exists(png) else open(os.devnull, "rb") as f:
+            head = f.read(8)
+        ok &= check(head == b"\x89PNG\r\n\x1a\n" and os.path.getsize(png) > 5000,
+                    f"render_paraview.py wrote {png} "
+                    f"({os.path.getsize(png) if os.path.exists(png) else 0} bytes)")
     return ok
 
 
