@@ -475,3 +475,33 @@ TEST(TetrahedronContact, BrokenFacesTakeOverTheJointsCompressionEnergy)
         << "overlap " << o << " m";
     }
 }
+
+// The search's margin test: two corner tetrahedra whose parallel faces are
+// a known distance apart along (1, 1, 1) while their boxes overlap, and two
+// whose nearest features are crossing edges (only an edge-edge axis, z,
+// separates them). The gap found is the distance between them: apart by
+// more than slightly less, not by slightly more.
+TEST(TetrahedronContact, MarginTestFindsTheGapAlongFaceAndEdgeAxes)
+{
+  const double t              = 1.2; // boxes [0, 1]^3 and [t - 1, t]^3 overlap
+  double       faces[2][4][3] = {
+          {{0., 0., 0.}, {1., 0., 0.}, {0., 1., 0.}, {0., 0., 1.}},
+          {{t, t, t}, {t - 1., t, t}, {t, t - 1., t}, {t, t, t - 1.}}};
+  const double face_gap = (3. * t - 2.) / std::sqrt(3.);
+  EXPECT_TRUE(tetrahedron_boxes_overlap(faces));
+  EXPECT_TRUE(tetrahedra_apart_by_more_than(faces, 0.99 * face_gap));
+  EXPECT_FALSE(tetrahedra_apart_by_more_than(faces, 1.01 * face_gap));
+
+  const double g              = 0.5;
+  double       edges[2][4][3] = {
+          {{-1., 0., 0.}, {1., 0., 0.}, {0., -1., -1.}, {0., 1., -1.}},
+          {{0., -1., g}, {0., 1., g}, {-1., 0., g + 1.}, {1., 0., g + 1.}}};
+  EXPECT_TRUE(tetrahedra_apart_by_more_than(edges, 0.99 * g));
+  EXPECT_FALSE(tetrahedra_apart_by_more_than(edges, 1.01 * g));
+
+  // overlapping: no gap at all
+  double overlapping[2][4][3] = {
+    {{0., 0., 0.}, {1., 0., 0.}, {0., 1., 0.}, {0., 0., 1.}},
+    {{0.1, 0.1, 0.1}, {1.1, 0.1, 0.1}, {0.1, 1.1, 0.1}, {0.1, 0.1, 1.1}}};
+  EXPECT_FALSE(tetrahedra_apart_by_more_than(overlapping, 0.));
+}
