@@ -314,7 +314,8 @@ namespace tmfdem
                       pair.friction    = TetrahedronPairFriction();
                       pair_active[p]   = 0;
                     }
-                  pair_energy_offset[p] = 0.;
+                  if (pair_energy_offset[p] != 0.)
+                    pair_energy_offset[p] = 0.;
                   continue;
                 }
               pair_active[p] = 1;
