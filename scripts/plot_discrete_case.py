@@ -8,7 +8,7 @@ two_blocks_collision-3d, block_on_incline-3d,
 brazilian_disc, plate_traction, plate_transient, plate_transient-discrete-3d,
 contact_conduction, contact_conduction-3d,
 sheet_free_expansion, sheet_restrained_expansion, thermal_shock_disc-3d,
-sphere_drop-3d, brazilian_cylinder-3d. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
+sphere_drop-3d, brazilian_cylinder-3d, rock_heap-3d. OUTPUT_FOLDER holds tmfdem's outputs (history.csv,
 probes.csv, summary.json, solution_*.vtu, cracks_*.vtu). Cases that compare
 several runs read one sub-folder per run, the layout the verification
 scripts write:
@@ -30,6 +30,8 @@ scripts write:
                        (verify_discrete_contact_3d.py)
     sphere_drop-3d:    OUTPUT_FOLDER/drop/ (verify_discrete_sphere_drop_3d.py)
     brazilian_cylinder-3d: OUTPUT_FOLDER/cylinder/ (verify_discrete_brazilian_3d.py)
+    rock_heap-3d:      OUTPUT_FOLDER/{settle,heat}/ (the two prm files; heat/ reads
+                       settle/final_mesh.msh)
     thermal_shock_disc-3d: OUTPUT_FOLDER/{disc-3d,disc-2d}/
                        (verify_discrete_thermal_shock_3d.py)
     sheet_*_expansion: OUTPUT_FOLDER/free_{+100,-100}/,
@@ -1187,6 +1189,116 @@ def plot_contact_conduction_3d(folder, png):
     print(f"wrote {png}")
 
 
+def plot_rock_heap_3d(folder, png):
+    """OUTPUT_FOLDER with settle/ (prm/rock_heap-3d.prm) and heat/
+    (prm/rock_heap-heat-3d.prm on settle/final_mesh.msh)."""
+    import vtu_pieces
+    settle, heat = os.path.join(folder, "settle"), os.path.join(folder, "heat")
+    ensure_run(settle, "rock_heap-3d.prm")
+    ensure_run(heat, "rock_heap-heat-3d.prm",
+               f"Mesh/File name={os.path.join(settle, 'final_mesh.msh')}")
+    rho, g = 2500.0, 9.81
+    h = read_csv(os.path.join(settle, "history.csv"))
+    s = read_summary(settle)
+
+    # the settled mesh: the blocks' and the container's volumes
+    def msh_volumes(path):
+        with open(path) as f:
+            lines = f.read().split("\n")
+        i = lines.index("$Nodes")
+        n = int(lines[i + 1])
+        xyz = {int(v[0]): np.array([float(a) for a in v[1:4]])
+               for v in (line.split() for line in lines[i + 2:i + 2 + n])}
+        i = lines.index("$Elements")
+        vol = {1: 0.0, 2: 0.0}
+        for line in lines[i + 2:i + 2 + int(lines[i + 1])]:
+            v = [int(a) for a in line.split()]
+            if v[1] == 4:
+                a, b, c, d = (xyz[k] for k in v[3 + v[2]:7 + v[2]])
+                vol[v[3]] += abs(np.dot(np.cross(b - a, c - a), d - a)) / 6
+        return vol
+    # the masses from the generated mesh (reference volumes)
+    vol = msh_volumes(os.path.join(settle, "mesh.msh"))
+    W_blocks, W_container = rho * g * vol[1], rho * g * vol[2]
+
+    fig, axes = plt.subplots(2, 2, figsize=(12, 9), dpi=150)
+    ax = axes[0, 0]
+    t = h["time"]
+    ax.semilogy(t, np.maximum(h["kinetic"], 1e-12), "C0-", lw=1.0, label="kinetic energy")
+    ax.semilogy(t, np.maximum(h["external_work"], 1e-12), "k-", lw=1.0, label="gravity work")
+    ax.semilogy(t, np.maximum(h["damping"], 1e-12), "C2--", lw=1.0, label="damping (viscous + mass)")
+    ax.semilogy(t, np.maximum(h["friction_dissipation"], 1e-12), "C3--", lw=1.0,
+                label="friction dissipation")
+    ax.semilogy(t, np.maximum(np.abs(h["balance_error"]), 1e-12), "C7:", lw=1.0,
+                label="|energy balance error|")
+    e = s["energy"]
+    ax.set_title(f"settling: kinetic energy at the end {e['kinetic']:.2e} J = "
+                 f"{e['kinetic'] / e['external_work']:.1e} of the gravity work", fontsize=9)
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("energy [J]")
+    ax.set_ylim(1e-8, None)
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+
+    ax = axes[0, 1]
+    carried = h["body1_fz"] - W_container
+    late = t >= t[-1] - 0.1
+    ax.plot(t, carried, "C0-", lw=0.8, label="container reaction less its own weight")
+    ax.axhline(W_blocks, color="k", lw=1.0, label=f"blocks' weight m g = {W_blocks:.2f} N")
+    mean = carried[late].mean()
+    ax.set_title(f"at rest (mean over the last 0.1 s): {mean:.2f} N, "
+                 f"{(mean / W_blocks - 1) * 100:+.2f} % of m g", fontsize=9)
+    ax.set_ylim(-0.2 * W_blocks, 2.5 * W_blocks)
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("vertical force [N]")
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+
+    # heating: the blocks' mean temperature by height at the output times
+    ax = axes[1, 0]
+    # the prm's output times (0.5, 2, 5, 12 h)
+    series = [(time, arrays) for time, arrays in vtu_pieces.read_series(heat)
+              if any(abs(time - t) < 1 for t in (1800, 7200, 18000, 43200))]
+    top = None
+    for k, (time, arrays) in enumerate(series):
+        z = arrays[("Points", None)].reshape(-1, 3)[:, 2]
+        material = np.repeat(arrays[("CellData", "material_id")], 4)
+        T = arrays[("PointData", "temperature")]
+        zb, Tb = z[material == 1], T[material == 1]
+        top = zb.max() if top is None else top
+        edges = np.linspace(0.0, top, 11)
+        centre = 0.5 * (edges[:-1] + edges[1:])
+        means = [Tb[(zb >= lo) & (zb < hi)].mean() for lo, hi in zip(edges[:-1], edges[1:])]
+        ax.plot(means, 100 * centre, "o-", color=f"C{k}", ms=3, lw=1.0,
+                label=f"t = {time / 3600:g} h")
+    ax.set_xlabel("blocks' mean temperature in a layer [C]")
+    ax.set_ylabel("height z [cm]")
+    ax.set_title("heating from the base (100 C), walls at 0 C: layers of a tenth of "
+                 "the heap's height", fontsize=9)
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+
+    ax = axes[1, 1]
+    hh = read_csv(os.path.join(heat, "history.csv"))
+    hb = read_summary(heat)["heat_balance"]
+    ax.plot(hh["time"] / 3600, hh["stored_heat"] / 1e6, "C0-", lw=1.0, label="stored heat")
+    ax.plot(hh["time"] / 3600, np.abs(hh["heat_imbalance"]) / 1e6, "C3:", lw=1.0,
+            label="|in - out - stored|")
+    q = hb["boundary_heat_in"]
+    ax.set_title(f"heat balance at the end: in {q.get('1', 0) / 1e6:.4f} MJ (base), "
+                 f"{q.get('2', 0) / 1e6:.4f} MJ (walls), relative imbalance "
+                 f"{hb['relative_imbalance']:.1e}", fontsize=8.5)
+    ax.set_xlabel("t [h]")
+    ax.set_ylabel("heat [MJ]")
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    fig.suptitle(f"rock heap in 3D: {s['elements']} tetrahedra, "
+                 f"{read_summary(heat)['contact_heat_pairs']} contact pairs conducting", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(png)
+    print(f"wrote {png}")
+
+
 CASES = {"joint_pull": plot_joint_pull,
          "joint_pull-3d": plot_joint_pull_3d,
          "block_on_incline": plot_block_on_incline,
@@ -1203,7 +1315,8 @@ CASES = {"joint_pull": plot_joint_pull,
          "sheet_restrained_expansion": plot_sheet_restrained_expansion,
          "thermal_shock_disc-3d": plot_thermal_shock_disc_3d,
          "sphere_drop-3d": plot_sphere_drop_3d,
-         "brazilian_cylinder-3d": plot_brazilian_cylinder_3d}
+         "brazilian_cylinder-3d": plot_brazilian_cylinder_3d,
+         "rock_heap-3d": plot_rock_heap_3d}
 
 
 def main():

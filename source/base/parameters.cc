@@ -77,7 +77,8 @@ namespace tmfdem
       "with its axis along z through Center, or a gmsh .msh/.geo file "
       "with tetrahedra or hexahedra "
       "(physical surfaces -> boundary ids, physical volumes -> material "
-      "ids).");
+      "ids), or a block heap of polyhedral blocks in a box-shaped "
+      "container (tetrahedra).");
     prm.declare_entry(
       "Element type",
       "triangles",
@@ -185,10 +186,11 @@ namespace tmfdem
                         Utilities::to_string(d.container_width),
                         Patterns::Double(0.),
                         "Inner width W of the container: the blocks lie in "
-                        "0 < x < W, the base plate's top face is y = 0 "
-                        "(boundary id 1, material id 2), the side walls' "
-                        "inner faces x = 0 and x = W (boundary id 2, "
-                        "material id 2) [m].");
+                        "0 < x < W (3D: and 0 < y < W), the base plate's top "
+                        "face is y = 0 (3D: z = 0; boundary id 1, material "
+                        "id 2), the side walls' inner faces x = 0 and x = W "
+                        "(3D: and y = 0, y = W; boundary id 2, material id "
+                        "2) [m].");
       prm.declare_entry("Container height",
                         Utilities::to_string(d.container_height),
                         Patterns::Double(0.),
@@ -204,18 +206,21 @@ namespace tmfdem
                         "Number of blocks (material id 1, boundary id 0), "
                         "the cells of a Voronoi tessellation of the region "
                         "0 < x < W, Drop height < y < Drop height + N s^2 / "
-                        "W about seeded random points [-].");
+                        "W (3D: 0 < x, y < W, Drop height < z < Drop height "
+                        "+ N s^3 / W^2) about seeded random points [-].");
       prm.declare_entry("Mean block size",
                         Utilities::to_string(d.mean_size),
                         Patterns::Double(0.),
                         "Mean block size s: the square root of the mean "
-                        "Voronoi cell area (before the gap is cut) [m].");
+                        "Voronoi cell area (3D: the cube root of the mean "
+                        "cell volume), before the gap is cut [m].");
       prm.declare_entry("Gap",
                         Utilities::to_string(d.gap),
                         Patterns::Double(0.),
                         "Clear gap between neighbouring blocks and between "
-                        "blocks and walls (each Voronoi edge is moved by "
-                        "Gap / 2 towards its cell's seed) [m].");
+                        "blocks and walls (each Voronoi edge, in 3D each "
+                        "face, is moved by Gap / 2 towards its cell's seed) "
+                        "[m].");
       prm.declare_entry("Drop height",
                         Utilities::to_string(d.drop_height),
                         Patterns::Double(0.),
@@ -355,11 +360,12 @@ namespace tmfdem
                               source == Source::spherical_shell ||
                               source == Source::cylinder ||
                               source == Source::hollow_cylinder;
-    if (dimension == 3 && !(solid_source || source == Source::file))
+    if (dimension == 3 && !(solid_source || source == Source::file ||
+                            source == Source::block_heap))
       throw InputError("Mesh/Source = " + source_name +
                        " is a 2D domain; Mesh/Dimension = 3 allows box, "
-                       "ball, spherical shell, cylinder, hollow cylinder "
-                       "and file.");
+                       "ball, spherical shell, cylinder, hollow cylinder, "
+                       "file and block heap.");
     if (dimension == 2 && solid_source)
       throw InputError("Mesh/Source = " + source_name +
                        " is a 3D domain: set Mesh/Dimension = 3 (2D allows "

@@ -664,16 +664,21 @@ namespace tmfdem
     std::string
     deformed_mesh_msh(const DiscreteModel &model)
     {
-      unsigned int n_vertices = 0;
+      const unsigned int dim        = model.dim;
+      const unsigned int corners    = dim + 1; // nodes (and edges/faces) each
+      unsigned int       n_vertices = 0;
       for (const unsigned int v : model.node_vertex)
         n_vertices = std::max(n_vertices, v + 1);
-      std::vector<double>       x(n_vertices, 0.), y(n_vertices, 0.);
+      std::vector<double> x(n_vertices, 0.), y(n_vertices, 0.),
+        z(n_vertices, 0.);
       std::vector<unsigned int> copies(n_vertices, 0);
       for (unsigned int i = 0; i < model.n_nodes; ++i)
         {
           const unsigned int v = model.node_vertex[i];
           x[v] += model.x[i];
           y[v] += model.y[i];
+          if (dim == 3)
+            z[v] += model.z[i];
           ++copies[v];
         }
       // renumber the vertices that some element uses, from 1
@@ -688,27 +693,46 @@ namespace tmfdem
       for (unsigned int v = 0; v < n_vertices; ++v)
         if (copies[v] > 0)
           out << number[v] << ' ' << x[v] / copies[v] << ' ' << y[v] / copies[v]
-              << " 0\n";
+              << ' ' << z[v] / copies[v] << '\n';
       out << "$EndNodes\n";
+      // the nodes of edge k (2D: k, k + 1) or face k (3D: deal.II's face k
+      // of a tetrahedron, opposite node 3 - k)
+      const auto side_nodes = [&](const unsigned int e, const unsigned int k) {
+        std::vector<unsigned int> nodes;
+        if (dim == 2)
+          nodes = {3 * e + k, 3 * e + (k + 1) % 3};
+        else
+          for (unsigned int m = 0; m < 4; ++m)
+            if (m != 3 - k)
+              nodes.push_back(4 * e + m);
+        return nodes;
+      };
+      // gmsh element types: line 1, triangle 2, tetrahedron 4
+      const unsigned int side_type = dim == 2 ? 1 : 2,
+                         cell_type = dim == 2 ? 2 : 4;
       std::ostringstream elements;
       unsigned int       n_elements = 0;
       for (unsigned int e = 0; e < model.n_elements; ++e)
-        for (unsigned int k = 0; k < 3; ++k)
+        for (unsigned int k = 0; k < corners; ++k)
           {
-            const types::boundary_id id = model.edge_boundary[3 * e + k];
-            if (model.edge_joint[3 * e + k] < 0 && id > 0 &&
+            const types::boundary_id id = model.edge_boundary[corners * e + k];
+            if (model.edge_joint[corners * e + k] < 0 && id > 0 &&
                 id != numbers::internal_face_boundary_id)
-              elements << ++n_elements << " 1 2 " << id << ' ' << id << ' '
-                       << number[model.node_vertex[3 * e + k]] << ' '
-                       << number[model.node_vertex[3 * e + (k + 1) % 3]]
-                       << '\n';
+              {
+                elements << ++n_elements << ' ' << side_type << " 2 " << id
+                         << ' ' << id;
+                for (const unsigned int node : side_nodes(e, k))
+                  elements << ' ' << number[model.node_vertex[node]];
+                elements << '\n';
+              }
           }
       for (unsigned int e = 0; e < model.n_elements; ++e)
         {
           const unsigned int m = model.material[e];
-          elements << ++n_elements << " 2 2 " << m << ' ' << m;
-          for (unsigned int k = 0; k < 3; ++k)
-            elements << ' ' << number[model.node_vertex[3 * e + k]];
+          elements << ++n_elements << ' ' << cell_type << " 2 " << m << ' '
+                   << m;
+          for (unsigned int k = 0; k < corners; ++k)
+            elements << ' ' << number[model.node_vertex[corners * e + k]];
           elements << '\n';
         }
       out << "$Elements\n"
@@ -716,6 +740,7 @@ namespace tmfdem
           << elements.str() << "$EndElements\n";
       return out.str();
     }
+
     JsonObject
     heat_balance_summary(const TemperatureSource &source)
     {

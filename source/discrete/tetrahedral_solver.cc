@@ -1447,6 +1447,9 @@ namespace tmfdem
       if (step_number != history_step)
         write_history_row();
       write_summary(true);
+      if (parameters.output.write_final_mesh)
+        write_file_atomically(parameters.output.directory + "/final_mesh.msh",
+                              deformed_mesh_msh(model));
     }
   } // namespace discrete
 } // namespace tmfdem

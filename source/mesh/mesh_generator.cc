@@ -714,6 +714,28 @@ namespace tmfdem
       cell->set_material_id(parameters.material_id);
   }
 
+  void
+  create_block_heap_mesh(const MeshParameters &parameters,
+                         const std::string    &work_folder,
+                         Triangulation<3>     &triangulation,
+                         MPI_Comm              communicator)
+  {
+    if (parameters.element_type != MeshParameters::ElementType::triangles)
+      throw InputError("Mesh/Source = block heap makes tetrahedra only; "
+                       "allowed is Mesh/Element type = triangles (tetrahedra "
+                       "in 3D).");
+    const std::string msh_file = work_folder + "/mesh.msh";
+    run_gmsh(block_heap_gmsh_script(generate_block_heap_3d(parameters),
+                                    parameters.element_size),
+             work_folder + "/mesh.geo",
+             work_folder,
+             msh_file,
+             parameters.gmsh_time_limit,
+             communicator,
+             3);
+    read_gmsh_file(msh_file, triangulation);
+  }
+
   double
   domain_area(const MeshParameters &p)
   {

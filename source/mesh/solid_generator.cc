@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <tmfdem/base/exceptions.h>
+#include <tmfdem/mesh/block_generator.h>
 #include <tmfdem/mesh/mesh_generator.h>
 
 namespace tmfdem
@@ -175,6 +176,8 @@ namespace tmfdem
                  (p.outer_radius * p.outer_radius -
                   p.inner_radius * p.inner_radius) *
                  p.length;
+        case Source::block_heap:
+          return generate_block_heap_3d(p).volume();
         default:
           return p.expected_area;
       }
@@ -190,6 +193,14 @@ namespace tmfdem
     if (parameters.source == Source::file)
       {
         read_mesh_file(parameters, work_folder, triangulation, communicator);
+        return;
+      }
+    if (parameters.source == Source::block_heap)
+      {
+        create_block_heap_mesh(parameters,
+                               work_folder,
+                               triangulation,
+                               communicator);
         return;
       }
 

@@ -34,6 +34,7 @@ import filecmp
 import glob
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -326,7 +327,14 @@ def paraview():
                 xvfb + [pvbatch, os.path.join(ROOT, "scripts", "render_paraview.py"),
                         os.path.join(discrete_3d, "solution.pvd"),
                         os.path.join(out, "cube_3d.png"), "--field", "displacement",
-                        "--view-from", "1,0.7,1.3", "--warp", "10", "--size", "800x600"]):
+                        "--view-from", "1,0.7,1.3", "--warp", "10", "--size", "800x600"],
+                # only the cells wholly in x <= 0.04 m: two of the cube's five
+                # columns of hexahedra, each split into tetrahedra
+                xvfb + [pvbatch, os.path.join(ROOT, "scripts", "render_paraview.py"),
+                        os.path.join(discrete_3d, "solution.pvd"),
+                        os.path.join(out, "cube_3d_crop.png"), "--field", "displacement",
+                        "--view-from", "1,0.7,1.3", "--view-up", "0,0,1",
+                        "--crop=-0.001,0.0401,-0.001,0.101,-0.001,0.101", "--size", "800x600"]):
         # a second try: xvfb-run -a can race another X server for a display
         for attempt in (1, 2):
             print("$", " ".join(cmd), flush=True)
@@ -335,7 +343,13 @@ def paraview():
             if r.returncode == 0 or "FAIL:" in r.stdout:
                 break
         ok &= check(r.returncode == 0, f"{os.path.basename(cmd[5])} exit status {r.returncode}")
-    for png in (os.path.join(out, "disc_T.png"), os.path.join(out, "cube_3d.png")):
+        if "--crop" in " ".join(cmd):
+            shown = re.search(r"(\d+) cells, (\d+) of them shown", r.stdout)
+            ok &= check(shown is not None and 5 * int(shown.group(2)) == 2 * int(shown.group(1)),
+                        "--crop to x <= 0.04 m shows two fifths of the cube's cells: " +
+                        (f"{shown.group(2)} of {shown.group(1)}" if shown else "no count printed"))
+    for png in (os.path.join(out, "disc_T.png"), os.path.join(out, "cube_3d.png"),
+                os.path.join(out, "cube_3d_crop.png")):
         with open(png, "rb") if os.path.exists(png) else open(os.devnull, "rb") as f:
             head = f.read(8)
         ok &= check(head == b"\x89PNG\r\n\x1a\n" and os.path.getsize(png) > 5000,

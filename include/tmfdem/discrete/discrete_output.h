@@ -152,8 +152,9 @@ namespace tmfdem
      * position of its copies (intact joints keep them together; a vertex
      * whose copies have separated along broken joints is averaged too, so
      * this suits meshes without broken joints, e.g. a settled heap of
-     * intact blocks), triangles with their material ids as physical tags and
-     * boundary edges with boundary id > 0 as line elements.
+     * intact blocks), triangles (3D: tetrahedra) with their material ids as
+     * physical tags and boundary edges (3D: faces) with boundary id > 0 as
+     * line (triangle) elements.
      */
     std::string
     deformed_mesh_msh(const DiscreteModel &model);

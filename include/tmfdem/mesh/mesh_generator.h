@@ -80,6 +80,17 @@ namespace tmfdem
 
   /** Exact area of a generated domain, or Mesh/Expected area for imported
    *  meshes (0: unknown) [m^2]. */
+  /**
+   * Source = block heap in 3D (mesh/block_generator.h): the heap's .geo
+   * script written to @p work_folder and meshed there by gmsh into
+   * tetrahedra.
+   */
+  void
+  create_block_heap_mesh(const MeshParameters &parameters,
+                         const std::string    &work_folder,
+                         Triangulation<3>     &triangulation,
+                         MPI_Comm              communicator);
+
   double
   domain_area(const MeshParameters &parameters);
 
