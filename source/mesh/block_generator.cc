@@ -142,6 +142,23 @@ namespace tmfdem
       return seeds;
     }
 
+    /** The checked entries' seeds: the region 0 < x (, y) < W above Drop
+     *  height, its height from region_height(). */
+    template <int dim>
+    std::vector<Point<dim>>
+    heap_seeds(const MeshParameters &parameters)
+    {
+      check_block_heap_parameters(parameters);
+      const auto &p = parameters.block_heap;
+      Point<dim>  lower, upper;
+      for (unsigned int d = 0; d + 1 < dim; ++d)
+        upper[d] = p.container_width;
+      lower[dim - 1] = p.drop_height;
+      upper[dim - 1] = p.drop_height + region_height(p, dim);
+      std::mt19937 engine(p.seed);
+      return random_seeds(p.n_blocks, lower, upper, p.mean_size, engine);
+    }
+
     /** A box [@p lower, @p upper] as a Polyhedron. */
     Polyhedron
     box(const Point<3> &lower, const Point<3> &upper)
@@ -258,16 +275,12 @@ namespace tmfdem
   BlockHeapGeometry
   generate_block_heap(const MeshParameters &parameters)
   {
-    check_block_heap_parameters(parameters);
-    const auto        &p = parameters.block_heap;
-    const double       W = p.container_width, H = p.container_height;
+    const std::vector<Point<2>> seeds = heap_seeds<2>(parameters);
+    const auto                 &p     = parameters.block_heap;
+    const double                W = p.container_width, H = p.container_height;
     const double       t = p.wall_thickness, s = p.mean_size, g = p.gap;
     const double       y0 = p.drop_height, y1 = y0 + region_height(p, 2);
     const unsigned int n = p.n_blocks;
-
-    std::mt19937                engine(p.seed);
-    const std::vector<Point<2>> seeds =
-      random_seeds(n, Point<2>(0., y0), Point<2>(W, y1), s, engine);
 
     // Voronoi cells clipped to the region less g/2 at the walls' sides,
     // every bisector moved by g/2 towards the cell's seed
@@ -533,16 +546,12 @@ namespace tmfdem
   BlockHeapGeometry3D
   generate_block_heap_3d(const MeshParameters &parameters)
   {
-    check_block_heap_parameters(parameters);
-    const auto        &p = parameters.block_heap;
-    const double       W = p.container_width, H = p.container_height;
+    const std::vector<Point<3>> seeds = heap_seeds<3>(parameters);
+    const auto                 &p     = parameters.block_heap;
+    const double                W = p.container_width, H = p.container_height;
     const double       t = p.wall_thickness, s = p.mean_size, g = p.gap;
     const double       z0 = p.drop_height, z1 = z0 + region_height(p, 3);
     const unsigned int n = p.n_blocks;
-
-    std::mt19937                engine(p.seed);
-    const std::vector<Point<3>> seeds =
-      random_seeds(n, Point<3>(0., 0., z0), Point<3>(W, W, z1), s, engine);
 
     // Voronoi cells clipped to the region less g/2 at the walls' sides,
     // every bisector moved by g/2 towards the cell's seed. A cell is cut
@@ -568,28 +577,43 @@ namespace tmfdem
               bisectors.push_back(
                 {normal, normal * (seeds[i] + 0.5 * d) - 0.5 * g});
             }
-        std::sort(bisectors.begin(),
-                  bisectors.end(),
-                  [&](const HalfSpace &a, const HalfSpace &b) {
-                    return a.c - a.n * seeds[i] < b.c - b.n * seeds[i];
-                  });
+        // the distance of a bisector from seed i
+        const auto distance = [&](const HalfSpace &h) {
+          return h.c - h.n * seeds[i];
+        };
+        const auto nearer = [&](const HalfSpace &a, const HalfSpace &b) {
+          return distance(a) < distance(b);
+        };
         std::vector<Point<3>> vertices;
-        for (unsigned int nearest = 40;; nearest *= 2)
+        for (std::size_t nearest = 40;; nearest *= 2)
           {
+            // the nearest bisectors first (O(n) each try, no full sort: a
+            // heap of 10000 blocks stays O(n^2) in all)
+            nearest = std::min(nearest, bisectors.size());
+            std::nth_element(bisectors.begin(),
+                             bisectors.begin() + nearest,
+                             bisectors.end(),
+                             nearer);
+            std::sort(bisectors.begin(), bisectors.begin() + nearest, nearer);
             std::vector<HalfSpace> planes = region;
             planes.insert(planes.end(),
                           bisectors.begin(),
-                          bisectors.begin() +
-                            std::min<std::size_t>(nearest, bisectors.size()));
+                          bisectors.begin() + nearest);
             vertices = polytope_vertices(planes, tolerance);
+            // a bisector farther from the seed than every vertex cuts
+            // nothing; the others must hold every vertex
+            double radius = 0.;
+            for (const auto &x : vertices)
+              radius = std::max(radius, x.distance(seeds[i]));
             const bool complete =
               nearest >= bisectors.size() ||
-              std::all_of(vertices.begin(),
-                          vertices.end(),
-                          [&](const Point<3> &x) {
-                            return std::all_of(bisectors.begin(),
-                                               bisectors.end(),
-                                               [&](const HalfSpace &h) {
+              std::all_of(bisectors.begin() + nearest,
+                          bisectors.end(),
+                          [&](const HalfSpace &h) {
+                            return distance(h) > radius ||
+                                   std::all_of(vertices.begin(),
+                                               vertices.end(),
+                                               [&](const Point<3> &x) {
                                                  return h.n * x <=
                                                         h.c + tolerance;
                                                });
@@ -755,11 +779,13 @@ namespace tmfdem
         << list(wall_surfaces) << "};\n"
         << "Mesh.MeshSizeMin = h / 2;\nMesh.MeshSizeMax = h;\n"
         << "Mesh.MeshSizeExtendFromBoundary = 1;\n"
-        // HXT and the optimisation of every tetrahedron of quality below
-        // 0.6: gmsh's default Delaunay and threshold 0.3 leave slivers
-        // (quality 0.01-0.07 on five seeds against 0.08-0.09) that set the
-        // explicit step
-        << "Mesh.Algorithm3D = 10;\n"
+        // MeshAdapt on the faces, Delaunay inside, every tetrahedron of
+        // quality below 0.6 optimised: gmsh's defaults (frontal-Delaunay,
+        // threshold 0.3) leave slivers (quality 0.008-0.07 on five seeds
+        // against 0.05-0.09) that set the explicit step. Not HXT: its mesh
+        // depends on the memory layout (the length of the file names), so
+        // one seed would give other meshes in other folders
+        << "Mesh.Algorithm = 1;\nMesh.Algorithm3D = 1;\n"
         << "Mesh.OptimizeThreshold = 0.6;\n"
         << "Mesh.RandomSeed = 1;\n";
     return geo.str();

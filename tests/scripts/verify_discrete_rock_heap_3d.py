@@ -120,12 +120,14 @@ def generate(folder, *settings):
 
 
 # ---------------------------------------------------------------- generator
-a = generate(os.path.join(out, "seed1_a"))
-b = generate(os.path.join(out, "seed1_b"))
+# two folders whose names differ in length: a mesher whose result depends
+# on the memory layout (gmsh's HXT does) gives two meshes here
+a = generate(os.path.join(out, "seed1"))
+b = generate(os.path.join(out, "seed1_again_in_another_folder"))
 c = generate(os.path.join(out, "seed2"), "Mesh/Block heap/Seed=2")
 ok &= check(a == b, "the same seed gives a byte-identical mesh")
 ok &= check(a != c, "another seed gives another mesh")
-nodes, tetrahedra, _ = read_msh(os.path.join(out, "seed1_a", "mesh.msh"))
+nodes, tetrahedra, _ = read_msh(os.path.join(out, "seed1", "mesh.msh"))
 n_blocks = len(bodies(tetrahedra, 1))  # the prm's 40 blocks, W = 0.3 m
 ok &= check(n_blocks == 40, f"{n_blocks} blocks generated (40 requested)")
 n_parts = len(bodies(tetrahedra, 2))
