@@ -159,6 +159,39 @@ namespace tmfdem
       return random_seeds(p.n_blocks, lower, upper, p.mean_size, engine);
     }
 
+    /** The comma-separated list of @p ids. */
+    std::string
+    id_list(const std::vector<unsigned int> &ids)
+    {
+      std::string text;
+      for (unsigned int i = 0; i < ids.size(); ++i)
+        text += (i > 0 ? ", " : "") + std::to_string(ids[i]);
+      return text;
+    }
+
+    /** The physical groups of a heap's .geo script in @p dim dimensions:
+     *  the blocks' and the container's cells (material ids), the base's
+     *  and the walls' sides (boundary ids). */
+    void
+    write_physical_groups(std::ostream                    &geo,
+                          const unsigned int               dim,
+                          const std::vector<unsigned int> &blocks,
+                          const std::vector<unsigned int> &container,
+                          const std::vector<unsigned int> &base,
+                          const std::vector<unsigned int> &walls)
+    {
+      const std::string cell = dim == 3 ? "Volume" : "Surface",
+                        side = dim == 3 ? "Surface" : "Curve";
+      geo << "Physical " << cell << "(" << block_heap_block_material << ") = {"
+          << id_list(blocks) << "};\n"
+          << "Physical " << cell << "(" << block_heap_container_material
+          << ") = {" << id_list(container) << "};\n"
+          << "Physical " << side << "(" << block_heap_base_boundary << ") = {"
+          << id_list(base) << "};\n"
+          << "Physical " << side << "(" << block_heap_wall_boundary << ") = {"
+          << id_list(walls) << "};\n";
+    }
+
     /** A box [@p lower, @p upper] as a Polyhedron. */
     Polyhedron
     box(const Point<3> &lower, const Point<3> &upper)
@@ -350,25 +383,17 @@ namespace tmfdem
         for (unsigned int k = 0; k < geometry.container[c].size(); ++k)
           container_curves[c].push_back(first + k);
       }
-    auto list = [](const std::vector<unsigned int> &ids) {
-      std::string text;
-      for (unsigned int i = 0; i < ids.size(); ++i)
-        text += (i > 0 ? ", " : "") + std::to_string(ids[i]);
-      return text;
-    };
     std::vector<unsigned int> walls = container_curves[1];
     walls.insert(walls.end(),
                  container_curves[2].begin(),
                  container_curves[2].end());
-    geo << "Physical Surface(" << block_heap_block_material << ") = {"
-        << list(block_surfaces) << "};\n"
-        << "Physical Surface(" << block_heap_container_material << ") = {"
-        << list(container_surfaces) << "};\n"
-        << "Physical Curve(" << block_heap_base_boundary << ") = {"
-        << list(container_curves[0]) << "};\n"
-        << "Physical Curve(" << block_heap_wall_boundary << ") = {"
-        << list(walls) << "};\n"
-        << "Mesh.Algorithm = 6;\n"
+    write_physical_groups(geo,
+                          2,
+                          block_surfaces,
+                          container_surfaces,
+                          container_curves[0],
+                          walls);
+    geo << "Mesh.Algorithm = 6;\n"
         << "Mesh.MeshSizeMin = h;\nMesh.MeshSizeMax = h;\n"
         << "Mesh.MeshSizeFromPoints = 0;\n"
         << "Mesh.MeshSizeExtendFromBoundary = 0;\n"
@@ -661,10 +686,19 @@ namespace tmfdem
                       b        = v;
                     }
                 }
+            // the hull of the other vertices (none if they span no
+            // volume: the block is then degenerate)
             auto without = [&](const unsigned int v) {
               std::vector<Point<3>> rest = cell.vertices;
               rest.erase(rest.begin() + v);
-              return convex_hull(rest);
+              try
+                {
+                  return convex_hull(rest);
+                }
+              catch (const RunError &)
+                {
+                  throw degenerate();
+                }
             };
             Polyhedron without_a = without(a), without_b = without(b);
             cell = without_a.volume() >= without_b.volume() ?
@@ -763,21 +797,13 @@ namespace tmfdem
     for (unsigned int c = 1; c < geometry.container.size(); ++c)
       container.push_back(
         add_polyhedron(geometry.container[c], &wall_surfaces));
-    auto list = [](const std::vector<unsigned int> &ids) {
-      std::string text;
-      for (unsigned int i = 0; i < ids.size(); ++i)
-        text += (i > 0 ? ", " : "") + std::to_string(ids[i]);
-      return text;
-    };
-    geo << "Physical Volume(" << block_heap_block_material << ") = {"
-        << list(blocks) << "};\n"
-        << "Physical Volume(" << block_heap_container_material << ") = {"
-        << list(container) << "};\n"
-        << "Physical Surface(" << block_heap_base_boundary << ") = {"
-        << list(base_surfaces) << "};\n"
-        << "Physical Surface(" << block_heap_wall_boundary << ") = {"
-        << list(wall_surfaces) << "};\n"
-        << "Mesh.MeshSizeMin = h / 2;\nMesh.MeshSizeMax = h;\n"
+    write_physical_groups(geo,
+                          3,
+                          blocks,
+                          container,
+                          base_surfaces,
+                          wall_surfaces);
+    geo << "Mesh.MeshSizeMin = h / 2;\nMesh.MeshSizeMax = h;\n"
         << "Mesh.MeshSizeExtendFromBoundary = 1;\n"
         // MeshAdapt on the faces, Delaunay inside, every tetrahedron of
         // quality below 0.6 optimised: gmsh's defaults (frontal-Delaunay,
