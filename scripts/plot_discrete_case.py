@@ -1271,6 +1271,12 @@ def plot_rock_heap_3d(folder, png):
         means = [Tb[(zb >= lo) & (zb < hi)].mean() for lo, hi in zip(edges[:-1], edges[1:])]
         ax.plot(means, 100 * centre, "o-", color=f"C{k}", ms=3, lw=1.0,
                 label=f"t = {time / 3600:g} h")
+        thirds = np.linspace(0.0, top, 4)
+        print(f"t = {time / 3600:g} h: blocks' mean temperature by thirds of the height "
+              "(bottom, middle, top): " +
+              ", ".join(f"{Tb[(zb >= lo) & (zb < hi)].mean():.1f}"
+                        for lo, hi in zip(thirds[:-1], thirds[1:])) +
+              f" C; all blocks {Tb.mean():.1f} C")
     ax.set_xlabel("blocks' mean temperature in a layer [C]")
     ax.set_ylabel("height z [cm]")
     ax.set_title("heating from the base (100 C), walls at 0 C: layers of a tenth of "
