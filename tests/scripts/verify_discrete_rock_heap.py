@@ -13,13 +13,13 @@ shortened:
               relative, and the probes on the monitor line are ordered by
               height (bottom-up heating)."""
 import os
-import subprocess
 import sys
 
 import numpy as np
 
 from analytic import read_csv
 from common import run, summary, check
+from heap_mesh import bodies, generate, read_msh
 
 binary, out = sys.argv[1], sys.argv[2]
 prm_dir = os.path.join(os.path.dirname(__file__), "..", "..", "prm")
@@ -29,66 +29,16 @@ ok = True
 W, H = 0.5, 0.7
 
 
-def read_msh(path):
-    """Nodes (id -> (x, y)), triangles [(material, n0, n1, n2)], lines."""
-    with open(path) as f:
-        lines = f.read().split("\n")
-    i = lines.index("$Nodes")
-    n = int(lines[i + 1])
-    nodes = {}
-    for line in lines[i + 2:i + 2 + n]:
-        v = line.split()
-        nodes[int(v[0])] = (float(v[1]), float(v[2]))
-    i = lines.index("$Elements")
-    n = int(lines[i + 1])
-    triangles, segments = [], []
-    for line in lines[i + 2:i + 2 + n]:
-        v = [int(a) for a in line.split()]
-        n_tags = v[2]
-        if v[1] == 2:
-            triangles.append((v[3], *v[3 + n_tags:6 + n_tags]))
-        elif v[1] == 1:
-            segments.append((v[3], *v[3 + n_tags:5 + n_tags]))
-    return nodes, triangles, segments
-
-
-def count_bodies(triangles, material):
-    """Connected sets of triangles of one material (sharing a node)."""
-    parent = {}
-
-    def find(a):
-        while parent.setdefault(a, a) != a:
-            parent[a] = parent[parent[a]]
-            a = parent[a]
-        return a
-    for t in triangles:
-        if t[0] == material:
-            for k in (2, 3):
-                parent[find(t[1])] = find(t[k])
-    return len({find(t[1]) for t in triangles if t[0] == material})
-
-
-def generate(folder, *settings):
-    cmd = [binary, "--validate", settle_prm, "--set", f"Output/Directory={folder}"]
-    for s in settings:
-        cmd += ["--set", s]
-    result = subprocess.run(cmd, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit(f"FAIL: {' '.join(cmd)}: {result.stderr}")
-    with open(os.path.join(folder, "mesh.msh")) as f:
-        return f.read()
-
-
 # ---------------------------------------------------------------- generator
-a = generate(os.path.join(out, "seed1_a"))
-b = generate(os.path.join(out, "seed1_b"))
-c = generate(os.path.join(out, "seed2"), "Mesh/Block heap/Seed=2")
+a = generate(binary, settle_prm, os.path.join(out, "seed1_a"))
+b = generate(binary, settle_prm, os.path.join(out, "seed1_b"))
+c = generate(binary, settle_prm, os.path.join(out, "seed2"), "Mesh/Block heap/Seed=2")
 ok &= check(a == b, "the same seed gives a byte-identical mesh")
 ok &= check(a != c, "another seed gives another mesh")
-nodes, triangles, _ = read_msh(os.path.join(out, "seed1_a", "mesh.msh"))
-n_blocks = count_bodies(triangles, 1)
+nodes, triangles, _ = read_msh(os.path.join(out, "seed1_a", "mesh.msh"), 2)
+n_blocks = len(bodies(triangles, 1))
 ok &= check(n_blocks == 61, f"{n_blocks} blocks generated (61 requested)")
-ok &= check(count_bodies(triangles, 2) == 3, "container: base plate and two walls")
+ok &= check(len(bodies(triangles, 2)) == 3, "container: base plate and two walls")
 
 # ------------------------------------------------------------------- settle
 folder = os.path.join(out, "settle")
@@ -103,9 +53,9 @@ ok &= check(ratio < 1e-3, f"settled: kinetic energy {e['kinetic']:.3e} J/m = {ra
             f"of the gravity work {e['external_work']:.3e} J/m (< 1e-3)")
 ok &= check(s["broken_joints"] == 0, f"{s['broken_joints']} broken joints (none)")
 settled = os.path.join(folder, "final_mesh.msh")
-nodes, triangles, segments = read_msh(settled)
-ok &= check(count_bodies(triangles, 1) == n_settle,
-            f"{count_bodies(triangles, 1)} blocks in the settled mesh ({n_settle})")
+nodes, triangles, segments = read_msh(settled, 2)
+ok &= check(len(bodies(triangles, 1)) == n_settle,
+            f"{len(bodies(triangles, 1))} blocks in the settled mesh ({n_settle})")
 block_nodes = {n for t in triangles if t[0] == 1 for n in t[1:]}
 xy = np.array([nodes[n] for n in block_nodes])
 tol = 5e-4

@@ -26,12 +26,12 @@ heating of its heap):
               relative, and the blocks' mean temperature falls with height
               (bottom-up heating through the contacts)."""
 import os
-import subprocess
 import sys
 
 import numpy as np
 
 from common import run, summary, check
+from heap_mesh import bodies, generate, read_msh
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
@@ -46,51 +46,6 @@ heat_prm = os.path.join(ROOT, "prm", "rock_heap-heat-3d.prm")
 ok = True
 H, s_mean, drop = 0.35, 0.07, 0.02
 rho, g = 2500.0, 9.81
-
-
-def read_msh(path):
-    """Nodes (id -> (x, y, z)), tetrahedra [(material, n0..n3)], boundary
-    triangles [(id, n0, n1, n2)] of a gmsh 2.2 ASCII file."""
-    with open(path) as f:
-        lines = f.read().split("\n")
-    i = lines.index("$Nodes")
-    n = int(lines[i + 1])
-    nodes = {}
-    for line in lines[i + 2:i + 2 + n]:
-        v = line.split()
-        nodes[int(v[0])] = tuple(float(a) for a in v[1:4])
-    i = lines.index("$Elements")
-    n = int(lines[i + 1])
-    tetrahedra, triangles = [], []
-    for line in lines[i + 2:i + 2 + n]:
-        v = [int(a) for a in line.split()]
-        n_tags = v[2]
-        if v[1] == 4:
-            tetrahedra.append((v[3], *v[3 + n_tags:7 + n_tags]))
-        elif v[1] == 2:
-            triangles.append((v[3], *v[3 + n_tags:6 + n_tags]))
-    return nodes, tetrahedra, triangles
-
-
-def bodies(tetrahedra, material):
-    """Connected sets of tetrahedra of one material (sharing a node), as a
-    list of node sets."""
-    parent = {}
-
-    def find(a):
-        while parent.setdefault(a, a) != a:
-            parent[a] = parent[parent[a]]
-            a = parent[a]
-        return a
-    for t in tetrahedra:
-        if t[0] == material:
-            for k in (2, 3, 4):
-                parent[find(t[1])] = find(t[k])
-    sets = {}
-    for t in tetrahedra:
-        if t[0] == material:
-            sets.setdefault(find(t[1]), set()).update(t[1:])
-    return list(sets.values())
 
 
 def volume(nodes, tetrahedra, material):
@@ -114,27 +69,16 @@ def centre_height(nodes, tetrahedra, material):
     return vz / v_sum
 
 
-def generate(folder, *settings):
-    cmd = [binary, "--validate", settle_prm, "--set", f"Output/Directory={folder}"]
-    for s in settings:
-        cmd += ["--set", s]
-    result = subprocess.run(cmd, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit(f"FAIL: {' '.join(cmd)}: {result.stderr}")
-    with open(os.path.join(folder, "mesh.msh")) as f:
-        return f.read()
-
-
 # ---------------------------------------------------------------- generator
 if settled_run is None:
     # two folders whose names differ in length: a mesher whose result depends
     # on the memory layout (gmsh's HXT does) gives two meshes here
-    a = generate(os.path.join(out, "seed1"))
-    b = generate(os.path.join(out, "seed1_again_in_another_folder"))
-    c = generate(os.path.join(out, "seed2"), "Mesh/Block heap/Seed=2")
+    a = generate(binary, settle_prm, os.path.join(out, "seed1"))
+    b = generate(binary, settle_prm, os.path.join(out, "seed1_again_in_another_folder"))
+    c = generate(binary, settle_prm, os.path.join(out, "seed2"), "Mesh/Block heap/Seed=2")
     ok &= check(a == b, "the same seed gives a byte-identical mesh")
     ok &= check(a != c, "another seed gives another mesh")
-    nodes, tetrahedra, _ = read_msh(os.path.join(out, "seed1", "mesh.msh"))
+    nodes, tetrahedra, _ = read_msh(os.path.join(out, "seed1", "mesh.msh"), 3)
     n_blocks = len(bodies(tetrahedra, 1))  # the prm's 40 blocks, W = 0.3 m
     ok &= check(n_blocks == 40, f"{n_blocks} blocks generated (40 requested)")
     n_parts = len(bodies(tetrahedra, 2))
@@ -161,11 +105,11 @@ ok &= check(balance < 1e-2, f"energy balance error {e['balance_error']:.3e} J = 
             "of the gravity work (< 1e-2)")
 ok &= check(s["broken_joints"] == 0, f"{s['broken_joints']} broken joints (none)")
 settled = os.path.join(folder, "final_mesh.msh")
-nodes, tetrahedra, triangles = read_msh(settled)
+nodes, tetrahedra, triangles = read_msh(settled, 3)
 blocks = bodies(tetrahedra, 1)
 ok &= check(len(blocks) == n_settle, f"{len(blocks)} blocks in the settled mesh ({n_settle})")
 xyz = np.array([nodes[n] for block in blocks for n in block])
-nodes0, tetrahedra0, _ = read_msh(os.path.join(folder, "mesh.msh"))
+nodes0, tetrahedra0, _ = read_msh(os.path.join(folder, "mesh.msh"), 3)
 blocks_weight = rho * g * volume(nodes0, tetrahedra0, 1)  # the mass: reference volumes
 tol = (blocks_weight * 0.03 / (4 * 10 * 1e6)) ** (1 / 3)
 ok &= check(xyz[:, :2].min() > -tol and xyz[:, :2].max() < W + tol and xyz[:, 2].min() > -tol
