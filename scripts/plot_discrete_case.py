@@ -801,7 +801,7 @@ def plot_plate_transient_3d(folder, png):
     for i, (t, path) in enumerate(zip(times, records)):
         points, _, arrays = read_vtu(path)
         X = points - arrays["displacement"].reshape(-1, 3)
-        T = arrays["temperature"]
+        T = arrays["T"]
         err = np.abs(T - an.plate_transient(X[:, 0], t)).max()
         print(f"  t = {t:4.0f} s: {err:.4f} C")
         c = f"C{i}"
@@ -817,13 +817,13 @@ def plot_plate_transient_3d(folder, png):
     ax_t.grid(alpha=0.3)
 
     # beta = 1000: the shipped run's output at t = 10 s
-    T10 = {1000: read_vtu(records[1])[2]["temperature"]}
+    T10 = {1000: read_vtu(records[1])[2]["T"]}
     for beta in (100, 10000):
         run = os.path.join(folder, f"plate_beta_{beta}")
         ensure_run(run, prm, f"Discrete heat/Joint conductance factor={beta}",
                    "Time stepping/End time=10", "Output/Times=10")
         last = sorted(glob.glob(os.path.join(run, "solution_*.vtu")))[-1]
-        T10[beta] = read_vtu(last)[2]["temperature"]
+        T10[beta] = read_vtu(last)[2]["T"]
     steps = [np.abs(T10[100] - T10[1000]).max(), np.abs(T10[1000] - T10[10000]).max()]
     print(f"  t = 10 s: beta 100 -> 1000 changes T by {steps[0]:.4f} C, 1000 -> 10000 by "
           f"{steps[1]:.5f} C (ratio {steps[0] / steps[1]:.3f})")
@@ -1131,7 +1131,7 @@ def plot_contact_conduction_3d(folder, png):
     def nodal(arrays):
         z = arrays[("Points", None)].reshape(-1, 3)[:, 2]
         material = np.repeat(arrays[("CellData", "material_id")], 4)
-        return z, material, arrays[("PointData", "temperature")]
+        return z, material, arrays[("PointData", "T")]
 
     q = 100.0 / (L1 / k1 + 1.0 / h_c + L2 / k2)
     zm = 0.1 - delta / 2
@@ -1263,7 +1263,7 @@ def plot_rock_heap_3d(folder, png):
     for k, (time, arrays) in enumerate(series):
         z = arrays[("Points", None)].reshape(-1, 3)[:, 2]
         material = np.repeat(arrays[("CellData", "material_id")], 4)
-        T = arrays[("PointData", "temperature")]
+        T = arrays[("PointData", "T")]
         zb, Tb = z[material == 1], T[material == 1]
         top = zb.max() if top is None else top
         edges = np.linspace(0.0, top, 11)

@@ -982,7 +982,7 @@ namespace tmfdem
       const VtuEncoding encoding = vtu_encoding(parameters.output);
       std::vector<std::pair<std::string, const std::vector<double> *>> fields;
       if (heat)
-        fields.emplace_back("temperature", &heat->temperature());
+        fields.emplace_back("T", &heat->temperature());
       solution_series->write(time,
                              discrete_solution_vtu(model, encoding, fields));
       if (with_mechanics())

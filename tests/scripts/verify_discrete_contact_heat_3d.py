@@ -53,7 +53,7 @@ def nodal(folder, index=-1):
     t, arrays = vtu_pieces.read_series(folder)[index]
     z = arrays[("Points", None)].reshape(-1, 3)[:, 2]
     material = np.repeat(arrays[("CellData", "material_id")], 4)
-    return t, z, material, arrays[("PointData", "temperature")]
+    return t, z, material, arrays[("PointData", "T")]
 
 
 def steady(folder, h_c, label, *settings):

@@ -99,7 +99,7 @@ for t, arrays in outputs(folder):
     if t == 0:
         continue
     x = reference_points(arrays)[:, 0]
-    error = np.max(np.abs(arrays[("PointData", "temperature")]
+    error = np.max(np.abs(arrays[("PointData", "T")]
                           - analytic.plate_transient(x, t)))
     ok &= check(error <= 0.5, f"plate, t = {t:g} s: largest error at the "
                 f"{len(x)} nodes {error:.4f} C (<= 0.5 C)")
@@ -109,12 +109,12 @@ ok &= check(imbalance < 1e-6, f"plate: heat balance {imbalance:.3g} (< 1e-6)")
 # 2. the joints' conductance: the O(1/beta) difference
 # (beta = 1000 is the shipped run of 1, its output at t = 10 s)
 T = {1000: next(a for t, a in outputs(os.path.join(out, "plate"))
-                if t == 10.0)[("PointData", "temperature")]}
+                if t == 10.0)[("PointData", "T")]}
 for beta in (100, 10000):
     folder = os.path.join(out, f"plate_beta_{beta}")
     run(binary, plate, folder, f"Discrete heat/Joint conductance factor={beta}",
         "Time stepping/End time=10", "Output/Times=10")
-    T[beta] = outputs(folder)[-1][1][("PointData", "temperature")]
+    T[beta] = outputs(folder)[-1][1][("PointData", "T")]
 coarse = np.max(np.abs(T[100] - T[1000]))
 fine = np.max(np.abs(T[1000] - T[10000]))
 ok &= check(8 < coarse / fine < 12,
@@ -186,7 +186,7 @@ for threads in (1, 2):
         arrays = outputs(folder)[-1][1]
 s = runs[1]
 T_exact = dT + Q * t_end / rho_c
-T_error = np.max(np.abs(arrays[("PointData", "temperature")] - T_exact)) / T_exact
+T_error = np.max(np.abs(arrays[("PointData", "T")] - T_exact)) / T_exact
 ok &= check(T_error < 1e-9 and s["thermal_steps"] > 20,
             f"uniform source: T = {T_exact:.6g} C at every node to "
             f"{T_error:.3g} (< 1e-9), {s['thermal_steps']} explicit thermal "
@@ -235,7 +235,7 @@ run(binary, cube, folder, *restrained, "Discrete heat/Coupling=quasi-static",
 q = summary(folder)
 arrays = outputs(folder)[-1][1]
 X = reference_points(arrays)
-T_error = np.max(np.abs(arrays[("PointData", "temperature")] - 2000 * X[:, 0]))
+T_error = np.max(np.abs(arrays[("PointData", "T")] - 2000 * X[:, 0]))
 ok &= check(T_error < 1.0 and q["relaxations_at_cap"] == 0,
             f"linear temperature: T = 2000 x to {T_error:.4f} C (< 1 C, 0.5 % of "
             "the range), the relaxation converged")

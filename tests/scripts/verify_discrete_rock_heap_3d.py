@@ -154,7 +154,7 @@ ok &= check(q_in["1"] > 0 and hb["stored_heat"] > 0 and rel_in < 1e-6,
 t_last, arrays = vtu_pieces.read_series(folder_heat)[-1]
 z = arrays[("Points", None)].reshape(-1, 3)[:, 2]
 material = np.repeat(arrays[("CellData", "material_id")], 4)  # nodes 4e..4e+3
-T = arrays[("PointData", "temperature")]
+T = arrays[("PointData", "T")]
 z, Tb = z[material == 1], T[material == 1]
 edges = np.linspace(0.0, top, 4)
 means = [Tb[(z >= lo) & (z < hi)].mean() for lo, hi in zip(edges[:-1], edges[1:])]

@@ -73,7 +73,7 @@ def measure(folder):
     X = (arrays[("Points", None)].reshape(-1, 3)
          - arrays[("PointData", "displacement")].reshape(-1, 3))
     r_nodes = np.linalg.norm(X, axis=1)
-    T = arrays[("PointData", "temperature")]
+    T = arrays[("PointData", "T")]
     free = (T != t_a) & (T != t_b)  # not held by the boundary conditions
     T_error = np.max(np.abs(T[free] - analytic.spherical_shell_temperature(
         r_nodes[free], a, b, t_a, t_b)))

@@ -91,6 +91,95 @@ def tetrahedra(arrays):
                 damage=arrays[("CellData", "joint_damage")])
 
 
+# the faces of a tetrahedron, each opposite one corner, outward for a
+# positively oriented tetrahedron
+_FACES = np.array([[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]])
+
+
+def vertex_ids(reference):
+    """One id per mesh vertex for the copies the tetrahedra own (reference
+    positions within 1e-9 m: the vtu's single-precision points)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+    pairs = cKDTree(reference).query_pairs(1e-9, output_type="ndarray")
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])),
+                       shape=(len(reference),) * 2)
+    return connected_components(graph, directed=False)[1]
+
+
+def cracks(solution, crack_file):
+    """The broken faces of one output and the cracks they form.
+
+    Each triangle of cracks.pvd (its corners the midpoints of the two faces'
+    nodes) is matched to the pair of tetrahedron faces it lies between; the
+    normal opening at each corner is (x_b - x_a) . n_a, n_a the outward unit
+    normal of side a in the current configuration (> 0: the faces apart).
+    Broken faces that share an edge belong to one crack. Returns
+    (per-face minimum opening [m], list of cracks: dict(faces, r_min, r_max,
+    z_min, z_max [m], theta [rad], radial = the area-weighted mean of
+    |n . e_theta|, 1 for a plane through the axis))."""
+    from scipy.spatial import cKDTree
+    x = solution[("Points", None)].reshape(-1, 3).astype(float)
+    reference = x - solution[("PointData", "displacement")].reshape(-1, 3)
+    vertex = vertex_ids(reference)
+    n_tets = len(x) // 4
+    corners = (4 * np.arange(n_tets)[:, None, None] + _FACES[None]).reshape(-1, 3)
+    key = np.sort(vertex[corners], axis=1)
+    order = np.lexsort(key.T[::-1])
+    same = np.all(key[order[1:]] == key[order[:-1]], axis=1)
+    a, b = order[:-1][same], order[1:][same]  # the two sides of each interior face
+    midpoint = 0.5 * (x[corners[a]].mean(axis=1) + x[corners[b]].mean(axis=1))
+    crack_points = crack_file[("Points", None)].reshape(-1, 3).astype(float)
+    conn = crack_file[("Cells", "connectivity")].astype(np.int64)
+    types = crack_file[("Cells", "types")].astype(np.int64)
+    triangles = conn[:3 * int((types == 5).sum())].reshape(-1, 3) if np.all(types[types != 2] == 5) else None
+    assert triangles is not None, "cracks.pvd holds cells other than triangles"
+    if len(triangles) == 0:
+        return np.zeros(0), []
+    distance, pair = cKDTree(midpoint).query(crack_points[triangles].mean(axis=1))
+    assert distance.max() < 1e-8, f"a crack triangle lies {distance.max():.3g} m from every face pair"
+    a, b = a[pair], b[pair]
+    xa = x[corners[a]]
+    normal = np.cross(xa[:, 1] - xa[:, 0], xa[:, 2] - xa[:, 0])
+    area = 0.5 * np.linalg.norm(normal, axis=1)
+    normal /= 2 * area[:, None]
+    # side b's node at each corner of side a: the same mesh vertex
+    vb = vertex[corners[b]]
+    match = np.argmax(vb[:, None, :] == vertex[corners[a]][:, :, None], axis=2)
+    xb = x[corners[b][np.arange(len(b))[:, None], match]]
+    opening = np.einsum("fkd,fd->fk", xb - xa, normal).min(axis=1)
+    # cracks: broken faces joined by an edge
+    parent = list(range(len(a)))
+
+    def root(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+    edges = {}
+    for f, ids in enumerate(np.sort(vertex[corners[a]], axis=1)):
+        for e in ((ids[0], ids[1]), (ids[0], ids[2]), (ids[1], ids[2])):
+            if e in edges:
+                parent[root(f)] = root(edges[e])
+            edges[e] = f
+    groups = {}
+    for f in range(len(a)):
+        groups.setdefault(root(f), []).append(f)
+    result = []
+    for faces in groups.values():
+        points = reference[corners[a[faces]]].reshape(-1, 3)
+        r = np.hypot(points[:, 0], points[:, 1])
+        centre = points.mean(axis=0)
+        theta = np.arctan2(centre[1], centre[0])
+        e_theta = np.array([-np.sin(theta), np.cos(theta), 0.0])
+        radial = np.sum(area[faces] * np.abs(normal[faces] @ e_theta)) / np.sum(area[faces])
+        result.append(dict(faces=len(faces), r_min=r.min(), r_max=r.max(),
+                           z_min=points[:, 2].min(), z_max=points[:, 2].max(),
+                           theta=theta, radial=radial))
+    return opening, sorted(result, key=lambda c: c["theta"])
+
+
 def plane_stress_hoop(t, n=8001, n_terms=200):
     """The plane-stress hoop stress of the quenched disc at time t as a
     function of r [Pa] (E alpha (T_m / 2 + (1/r^2) int_0^r T r' dr' - T),
