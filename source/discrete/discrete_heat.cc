@@ -124,8 +124,9 @@ namespace tmfdem
       const auto &dh = parameters.get<DiscreteHeatParameters>();
       use_implicit   = dh.time_integration ==
                      DiscreteHeatParameters::TimeIntegration::implicit;
-      beta                = dh.joint_conductance_factor;
-      contact_conductance = dh.contact_conductance;
+      lumped_implicit_capacity = dh.lumped_implicit_capacity;
+      beta                     = dh.joint_conductance_factor;
+      contact_conductance      = dh.contact_conductance;
       T.reinit(model.n_nodes);
 
       conductivity.resize(model.n_elements);
@@ -584,10 +585,11 @@ namespace tmfdem
               if (use_implicit)
                 for (unsigned int b = 0; b < 3; ++b)
                   stored_change +=
-                    consistent_capacity<2>(volumetric_heat_capacity[e],
-                                           model.reference_area[e],
-                                           a,
-                                           b) *
+                    implicit_capacity<2>(lumped_implicit_capacity,
+                                         volumetric_heat_capacity[e],
+                                         model.reference_area[e],
+                                         a,
+                                         b) *
                     (T[3 * e + b] - T_old[3 * e + b]);
               sums[0] += stored_change;
               if (dirichlet_node[n])

@@ -87,10 +87,11 @@ namespace tmfdem
               rows.add(3 * e + a,
                        3 * e + b,
                        K[a][b] +
-                         consistent_capacity<2>(volumetric_heat_capacity[e],
-                                                model.reference_area[e],
-                                                a,
-                                                b) /
+                         implicit_capacity<2>(lumped_implicit_capacity,
+                                              volumetric_heat_capacity[e],
+                                              model.reference_area[e],
+                                              a,
+                                              b) /
                            time_step);
         }
       for (const unsigned int j : local_joints)
@@ -126,12 +127,12 @@ namespace tmfdem
             {
               double capacity_T = 0.;
               for (unsigned int b = 0; b < 3; ++b)
-                capacity_T +=
-                  consistent_capacity<2>(volumetric_heat_capacity[e],
-                                         model.reference_area[e],
-                                         a,
-                                         b) *
-                  T_old[3 * e + b];
+                capacity_T += implicit_capacity<2>(lumped_implicit_capacity,
+                                                   volumetric_heat_capacity[e],
+                                                   model.reference_area[e],
+                                                   a,
+                                                   b) *
+                              T_old[3 * e + b];
               rhs[3 * e + a] += capacity_T / time_step;
             }
           const double *x = &model.x_ref[3 * e], *y = &model.y_ref[3 * e];

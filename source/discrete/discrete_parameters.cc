@@ -457,11 +457,23 @@ namespace tmfdem
                       "implicit",
                       Patterns::Selection("implicit|explicit"),
                       "implicit: backward Euler (paper Eq. 22) with the "
-                      "consistent capacity matrix, joint exchange in the "
-                      "matrix, CG; explicit: forward Euler with the lumped "
+                      "capacity matrix of Capacity matrix, joint exchange in "
+                      "the matrix, CG; explicit: forward Euler with the lumped "
                       "capacity, the step limited to Safety factor x the "
                       "stable step (a larger Time stepping/Time step is "
                       "refused).");
+    prm.declare_entry(
+      "Capacity matrix",
+      "consistent",
+      Patterns::Selection("consistent|lumped"),
+      "The capacity matrix of the implicit step (doc/theory.md 2.3). "
+      "consistent: M_ab = rho c V (1 + delta_ab) / ((dim + 1)(dim + 2)), "
+      "the smaller error of a smooth field; with steps much shorter than "
+      "h^2 / kappa a steep front (a quench) makes temperatures overshoot "
+      "their initial and boundary values by a few percent of the jump "
+      "next to it. lumped: rho c V / (dim + 1) on each node, no such "
+      "overshoot where no element is obtuse. Explicit steps always use "
+      "the lumped capacity.");
     prm.declare_entry("Joint conductance factor",
                       "1000",
                       Patterns::Double(0.),
@@ -661,6 +673,7 @@ namespace tmfdem
     time_integration         = prm.get("Time integration") == "explicit" ?
                                  TimeIntegration::explicit_euler :
                                  TimeIntegration::implicit;
+    lumped_implicit_capacity = prm.get("Capacity matrix") == "lumped";
     joint_conductance_factor = prm.get_double("Joint conductance factor");
     contact_conductance      = prm.get_double("Contact conductance");
     safety_factor            = prm.get_double("Safety factor");

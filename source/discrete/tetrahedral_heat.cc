@@ -65,10 +65,11 @@ namespace tmfdem
       const auto &dh = parameters.get<DiscreteHeatParameters>();
       use_implicit   = dh.time_integration ==
                      DiscreteHeatParameters::TimeIntegration::implicit;
-      beta                = dh.joint_conductance_factor;
-      tolerance           = dh.solver_tolerance;
-      contact_conductance = dh.contact_conductance;
-      contact_model       = dh.contact_heat_model;
+      lumped_implicit_capacity = dh.lumped_implicit_capacity;
+      beta                     = dh.joint_conductance_factor;
+      tolerance                = dh.solver_tolerance;
+      contact_conductance      = dh.contact_conductance;
+      contact_model            = dh.contact_heat_model;
       n_chunks = (model.n_elements + chunk_elements - 1) / chunk_elements;
       T.assign(model.n_nodes, 0.);
       conductivity.resize(model.n_elements);
@@ -584,10 +585,11 @@ namespace tmfdem
         for (unsigned int a = 0; a < 4; ++a)
           for (unsigned int b = 0; b < 4; ++b)
             element_matrix[16 * e + 4 * a + b] +=
-              consistent_capacity<3>(volumetric_heat_capacity[e],
-                                     model.reference_area[e],
-                                     a,
-                                     b) /
+              implicit_capacity<3>(lumped_implicit_capacity,
+                                   volumetric_heat_capacity[e],
+                                   model.reference_area[e],
+                                   a,
+                                   b) /
               time_step;
       // right-hand side at t + dt: M/dt T_old, sources, Neumann, Robin's
       // ambient part (its T part on the diagonal)
@@ -597,10 +599,11 @@ namespace tmfdem
           {
             double capacity_T = 0.;
             for (unsigned int b = 0; b < 4; ++b)
-              capacity_T += consistent_capacity<3>(volumetric_heat_capacity[e],
-                                                   model.reference_area[e],
-                                                   a,
-                                                   b) *
+              capacity_T += implicit_capacity<3>(lumped_implicit_capacity,
+                                                 volumetric_heat_capacity[e],
+                                                 model.reference_area[e],
+                                                 a,
+                                                 b) *
                             T_old[4 * e + b];
             rhs[4 * e + a] = capacity_T / time_step;
           }
@@ -776,10 +779,11 @@ namespace tmfdem
               if (use_implicit)
                 for (unsigned int b = 0; b < 4; ++b)
                   stored_change +=
-                    consistent_capacity<3>(volumetric_heat_capacity[e],
-                                           model.reference_area[e],
-                                           a,
-                                           b) *
+                    implicit_capacity<3>(lumped_implicit_capacity,
+                                         volumetric_heat_capacity[e],
+                                         model.reference_area[e],
+                                         a,
+                                         b) *
                     (T[4 * e + b] - T_old[4 * e + b]);
               sums[0] += stored_change;
               if (dirichlet_node[n])

@@ -299,7 +299,9 @@ namespace tmfdem
       DiscreteModel    &model;
       Vector<double>    T;
       bool              use_implicit = true;
-      double            beta         = 100.;
+      /** Discrete heat/Capacity matrix = lumped (implicit steps). */
+      bool   lumped_implicit_capacity = false;
+      double beta                     = 100.;
 
       std::vector<double> conductivity; ///< per element [W/(m K)]
       /** Largest principal conductivity per element [W/(m K)]. */

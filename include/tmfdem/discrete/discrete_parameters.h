@@ -128,11 +128,15 @@ namespace tmfdem
       implicit,
       explicit_euler
     };
-    TimeIntegration time_integration         = TimeIntegration::implicit;
-    double          joint_conductance_factor = 1000.; ///< beta [-]
-    double          contact_conductance      = 1e4;   ///< h_c [W/(m^2 K)]
-    double          safety_factor            = 0.9;   ///< explicit [-]
-    double          solver_tolerance         = 1e-12; ///< relative
+    TimeIntegration time_integration = TimeIntegration::implicit;
+    /** Capacity matrix of the implicit step: consistent (the default) or
+     *  lumped (no overshoot of the initial or boundary temperatures at
+     *  steps much shorter than h^2 / kappa). */
+    bool   lumped_implicit_capacity = false;
+    double joint_conductance_factor = 1000.; ///< beta [-]
+    double contact_conductance      = 1e4;   ///< h_c [W/(m^2 K)]
+    double safety_factor            = 0.9;   ///< explicit [-]
+    double solver_tolerance         = 1e-12; ///< relative
     /** Preconditioner of the implicit step's conjugate gradients. */
     enum class Preconditioner
     {

@@ -93,6 +93,25 @@ namespace tmfdem
     }
 
     /**
+     * Entry (a, b) of the implicit step's capacity matrix of a P1 simplex
+     * [J/(m K) in 2D, J/K in 3D]: consistent_capacity(), or with @p lumped
+     * its row sum c V / (dim + 1) on the diagonal (Discrete heat/Capacity
+     * matrix).
+     */
+    template <int dim>
+    inline double
+    implicit_capacity(const bool         lumped,
+                      const double       c,
+                      const double       V,
+                      const unsigned int a,
+                      const unsigned int b)
+    {
+      if (lumped)
+        return a == b ? c * V / (dim + 1) : 0.;
+      return consistent_capacity<dim>(c, V, a, b);
+    }
+
+    /**
      * Conductance between one node pair of an intact joint [W/(m K) in
      * 2D, W/K in 3D] (paper Eqs. 25-27): the joint conducts k_i = beta k /
      * h per unit area (@p beta the joint conductance factor, @p k the

@@ -247,15 +247,17 @@ namespace tmfdem
       void
       set_function_time(const double time) const;
 
-      const Parameters             &parameters;
-      DiscreteModel                &model;
-      bool                          use_implicit   = true;
-      double                        beta           = 1000.;
-      double                        tolerance      = 1e-12;
-      unsigned int                  n_threads      = 1;
-      unsigned int                  iterations     = 0;
-      static constexpr unsigned int chunk_elements = 512;
-      unsigned int                  n_chunks       = 0;
+      const Parameters &parameters;
+      DiscreteModel    &model;
+      bool              use_implicit = true;
+      /** Discrete heat/Capacity matrix = lumped (implicit steps). */
+      bool                          lumped_implicit_capacity = false;
+      double                        beta                     = 1000.;
+      double                        tolerance                = 1e-12;
+      unsigned int                  n_threads                = 1;
+      unsigned int                  iterations               = 0;
+      static constexpr unsigned int chunk_elements           = 512;
+      unsigned int                  n_chunks                 = 0;
 
       std::vector<double> T;
       std::vector<double> conductivity;             ///< per element [W/(m K)]
