@@ -44,6 +44,16 @@ def nearest(items, t):
     return min(items, key=lambda item: abs(item[0] - t))
 
 
+def finish_axes(ax, zoom):
+    """Equal axes in mm, cropped to zoom = (x0, x1, y0, y1) [m], no ticks."""
+    ax.set_aspect("equal")
+    if zoom:
+        ax.set_xlim(zoom[0] * 1e3, zoom[1] * 1e3)
+        ax.set_ylim(zoom[2] * 1e3, zoom[3] * 1e3)
+    ax.set_xticks([])
+    ax.set_yticks([])
+
+
 def draw(ax, solution_vtu, crack_vtu, t_range, zoom=None):
     pts, cells, T, _ = read_vtu(solution_vtu, "T")
     tri = Triangulation(pts[:, 0] * 1e3, pts[:, 1] * 1e3, np.array(cells))
@@ -53,12 +63,7 @@ def draw(ax, solution_vtu, crack_vtu, t_range, zoom=None):
     if lines:
         segments = [cpts[line] * 1e3 for line in lines]
         ax.add_collection(LineCollection(segments, colors="k", linewidths=1.0))
-    ax.set_aspect("equal")
-    if zoom:
-        ax.set_xlim(zoom[0] * 1e3, zoom[1] * 1e3)
-        ax.set_ylim(zoom[2] * 1e3, zoom[3] * 1e3)
-    ax.set_xticks([])
-    ax.set_yticks([])
+    finish_axes(ax, zoom)
     return im, len(lines)
 
 
@@ -121,12 +126,7 @@ def draw_3d(ax, solution_vtu, crack_vtu, t_range, zoom=None):
     if polygons:
         ax.add_collection(PolyCollection([cpts[p] * 1e3 for p in polygons], facecolors="k",
                                          edgecolors="k", linewidths=0.8))
-    ax.set_aspect("equal")
-    if zoom:
-        ax.set_xlim(zoom[0] * 1e3, zoom[1] * 1e3)
-        ax.set_ylim(zoom[2] * 1e3, zoom[3] * 1e3)
-    ax.set_xticks([])
-    ax.set_yticks([])
+    finish_axes(ax, zoom)
     return im, len(polygons), int(damaged.sum())
 
 
