@@ -28,7 +28,7 @@ from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_vtu import grid_arrays, read_grid, read_vtu  # noqa: E402
+from plot_vtu import grid_arrays, mesh_vertices, read_grid, read_vtu  # noqa: E402
 
 
 def datasets(folder, series):
@@ -81,17 +81,8 @@ def boundary_faces(solution_vtu):
     points, conn, offs, types, point_data, _ = grid_arrays(read_grid(solution_vtu))
     tets = conn.reshape(-1, 4)
     reference = points - point_data["displacement"].reshape(-1, 3)
-    # one vertex for the copies of a mesh vertex: points within 1e-5 of the
-    # extent (the vtu's single-precision points), not a rounding grid, whose
-    # cell boundaries could split two copies
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-    from scipy.spatial import cKDTree
-    pairs = cKDTree(reference).query_pairs(1e-5 * np.ptp(reference, axis=0).max(),
-                                           output_type="ndarray")
-    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])),
-                       shape=(len(points), len(points)))
-    vertex = connected_components(graph, directed=False)[1]
+    # copies within 1e-5 of the extent: the vtu's single-precision points
+    vertex = mesh_vertices(reference, 1e-5 * np.ptp(reference, axis=0).max())
     local = np.array([[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]])
     faces = tets[:, local].reshape(-1, 3)
     opposite = np.repeat(tets, 4, axis=0)[np.arange(len(faces)), np.tile([0, 1, 2, 3], len(tets))]

@@ -109,6 +109,20 @@ def read_vtu(path, field):
     return points[:, :2].astype(float), cells, values.astype(float), point
 
 
+def mesh_vertices(reference, tolerance):
+    """One id per mesh vertex for the copies of it that the discrete layer's
+    elements own: points whose reference positions (n x 3) [m] lie within
+    @p tolerance [m] of each other share an id (connected groups, not a
+    rounding grid, whose cell boundaries could split two copies)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+    pairs = cKDTree(reference).query_pairs(tolerance, output_type="ndarray")
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])),
+                       shape=(len(reference),) * 2)
+    return connected_components(graph, directed=False)[1]
+
+
 def resolve(path):
     """Map a .pvd to its last DataSet and a .pvtu to its pieces: list of .vtu files."""
     folder = os.path.dirname(path)

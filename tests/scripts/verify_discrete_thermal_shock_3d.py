@@ -54,6 +54,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from common import run, summary, check  # noqa: E402
 import analytic  # noqa: E402
 import vtu_pieces  # noqa: E402
+from plot_vtu import mesh_vertices  # noqa: E402
 
 PRM = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "prm")
 R, H, H_RIM = 6.5e-3, 1e-3, 0.25e-3
@@ -96,18 +97,6 @@ def tetrahedra(arrays):
 _FACES = np.array([[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]])
 
 
-def vertex_ids(reference):
-    """One id per mesh vertex for the copies the tetrahedra own (reference
-    positions within 1e-9 m: the vtu's single-precision points)."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-    from scipy.spatial import cKDTree
-    pairs = cKDTree(reference).query_pairs(1e-9, output_type="ndarray")
-    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])),
-                       shape=(len(reference),) * 2)
-    return connected_components(graph, directed=False)[1]
-
-
 def cracks(solution, crack_file):
     """The broken faces of one output and the cracks they form.
 
@@ -122,7 +111,8 @@ def cracks(solution, crack_file):
     from scipy.spatial import cKDTree
     x = solution[("Points", None)].reshape(-1, 3).astype(float)
     reference = x - solution[("PointData", "displacement")].reshape(-1, 3)
-    vertex = vertex_ids(reference)
+    # copies within 1e-9 m: the vtu's single-precision points
+    vertex = mesh_vertices(reference, 1e-9)
     n_tets = len(x) // 4
     corners = (4 * np.arange(n_tets)[:, None, None] + _FACES[None]).reshape(-1, 3)
     key = np.sort(vertex[corners], axis=1)
