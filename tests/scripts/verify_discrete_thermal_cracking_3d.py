@@ -52,7 +52,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 from common import run, summary, check  # noqa: E402
 import vtu_pieces  # noqa: E402
-from verify_discrete_thermal_shock_3d import cracks  # noqa: E402
+from verify_discrete_thermal_shock_3d import cracks, disc_geo  # noqa: E402
 
 PRM = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "prm")
 SCRIPTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts")
@@ -73,12 +73,7 @@ def main():
     if "--reuse" not in options:
         settings = []
         if rim_size != 0.4e-3:
-            os.makedirs(out, exist_ok=True)
-            geo = os.path.join(os.path.abspath(out), "disc-3d.geo")
-            with open(geo, "w") as f:
-                f.write(f"h_rim = {rim_size!r};\n"
-                        f'Include "{os.path.abspath(os.path.join(PRM, "thermal_shock_disc-3d.geo"))}";\n')
-            settings.append(f"Mesh/File name={geo}")
+            settings.append(f"Mesh/File name={disc_geo(out, rim_size)}")
         if t0 is not None:
             settings.append(f"Initial conditions/Temperature={t0!r}")
         if end_time is not None:

@@ -241,6 +241,17 @@ def first_damage(folder):
     return (hist["time"][onset[0] - 1] if onset[0] > 0 else 0.0, hist["time"][onset[0]])
 
 
+def disc_geo(out, rim_size):
+    """Writes out/disc-3d.geo: prm/thermal_shock_disc-3d.geo with tetrahedra
+    of @p rim_size [m] at the rim; returns its path."""
+    os.makedirs(out, exist_ok=True)
+    geo = os.path.join(os.path.abspath(out), "disc-3d.geo")
+    with open(geo, "w") as f:
+        f.write(f"h_rim = {rim_size!r};\n"
+                f'Include "{os.path.abspath(os.path.join(PRM, "thermal_shock_disc-3d.geo"))}";\n')
+    return geo
+
+
 def run_case(binary, out, rim_size=None, end_time=None, with_2d=True):
     """The 3D disc (Element size at the rim @p rim_size [m], else the .geo's
     0.25 mm; to @p end_time [s], else the prm's) into out/disc-3d and, with
@@ -248,12 +259,7 @@ def run_case(binary, out, rim_size=None, end_time=None, with_2d=True):
     out/disc-2d."""
     settings = [f"Initial conditions/Temperature={T0:g}"]
     if rim_size is not None:
-        os.makedirs(out, exist_ok=True)
-        geo = os.path.join(os.path.abspath(out), "disc-3d.geo")
-        with open(geo, "w") as f:
-            f.write(f"h_rim = {rim_size!r};\n"
-                    f'Include "{os.path.abspath(os.path.join(PRM, "thermal_shock_disc-3d.geo"))}";\n')
-        settings.append(f"Mesh/File name={geo}")
+        settings.append(f"Mesh/File name={disc_geo(out, rim_size)}")
     if end_time is not None:
         times = [t for t in OUTPUT_TIMES.split(", ") if float(t) < end_time] + [f"{end_time!r}"]
         settings += [f"Time stepping/End time={end_time!r}", "Output/Times=" + ", ".join(times)]
