@@ -61,13 +61,31 @@ namespace tmfdem
                                               const double               dt,
                                               const bool unstable)
     {
-      double rise = 0., highest = 0.;
+      // each joint may use up, per thermal step, Maximum utilisation change
+      // or the fraction Utilisation margin fraction of its margin to the
+      // peak (1 - U), whichever is larger: near the peak the change rules,
+      // farther from it a joint may rise faster, so that the ups and downs
+      // of joints far from their strength from one relaxation to the next
+      // (friction and contact make its end state path dependent) do not
+      // hold the step. The rate is scaled to the change, so that the next
+      // step is at most change / rate.
+      const DiscreteHeatParameters &dh =
+        parameters.get<DiscreteHeatParameters>();
+      const double change = dh.maximum_utilisation_change;
+      double       rise = 0., highest = 0.;
       for (std::size_t j = 0; j < end.size(); ++j)
         if (end[j] >= 0.)
           {
             highest = std::max(highest, end[j]);
-            if (start[j] >= 0.)
-              rise = std::max(rise, end[j] - start[j]);
+            if (start[j] >= 0. && end[j] > start[j])
+              {
+                const double allowed =
+                  std::max(change,
+                           dh.utilisation_margin_fraction * (1. - end[j]));
+                rise = std::max(rise,
+                                (end[j] - start[j]) *
+                                  (allowed > 0. ? change / allowed : 1.));
+              }
           }
       joint_utilisation_rate = unstable ? 0. : rise / dt;
       joint_utilisation      = highest;

@@ -430,6 +430,24 @@ namespace tmfdem
       std::unique_ptr<CheckpointWriter> thermal_step_start;
 
       /**
+       * Records for next_thermal_step() the joints' strength utilisations
+       * @p start and @p end of a thermal step of @p dt [s] (one per joint,
+       * negative for a damaged joint): the rate [1/s] at which the joint
+       * that uses up its allowance fastest rose, scaled so that the next
+       * step is at most Maximum utilisation change / rate (joint j may rise
+       * by max(Maximum utilisation change, Utilisation margin fraction x
+       * (1 - U_j)) per step; only joints undamaged at both ends count, so a
+       * joint that became damaged leaves the set and the most loaded one
+       * before it does not stand for the others), 0 for an @p unstable
+       * step, and the highest utilisation at its end.
+       */
+      void
+      record_utilisation(const std::vector<double> &start,
+                         const std::vector<double> &end,
+                         const double               dt,
+                         const bool                 unstable);
+
+      /**
        * The next thermal step [s]: Time stepping/Time step grown by Discrete
        * heat/Thermal step growth factor per step taken
        * (@p n_thermal_steps), at most twice the last accepted step, limited
@@ -498,16 +516,6 @@ namespace tmfdem
                    const std::vector<double> &end,
                    unsigned int              &broken,
                    bool                      &grew);
-      /** The fastest rise of one joint's utilisation over the step @p dt
-       *  [s] among the joints undamaged at both ends (a joint that became
-       *  damaged leaves the set; the most loaded one before it does not
-       *  stand for the others), 0 for an @p unstable step, and the highest
-       *  utilisation at its end. */
-      void
-      record_utilisation(const std::vector<double> &start,
-                         const std::vector<double> &end,
-                         const double               dt,
-                         const bool                 unstable);
       /** The line that says a thermal step is re-run. */
       static std::string
       rerun_message(const double       time,

@@ -185,6 +185,10 @@ namespace tmfdem
     /** Quasi-static: largest predicted rise of the joints' strength
      *  utilisation per thermal step [-]; 0: off. */
     double maximum_utilisation_change = 0.01;
+    /** Quasi-static: the fraction of its margin to the peak, 1 - U, that a
+     *  joint may use up per thermal step where that is more than
+     *  maximum_utilisation_change [-]; 0: the change alone. */
+    double utilisation_margin_fraction = 0.;
     /** Quasi-static: most joints that may break in one thermal step (the
      *  next step shrinks where more did; a step with more than twice this
      *  many is re-run shorter) [-]; 0: off. */
