@@ -640,7 +640,7 @@ namespace tmfdem
       "from its peak may rise per thermal step by this fraction of its "
       "margin 1 - U where that is more than Maximum utilisation change: the "
       "step control then follows each joint's approach to its strength "
-      "(about 44 steps from U = 0 to 0.99 at 0.1) instead of holding every "
+      "(about 31 steps from U = 0 to 0.99 at 0.1) instead of holding every "
       "step to the change of the fastest joint, and the small ups and downs "
       "of joints far from their strength between relaxations do not hold "
       "the step short. Set 0.1 where contact and friction act between "
