@@ -6,7 +6,7 @@
 // Other sizes: gmsh -setnumber hf ..., or a .geo that sets them and
 // Includes this file.
 SetFactory("OpenCASCADE");
-DefineConstant[ R = 0.05, gap = 0.0005, hf = 0.00125, hc = 0.01, L = 0.04, H = 0.02 ];
+DefineConstant[ R = 0.05, gap = 0.0005, hf = 0.00125, hc = 0.005, L = 0.04, H = 0.02 ];
 Sphere(1) = {0, 0, R + gap, R, -Pi / 2, Pi / 2, Pi / 2};
 Box(2) = {0, 0, -H, L, L, H};
 Physical Volume(1) = {1};

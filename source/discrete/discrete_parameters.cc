@@ -262,11 +262,12 @@ namespace tmfdem
       "Triangle numbering",
       "Hilbert curve",
       Patterns::Selection("Hilbert curve|mesh"),
-      "Order in which the discrete layer numbers its triangles: Hilbert "
-      "curve (along a Hilbert curve through the centroids, so that each MPI "
-      "rank, which owns a range of triangles, owns a compact region with a "
-      "small halo, and neighbours lie near in memory) or mesh (the order of "
-      "the mesh file or generator, after global refinement). Changes results "
+      "Order in which the discrete layer numbers its triangles (tetrahedra "
+      "in 3D): Hilbert curve (along a Hilbert curve through the centroids, "
+      "so that each MPI rank, which owns a range of triangles, owns a "
+      "compact region with a small halo, and neighbours lie near in memory) "
+      "or mesh (the order of the mesh file or generator, after global "
+      "refinement). Changes results "
       "only at round-off (sums in another order); the random joint "
       "strengths (Heterogeneity) and the monitors' elements do not depend "
       "on it.");

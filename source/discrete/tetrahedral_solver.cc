@@ -31,6 +31,7 @@
 #include <tmfdem/io/checkpoint.h>
 #include <tmfdem/io/output_files.h>
 #include <tmfdem/io/output_schedule.h>
+#include <tmfdem/mesh/cell_order.h>
 #include <tmfdem/mesh/mesh_checks.h>
 #include <tmfdem/mesh/mesh_generator.h>
 
@@ -150,9 +151,14 @@ namespace tmfdem
       for (const auto id : report.material_ids)
         parameters.materials.require_given(id, "cells of the " + source);
       triangulation.refine_global(parameters.mesh.global_refinements);
+      std::vector<unsigned int> mesh_index;
+      if (parameters.get<DiscreteMechanicsParameters>().hilbert_curve_numbering)
+        mesh_index = order_cells_along_hilbert_curve(triangulation);
       dof_handler.reinit(triangulation);
       dof_handler.distribute_dofs(fe);
       model.build(dof_handler);
+      if (!mesh_index.empty())
+        model.mesh_index = mesh_index;
 
       // the face of each joint side
       joint_face.assign(2 * model.n_joints, 0);
