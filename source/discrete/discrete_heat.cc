@@ -114,6 +114,8 @@ namespace tmfdem
         conductivity_matrix(model, e, conductivity_tensor[e], K);
       else
         conductivity_matrix(model, e, conductivity[e], K);
+      if (conduction_m_matrix)
+        make_conduction_m_matrix(K);
     }
 
     DiscreteHeat::DiscreteHeat(const Parameters &parameters,
@@ -125,6 +127,7 @@ namespace tmfdem
       use_implicit   = dh.time_integration ==
                      DiscreteHeatParameters::TimeIntegration::implicit;
       lumped_implicit_capacity = dh.lumped_implicit_capacity;
+      conduction_m_matrix      = dh.conduction_m_matrix;
       beta                     = dh.joint_conductance_factor;
       contact_conductance      = dh.contact_conductance;
       T.reinit(model.n_nodes);
@@ -382,6 +385,8 @@ namespace tmfdem
           // in the order of symmetric matrices, so the bound holds
           double K[3][3];
           conductivity_matrix(model, e, max_conductivity[e], K);
+          if (conduction_m_matrix)
+            make_conduction_m_matrix(K);
           for (unsigned int a = 0; a < 3; ++a)
             row[3 * e + a] += 2. * K[a][a];
         }

@@ -66,6 +66,7 @@ namespace tmfdem
       use_implicit   = dh.time_integration ==
                      DiscreteHeatParameters::TimeIntegration::implicit;
       lumped_implicit_capacity = dh.lumped_implicit_capacity;
+      conduction_m_matrix      = dh.conduction_m_matrix;
       beta                     = dh.joint_conductance_factor;
       tolerance                = dh.solver_tolerance;
       contact_conductance      = dh.contact_conductance;
@@ -296,6 +297,8 @@ namespace tmfdem
               const TetrahedronNodes nodes(model, e);
               double                 K[4][4];
               conductivity_matrix<3, double>(nodes.x, conductivity[e], K);
+              if (conduction_m_matrix)
+                make_conduction_m_matrix(K);
               std::copy(&K[0][0], &K[0][0] + 16, &element_matrix[16 * e]);
             }
         });
@@ -332,6 +335,8 @@ namespace tmfdem
                 }
               double K[4][4];
               conductivity_matrix<3, double>(x, conductivity[e], K);
+              if (conduction_m_matrix)
+                make_conduction_m_matrix(K);
               for (unsigned int a = 0; a < 4; ++a)
                 {
                   const unsigned int n = 4 * e + a;

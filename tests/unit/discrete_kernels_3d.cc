@@ -12,6 +12,7 @@
 #include <random>
 #include <tmfdem/discrete/cohesive_law.h>
 #include <tmfdem/discrete/element_kernel.h>
+#include <tmfdem/discrete/heat_kernel.h>
 #include <tmfdem/discrete/joint_kernel.h>
 
 using namespace tmfdem::discrete;
@@ -828,4 +829,84 @@ TEST(FaceJoint, LanesMatchOneJointAtATimeBitwise)
       EXPECT_EQ(r.d_opening, rl.d_opening[l]);
       EXPECT_EQ(r.d_slip, rl.d_slip[l]);
     }
+}
+
+// Discrete heat/Conduction matrix = M-matrix: an obtuse tetrahedron's
+// positive couplings go onto the diagonal; row sums, symmetry, the
+// Gershgorin row bound and positive semi-definiteness are kept, the
+// quadratic form only grows, and a tetrahedron without obtuse angles keeps
+// its matrix bit for bit.
+TEST(ConductionMatrix, MMatrixMovesPositiveCouplingsOntoTheDiagonal)
+{
+  const auto matrix = [](const double(&corners)[4][3], double(&K)[4][4]) {
+    double x[3][4];
+    for (unsigned int a = 0; a < 4; ++a)
+      for (unsigned int i = 0; i < 3; ++i)
+        x[i][a] = corners[a][i];
+    const double *const X[3] = {x[0], x[1], x[2]};
+    conductivity_matrix<3, double>(X, 2.5, K);
+  };
+  // a flat tetrahedron: node 3 just above the middle of the face 0-1-2,
+  // whose faces meet at obtuse angles
+  const double obtuse[4][3] = {{0., 0., 0.},
+                               {1., 0., 0.},
+                               {0., 1., 0.},
+                               {0.3, 0.3, 0.05}};
+  double       K[4][4], M[4][4];
+  matrix(obtuse, K);
+  std::copy(&K[0][0], &K[0][0] + 16, &M[0][0]);
+  make_conduction_m_matrix(M);
+  unsigned int n_positive = 0;
+  for (unsigned int a = 0; a < 4; ++a)
+    for (unsigned int b = 0; b < 4; ++b)
+      if (a != b)
+        n_positive += K[a][b] > 0.;
+  ASSERT_GT(n_positive, 0u) << "the test tetrahedron has no obtuse angle";
+  const double scale = K[0][0] + K[1][1] + K[2][2] + K[3][3];
+  for (unsigned int a = 0; a < 4; ++a)
+    {
+      double row = 0., row_abs = 0., row_abs_k = 0.;
+      for (unsigned int b = 0; b < 4; ++b)
+        {
+          row += M[a][b];
+          row_abs += std::abs(M[a][b]);
+          row_abs_k += std::abs(K[a][b]);
+          EXPECT_EQ(M[a][b], M[b][a]);
+          if (a != b)
+            {
+              EXPECT_LE(M[a][b], 0.);
+              EXPECT_EQ(M[a][b], std::min(K[a][b], 0.));
+            }
+        }
+      EXPECT_NEAR(row, 0., 1e-14 * scale) << "row " << a;
+      EXPECT_NEAR(row_abs, row_abs_k, 1e-14 * scale) << "row " << a;
+    }
+  // x^T M x = x^T K x + sum over the moved pairs of K_ab (x_a - x_b)^2 >= it
+  std::mt19937                           engine(3);
+  std::uniform_real_distribution<double> u(-1., 1.);
+  for (unsigned int trial = 0; trial < 100; ++trial)
+    {
+      double x[4], qK = 0., qM = 0.;
+      for (double &v : x)
+        v = u(engine);
+      for (unsigned int a = 0; a < 4; ++a)
+        for (unsigned int b = 0; b < 4; ++b)
+          {
+            qK += x[a] * K[a][b] * x[b];
+            qM += x[a] * M[a][b] * x[b];
+          }
+      EXPECT_GE(qK, -1e-14 * scale);
+      EXPECT_GE(qM, qK - 1e-14 * scale);
+    }
+  // the corner of a cube: every angle between faces at most 90 degrees
+  const double right[4][3] = {{0., 0., 0.},
+                              {1., 0., 0.},
+                              {0., 1., 0.},
+                              {0., 0., 1.}};
+  matrix(right, K);
+  std::copy(&K[0][0], &K[0][0] + 16, &M[0][0]);
+  make_conduction_m_matrix(M);
+  for (unsigned int a = 0; a < 4; ++a)
+    for (unsigned int b = 0; b < 4; ++b)
+      EXPECT_EQ(M[a][b], K[a][b]);
 }

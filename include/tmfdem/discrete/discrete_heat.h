@@ -300,8 +300,10 @@ namespace tmfdem
       Vector<double>    T;
       bool              use_implicit = true;
       /** Discrete heat/Capacity matrix = lumped (implicit steps). */
-      bool   lumped_implicit_capacity = false;
-      double beta                     = 100.;
+      bool lumped_implicit_capacity = false;
+      /** Discrete heat/Conduction matrix = M-matrix. */
+      bool   conduction_m_matrix = false;
+      double beta                = 100.;
 
       std::vector<double> conductivity; ///< per element [W/(m K)]
       /** Largest principal conductivity per element [W/(m K)]. */

@@ -132,7 +132,11 @@ namespace tmfdem
     /** Capacity matrix of the implicit step: consistent (the default) or
      *  lumped (no overshoot of the initial or boundary temperatures at
      *  steps much shorter than h^2 / kappa). */
-    bool   lumped_implicit_capacity = false;
+    bool lumped_implicit_capacity = false;
+    /** Conduction matrix of each element: consistent (the default) or an
+     *  M-matrix (positive couplings moved onto the diagonal:
+     *  make_conduction_m_matrix()). */
+    bool   conduction_m_matrix      = false;
     double joint_conductance_factor = 1000.; ///< beta [-]
     double contact_conductance      = 1e4;   ///< h_c [W/(m^2 K)]
     double safety_factor            = 0.9;   ///< explicit [-]

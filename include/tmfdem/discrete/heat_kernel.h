@@ -75,6 +75,35 @@ namespace tmfdem
     }
 
     /**
+     * Makes the conduction matrix @p K of one element (n = dim + 1 nodes,
+     * symmetric, zero row sums) an M-matrix (Discrete heat/Conduction
+     * matrix = M-matrix): every positive coupling K_ab of two nodes (the
+     * two faces opposite them meet at an obtuse angle) is set to zero and
+     * added to both diagonals, K <- K + sum K_ab (e_a - e_b)(e_a - e_b)^T
+     * over those pairs. The row sums stay zero (a uniform temperature
+     * carries no heat, and every element conserves heat), K stays
+     * symmetric positive semi-definite with more conduction along those
+     * edges (discrete upwinding, Kuzmin's low-order operator), and its
+     * Gershgorin row bound sum_b |K_ab| does not change. With the lumped
+     * capacity an implicit step then keeps every node between the extremes
+     * of the old temperatures and the boundary values (discrete maximum
+     * principle); the price is a first-order error on obtuse elements.
+     */
+    template <int n>
+    inline void
+    make_conduction_m_matrix(double (*K)[n])
+    {
+      for (int a = 0; a < n; ++a)
+        for (int b = a + 1; b < n; ++b)
+          if (K[a][b] > 0.)
+            {
+              K[a][a] += K[a][b];
+              K[b][b] += K[b][a];
+              K[a][b] = K[b][a] = 0.;
+            }
+    }
+
+    /**
      * Entry (a, b) of the consistent capacity matrix of a P1 simplex,
      * M_ab = c V (1 + delta_ab) / ((dim + 1)(dim + 2)) [J/(m K) in 2D, J/K
      * in 3D], with the volumetric heat capacity @p c = rho c_p [J/(m^3 K)]

@@ -251,13 +251,15 @@ namespace tmfdem
       DiscreteModel    &model;
       bool              use_implicit = true;
       /** Discrete heat/Capacity matrix = lumped (implicit steps). */
-      bool                          lumped_implicit_capacity = false;
-      double                        beta                     = 1000.;
-      double                        tolerance                = 1e-12;
-      unsigned int                  n_threads                = 1;
-      unsigned int                  iterations               = 0;
-      static constexpr unsigned int chunk_elements           = 512;
-      unsigned int                  n_chunks                 = 0;
+      bool lumped_implicit_capacity = false;
+      /** Discrete heat/Conduction matrix = M-matrix. */
+      bool                          conduction_m_matrix = false;
+      double                        beta                = 1000.;
+      double                        tolerance           = 1e-12;
+      unsigned int                  n_threads           = 1;
+      unsigned int                  iterations          = 0;
+      static constexpr unsigned int chunk_elements      = 512;
+      unsigned int                  n_chunks            = 0;
 
       std::vector<double> T;
       std::vector<double> conductivity;             ///< per element [W/(m K)]
