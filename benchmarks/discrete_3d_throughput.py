@@ -160,7 +160,7 @@ def main():
               "(target >= 1.7)")
         small = max(2, args.cells - 4)
         s_small, rss_small = run(binary, PRM_3D, os.path.join(work, "cube_small"),
-                                 cube(small, 20, 1))
+                                 cube(small, 20, 1) + args.set)
         per = (rss_big - rss_small) / (n_big - s_small["elements"])
         print(f"memory: cubes {args.cells} and {small}: {n_big} and {s_small['elements']} "
               f"tetrahedra, peak {rss_big / 2**20:.1f} and {rss_small / 2**20:.1f} MiB: "
