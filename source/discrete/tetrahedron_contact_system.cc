@@ -321,11 +321,27 @@ namespace tmfdem
               pair_active[p] = 1;
               std::fill(force, force + 24, 0.);
               pair_friction[p] = 0.;
-              gather_velocities(m, pair.first, v[0]);
-              gather_velocities(m, pair.second, v[1]);
               // the faces of a broken joint: its compressive stiffness
               law.normal_penalty =
                 contact.penalty_coulomb.normal_penalty * pair_penalty_factor[p];
+              TetrahedronCoordinates coordinates[2];
+              if (!tetrahedra_overlap(x, coordinates))
+                {
+                  // touching or apart (most pairs whose boxes meet): no
+                  // force, the friction reset, and the offset follows the
+                  // energy down as below; the velocities are not needed
+                  if (pair_energy_offset[p] > 0.)
+                    {
+                      const double energy =
+                        pair_contact_energy_3d(x, law.normal_penalty);
+                      if (energy <= pair_energy_offset[p])
+                        pair_energy_offset[p] = energy;
+                    }
+                  pair.friction = TetrahedronPairFriction();
+                  continue;
+                }
+              gather_velocities(m, pair.first, v[0]);
+              gather_velocities(m, pair.second, v[1]);
               if (pair_energy_offset[p] > 0.)
                 {
                   // potential (E - E_0)^2 / E above the offset, 0 below it
@@ -342,8 +358,13 @@ namespace tmfdem
                   law.normal_penalty *=
                     offset_force_factor(energy, pair_energy_offset[p]);
                 }
-              pair_friction[p] =
-                add_pair_forces_3d(x, v, law, dt, pair.friction, force);
+              pair_friction[p] = add_overlapping_pair_forces_3d(x,
+                                                                coordinates,
+                                                                v,
+                                                                law,
+                                                                dt,
+                                                                pair.friction,
+                                                                force);
             }
         });
     }

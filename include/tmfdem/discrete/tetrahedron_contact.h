@@ -951,24 +951,22 @@ namespace tmfdem
      * friction of every contactor face inside its target
      * (add_face_friction_3d(), the histories in @p friction, reset where a
      * face leaves). @p x, @p v: nodes [m] and velocities [m/s] of the two
-     * (x[side][k][i], positively oriented). Adds the forces to @p force
+     * (x[side][k][i], positively oriented), which overlap:
+     * tetrahedra_overlap() has returned true and set their barycentric
+     * @p coordinates. Adds the forces to @p force
      * (the first's twelve components, then the second's) [N]; returns the
      * energy friction dissipated over the step @p dt [s] [J].
      */
     inline double
-    add_pair_forces_3d(const double (&x)[2][4][3],
-                       const double (&v)[2][4][3],
-                       const PenaltyCoulombContact &law,
-                       const double                 dt,
-                       TetrahedronPairFriction     &friction,
-                       double                      *force)
+    add_overlapping_pair_forces_3d(
+      const double (&x)[2][4][3],
+      const TetrahedronCoordinates (&coordinates)[2],
+      const double (&v)[2][4][3],
+      const PenaltyCoulombContact &law,
+      const double                 dt,
+      TetrahedronPairFriction     &friction,
+      double                      *force)
     {
-      TetrahedronCoordinates coordinates[2];
-      if (!tetrahedra_overlap(x, coordinates))
-        {
-          friction = TetrahedronPairFriction();
-          return 0.;
-        }
       double dissipated = 0.;
       for (unsigned int direction = 0; direction < 2; ++direction)
         {
@@ -1020,6 +1018,34 @@ namespace tmfdem
                                            ft);
         }
       return dissipated;
+    }
+
+    /**
+     * add_overlapping_pair_forces_3d() for a pair that may not overlap: no
+     * force, and the friction history reset, where tetrahedra_overlap()
+     * finds the pair apart or touching.
+     */
+    inline double
+    add_pair_forces_3d(const double (&x)[2][4][3],
+                       const double (&v)[2][4][3],
+                       const PenaltyCoulombContact &law,
+                       const double                 dt,
+                       TetrahedronPairFriction     &friction,
+                       double                      *force)
+    {
+      TetrahedronCoordinates coordinates[2];
+      if (!tetrahedra_overlap(x, coordinates))
+        {
+          friction = TetrahedronPairFriction();
+          return 0.;
+        }
+      return add_overlapping_pair_forces_3d(x,
+                                            coordinates,
+                                            v,
+                                            law,
+                                            dt,
+                                            friction,
+                                            force);
     }
 
     /** The normal contact energy E_t + E_c of a pair of tetrahedra (nodes
