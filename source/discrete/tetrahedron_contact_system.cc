@@ -324,24 +324,10 @@ namespace tmfdem
               // the faces of a broken joint: its compressive stiffness
               law.normal_penalty =
                 contact.penalty_coulomb.normal_penalty * pair_penalty_factor[p];
+              // touching or apart (most pairs whose boxes meet): no force
+              // and the friction reset below, the velocities not needed
               TetrahedronCoordinates coordinates[2];
-              if (!tetrahedra_overlap(x, coordinates))
-                {
-                  // touching or apart (most pairs whose boxes meet): no
-                  // force, the friction reset, and the offset follows the
-                  // energy down as below; the velocities are not needed
-                  if (pair_energy_offset[p] > 0.)
-                    {
-                      const double energy =
-                        pair_contact_energy_3d(x, law.normal_penalty);
-                      if (energy <= pair_energy_offset[p])
-                        pair_energy_offset[p] = energy;
-                    }
-                  pair.friction = TetrahedronPairFriction();
-                  continue;
-                }
-              gather_velocities(m, pair.first, v[0]);
-              gather_velocities(m, pair.second, v[1]);
+              const bool overlap = tetrahedra_overlap(x, coordinates);
               if (pair_energy_offset[p] > 0.)
                 {
                   // potential (E - E_0)^2 / E above the offset, 0 below it
@@ -358,6 +344,13 @@ namespace tmfdem
                   law.normal_penalty *=
                     offset_force_factor(energy, pair_energy_offset[p]);
                 }
+              if (!overlap)
+                {
+                  pair.friction = TetrahedronPairFriction();
+                  continue;
+                }
+              gather_velocities(m, pair.first, v[0]);
+              gather_velocities(m, pair.second, v[1]);
               pair_friction[p] = add_overlapping_pair_forces_3d(x,
                                                                 coordinates,
                                                                 v,
