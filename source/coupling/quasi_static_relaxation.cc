@@ -62,17 +62,26 @@ namespace tmfdem
                                               const bool unstable)
     {
       // each joint may use up, per thermal step, Maximum utilisation change
-      // or the fraction Utilisation margin fraction of its margin to the
-      // peak (1 - U), whichever is larger: near the peak the change rules,
-      // farther from it a joint may rise faster, so that the ups and downs
-      // of joints far from their strength from one relaxation to the next
-      // (friction and contact make its end state path dependent) do not
-      // hold the step. The rate is scaled to the change, so that the next
-      // step is at most change / rate.
+      // or, once a joint of the model is damaged, the fraction Utilisation
+      // margin fraction of its margin to the peak (1 - U), whichever is
+      // larger: near the peak the change rules, farther from it a joint
+      // may rise faster, so that the ups and downs of joints far from their
+      // strength from one relaxation to the next (friction and contact
+      // make its end state path dependent) do not hold the step. Before
+      // the first damage the load rises smoothly and the change alone
+      // keeps the thermal steps short enough for the heat's time
+      // integration to bring the stress to the strength at the right time.
+      // The rate is scaled to the change, so that the next step is at most
+      // change / rate. (U < 0: a damaged or broken joint.)
       const DiscreteHeatParameters &dh =
         parameters.get<DiscreteHeatParameters>();
-      const double change = dh.maximum_utilisation_change;
-      double       rise = 0., highest = 0.;
+      const double change  = dh.maximum_utilisation_change;
+      const bool   damaged = std::any_of(end.begin(),
+                                       end.end(),
+                                       [](const double u) { return u < 0.; });
+      const double margin_fraction =
+        damaged ? dh.utilisation_margin_fraction : 0.;
+      double rise = 0., highest = 0.;
       for (std::size_t j = 0; j < end.size(); ++j)
         if (end[j] >= 0.)
           {
@@ -80,8 +89,7 @@ namespace tmfdem
             if (start[j] >= 0. && end[j] > start[j])
               {
                 const double allowed =
-                  std::max(change,
-                           dh.utilisation_margin_fraction * (1. - end[j]));
+                  std::max(change, margin_fraction * (1. - end[j]));
                 rise = std::max(rise,
                                 (end[j] - start[j]) *
                                   (allowed > 0. ? change / allowed : 1.));

@@ -2,7 +2,8 @@
 // (coupling/quasi_static_relaxation.h, theory manual 8, "Thermal steps near
 // failure"): joint j may rise per thermal step by
 // a_j = max(c, f (1 - U_j)), c = Maximum utilisation change, f =
-// Utilisation margin fraction, so the next step is at most
+// Utilisation margin fraction once a joint of the model is damaged (0
+// before), so the next step is at most
 // min_j a_j dt / dU_j over the joints undamaged at both ends whose
 // utilisation rose. The expected steps are worked out by hand from that
 // rule; the schedule (Time step x growth^n) is made long enough not to
@@ -85,13 +86,25 @@ TEST(ThermalStepControl, WithoutTheMarginFractionEveryJointHasTheChange)
 TEST(ThermalStepControl, UpsAndDownsFarFromThePeakDoNotHoldTheStep)
 {
   // joints at 0.2-0.7 moving by up to 0.03 per step (the 3D disc after its
-  // cracks open): none uses up its allowance in a step of 1 ms, so the
-  // step may grow, to 0.1 x 0.28 / 0.02 ms = 1.4 ms (joint 2), where c
-  // alone would cut it to a third of 1 ms
-  const std::vector<double> start = {0.2, 0.45, 0.7, 0.68};
-  const std::vector<double> end   = {0.23, 0.43, 0.72, 0.69};
+  // cracks open, joint 4 broken): none uses up its allowance in a step of
+  // 1 ms, so the step may grow, to 0.1 x 0.28 / 0.02 ms = 1.4 ms (joint
+  // 2), where c alone would cut it to a third of 1 ms
+  const std::vector<double> start = {0.2, 0.45, 0.7, 0.68, -1.};
+  const std::vector<double> end   = {0.23, 0.43, 0.72, 0.69, -1.};
   EXPECT_NEAR(next_step(control_parameters(0.1), start, end), 1.4e-3, 1e-15);
   EXPECT_NEAR(next_step(control_parameters(0.), start, end),
               0.01 / 0.03 * 1e-3,
+              1e-15);
+}
+
+TEST(ThermalStepControl, BeforeTheFirstDamageEveryJointHasTheChange)
+{
+  // the joints of the first test, none damaged: the load still rises
+  // smoothly, and c alone keeps the steps to the onset short, 0.01 / 0.06
+  // ms (joint 1), whatever f says
+  EXPECT_NEAR(next_step(control_parameters(0.1),
+                        {0.5, 0.2, 0.7, 0.6},
+                        {0.53, 0.26, 0.4, 0.61}),
+              0.01 / 0.06 * 1e-3,
               1e-15);
 }
