@@ -37,15 +37,15 @@ cases = {
                              "Checkpoint/Interval (steps)=6000"],
     "plate_traction": ["Discrete mechanics/Maximum steps=3000",
                        "Checkpoint/Interval (steps)=3000"],
-    # 500 C on a 0.8 mm mesh (508 triangles): joints damaged from 11.5 ms
-    # on, 6 broken at 13.9 ms (step 36 800, one fracture event), 45 500 steps
-    # to 16 ms; the checkpoint at step 40 000 holds the state after the
+    # 500 C on a 0.8 mm mesh (508 triangles): joints damaged from 11.4 ms
+    # on, 5 broken at 13.7 ms (step 63 600, one fracture event), 74 600 steps
+    # to 16 ms; the checkpoint at step 70 000 holds the state after the
     # breaks
     "thermal_shock_disc": ["Initial conditions/Temperature=500",
                            "Mesh/Element size=0.8e-3",
                            "Time stepping/End time=0.016",
                            "Output/Write vtu=false",
-                           "Checkpoint/Interval (steps)=40000"],
+                           "Checkpoint/Interval (steps)=70000"],
 }
 
 
