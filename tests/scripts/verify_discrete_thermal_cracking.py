@@ -367,8 +367,9 @@ def shock(out):
                         f"(outermost broken joint at r = {r.max() * 1e3:.3f} mm)")
             # the direction in which the cracks grow: the first output
             # that has broken joints
-            t_grow, vtu = next((t, f) for t, f in outputs if len(broken_joints(f)[0]))
-            r_grow, radial_grow = broken_joints(vtu)
+            t_grow, (r_grow, radial_grow) = next(
+                (t, joints) for t, joints in ((t, broken_joints(f)) for t, f in outputs)
+                if len(joints[0]))
             frac = np.mean(radial_grow > np.cos(np.radians(35)))
             ok &= check(frac >= 0.6, f"T0 = {T0}: cracks run radially inward: at "
                         f"{t_grow * 1e3:.0f} ms (the first output with broken joints) "
